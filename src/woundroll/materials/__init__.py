@@ -1,0 +1,15 @@
+"""Materials: radial-modulus laws, web and core data, presets, stack-test fitting."""
+
+from woundroll.materials.radial_modulus import (
+    LAWS,
+    Constant,
+    Pfeiffer,
+    Polynomial,
+    RadialModulusLaw,
+    Tabulated,
+    law_from_spec,
+)
+from woundroll.materials.web import Core, Web
+
+__all__ = ["LAWS", "Constant", "Core", "Pfeiffer", "Polynomial", "RadialModulusLaw", "Tabulated",
+           "Web", "law_from_spec"]
