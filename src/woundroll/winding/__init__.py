@@ -1,0 +1,1 @@
+"""Winding models: winder settings -> stresses in the roll."""
