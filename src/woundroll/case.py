@@ -1,0 +1,341 @@
+"""Case files: winder settings, web, core and tester as a validated object with SI values.
+
+A case is a TOML file (or the same structure as Python objects, for notebooks). Every
+quantity may carry a unit (``"4.62 kPa"``, ``"2 pli"``, ``"3 mil"``); a bare number is SI.
+See docs/case-files.md for every key.
+
+Errors: anything wrong raises :class:`woundroll.errors.InputError` whose ``field`` is the
+dotted key (``web.thickness``); unknown keys are errors too, so a typo cannot pass silently.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from functools import partial
+from importlib import resources
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+from pydantic import (
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    Field,
+    ValidationError,
+    model_validator,
+)
+
+from woundroll.errors import InputError
+from woundroll.materials.presets import material_preset
+from woundroll.materials.radial_modulus import RadialModulusLaw, law_from_spec
+from woundroll.materials.web import Core, Web
+from woundroll.units import parse_quantity, to_si
+from woundroll.winding.tension import Taper, TensionSchedule
+
+
+def _quantity(kind: str, sign: str, value: Any) -> float:
+    v = to_si(value, kind)
+    if sign == "positive" and not v > 0:
+        raise ValueError(f"must be positive, got {value!r}")
+    if sign == "nonnegative" and v < 0:
+        raise ValueError(f"must be zero or positive, got {value!r}")
+    return v
+
+
+def Q(kind: str, sign: str = "positive") -> Any:  # noqa: N802 - reads like a type
+    """An annotated float field parsed from a quantity of dimension ``kind`` into SI."""
+    return Annotated[float, BeforeValidator(partial(_quantity, kind, sign))]
+
+
+class _Section(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True, arbitrary_types_allowed=True)
+
+
+class WebSpec(_Section):
+    """``[web]``: the web as wound. ``preset`` fills any key not given (see ``woundroll materials``)."""
+
+    preset: str | None = None
+    thickness: Q("length")
+    width: Q("length")
+    E_theta: Q("pressure")
+    radial_modulus: RadialModulusLaw
+    E_z: Q("pressure") | None = None
+    density: Q("density") = 1400.0
+    nu_theta_r: Q("dimensionless", "nonnegative") = 0.0
+    nu_z_r: Q("dimensionless", "nonnegative") = 0.0
+    nu_theta_z: Q("dimensionless", "nonnegative") = 0.3
+    G_r_theta: Q("pressure") | None = None
+    G_r_z: Q("pressure") | None = None
+    G_theta_z: Q("pressure") | None = None
+
+    @model_validator(mode="before")
+    @classmethod
+    def _apply_preset(cls, data: Any) -> Any:
+        if isinstance(data, dict) and data.get("preset"):
+            data = _merge(material_preset(data["preset"]), data)
+        if isinstance(data, dict) and isinstance(data.get("radial_modulus"), dict):
+            data = dict(data)
+            data["radial_modulus"] = law_from_spec(data["radial_modulus"], "web.radial_modulus",
+                                                   _BASE_DIR.get())
+        return data
+
+    def build(self) -> Web:
+        """The SI :class:`~woundroll.materials.web.Web` of this section."""
+        return Web(**self.model_dump(exclude={"preset"}))
+
+
+class CoreSpec(_Section):
+    """``[core]``: outer radius and either ``stiffness`` (E_c), ``rigid = true``, or a tube."""
+
+    outer_radius: Q("length")
+    stiffness: Q("pressure") | None = None
+    rigid: bool = False
+    inner_radius: Q("length", "nonnegative") | None = None
+    E: Q("pressure") | None = None
+    nu: Q("dimensionless", "nonnegative") | None = None
+
+    @model_validator(mode="after")
+    def _one_way(self) -> CoreSpec:
+        tube = (self.inner_radius, self.E, self.nu)
+        ways = sum([self.stiffness is not None, self.rigid, any(v is not None for v in tube)])
+        if ways != 1:
+            raise InputError("give exactly one of: stiffness = E_c, rigid = true, or a tube "
+                             "(inner_radius, E, nu)", "core")
+        if any(v is not None for v in tube) and any(v is None for v in tube):
+            missing = [n for n, v in zip(("inner_radius", "E", "nu"), tube, strict=True) if v is None]
+            raise InputError(f"a tube core needs inner_radius, E and nu (missing {', '.join(missing)})",
+                             "core." + missing[0])
+        return self
+
+    def build(self) -> Core:
+        """The :class:`~woundroll.materials.web.Core` of this section."""
+        if self.rigid:
+            return Core(self.outer_radius, math.inf)
+        if self.stiffness is not None:
+            return Core(self.outer_radius, self.stiffness)
+        return Core.tube(self.outer_radius, self.inner_radius, self.E, self.nu)
+
+
+class TaperSpec(_Section):
+    """``winding.taper``: ``kind`` none/linear/hyperbolic/table, ``fraction`` (0.2 or "20 %")."""
+
+    kind: Literal["none", "linear", "hyperbolic", "table"] = "none"
+    fraction: Q("dimensionless", "nonnegative") = 0.0
+    radius: list[Q("length")] = Field(default_factory=list)
+    factor: list[Q("dimensionless", "nonnegative")] = Field(default_factory=list)
+
+    def build(self) -> Taper:
+        return Taper(self.kind, self.fraction, tuple(self.radius), tuple(self.factor))
+
+
+def _tension(value: Any) -> tuple[str, float]:
+    """Classify the tension by its dimension: force, force per width, or stress."""
+    q = parse_quantity(value)
+    for kind in ("force", "force_per_length", "pressure"):
+        try:
+            v = to_si(q, kind)
+        except InputError:
+            continue
+        if q.unitless:
+            raise ValueError("needs a unit: a force over the whole width ('26.7 N'), a force per "
+                             "width ('2 pli', '175 N/m') or a stress ('1.75 MPa')")
+        if not (v >= 0):
+            raise ValueError(f"must be zero or positive, got {value!r}")
+        return kind, v
+    raise ValueError(f"{value!r} is neither a force ('26.7 N'), a force per width ('2 pli') nor a "
+                     "stress ('1.75 MPa')")
+
+
+class WindingSpec(_Section):
+    """``[winding]``: final size, web tension (+ taper), nip load and friction, numerics."""
+
+    outer_radius: Q("length") | None = None
+    length: Q("length") | None = None
+    tension: Annotated[tuple[str, float], BeforeValidator(_tension)]
+    taper: TaperSpec = TaperSpec()
+    nip_load: Q("force_per_length", "nonnegative") = 0.0
+    friction: Q("dimensionless", "nonnegative") = 0.0
+    thickness_profile: str | None = None
+    options: dict[str, Any] = Field(default_factory=dict)
+
+    @model_validator(mode="after")
+    def _size(self) -> WindingSpec:
+        if (self.outer_radius is None) == (self.length is None):
+            raise InputError("give exactly one of outer_radius or length", "winding.outer_radius")
+        return self
+
+    def final_radius(self, web: Web, core: Core) -> float:
+        """Outer radius [m]: as given, or from the wound length (no compaction assumed)."""
+        if self.outer_radius is not None:
+            r = self.outer_radius
+        else:
+            r = math.sqrt(core.outer_radius**2 + self.length * web.thickness / math.pi)
+        if r <= core.outer_radius + web.thickness:
+            raise InputError(
+                f"outer radius {r:g} m must exceed the core radius {core.outer_radius:g} m "
+                "by at least one layer", "winding.outer_radius")
+        return r
+
+    def schedule(self, web: Web) -> TensionSchedule:
+        """The SI :class:`TensionSchedule`; tension converted to a stress in the web."""
+        kind, v = self.tension
+        stress = {"force": v / (web.width * web.thickness),
+                  "force_per_length": v / web.thickness,
+                  "pressure": v}[kind]
+        return TensionSchedule(web_stress=stress, taper=self.taper.build(),
+                               nip_load=self.nip_load, friction=self.friction)
+
+
+class Case(_Section):
+    """A whole case: ``title``, ``[web]``, ``[core]``, ``[winding]``, optional ``[tester]``,
+    ``[contact]``, ``[profile]`` (their tables are passed to the models that own them)."""
+
+    title: str = ""
+    web: WebSpec
+    core: CoreSpec
+    winding: WindingSpec
+    tester: dict[str, Any] | None = None
+    contact: dict[str, Any] = Field(default_factory=dict)
+    profile: dict[str, Any] = Field(default_factory=dict)
+    base_dir: Path | None = Field(default=None, exclude=True)
+
+    def web_(self) -> Web:
+        return self.web.build()
+
+
+class _BaseDir:
+    """Directory of the case file being read, for relative paths inside it."""
+
+    value: Path | None = None
+
+    def get(self) -> Path | None:
+        return self.value
+
+
+_BASE_DIR = _BaseDir()
+
+
+def _error_from_validation(exc: ValidationError) -> InputError:
+    err = exc.errors(include_url=False)[0]
+    loc = [str(p) for p in err["loc"] if not str(p).startswith("function-")]
+    field = ".".join(loc) or None
+    inner = (err.get("ctx") or {}).get("error")
+    if isinstance(inner, InputError):
+        if inner.field and field and not inner.field.startswith(field.split(".")[0]):
+            return InputError(inner.message, f"{field}.{inner.field}" if field else inner.field)
+        return InputError(inner.message, inner.field or field)
+    msg = err["msg"].removeprefix("Value error, ")
+    if err["type"] == "missing":
+        msg = "missing (required)"
+    elif err["type"] == "extra_forbidden":
+        msg = "unknown key (check the spelling; see docs/case-files.md)"
+    return InputError(msg, field)
+
+
+def case_from_dict(data: dict[str, Any], base_dir: Path | None = None) -> Case:
+    """Validate a case given as nested dicts (TOML structure) and return a :class:`Case`."""
+    _BASE_DIR.value = base_dir
+    try:
+        case = Case.model_validate({**data, "base_dir": base_dir})
+        web = case.web.build()
+        core = case.core.build()
+        case.winding.final_radius(web, core)
+        case.winding.schedule(web)
+    except ValidationError as exc:
+        raise _error_from_validation(exc) from None
+    finally:
+        _BASE_DIR.value = None
+    return case
+
+
+def bundled_cases() -> dict[str, str]:
+    """Bundled case names -> titles (``woundroll cases``)."""
+    out = {}
+    for entry in sorted(resources.files("woundroll.data.cases").iterdir(), key=lambda e: e.name):
+        if entry.name.endswith(".toml"):
+            data = tomllib.loads(entry.read_text(encoding="utf-8"))
+            out[entry.name.removesuffix(".toml")] = str(data.get("title", ""))
+    return out
+
+
+def resolve_case_path(name_or_path: str | Path) -> Path:
+    """A case file path, or the path of a bundled case named ``name_or_path``."""
+    p = Path(name_or_path)
+    if p.is_file():
+        return p
+    bundled = resources.files("woundroll.data.cases") / f"{name_or_path}.toml"
+    if bundled.is_file():
+        return Path(str(bundled))
+    raise InputError(f"no case file or bundled case named {str(name_or_path)!r} "
+                     f"(bundled: {', '.join(bundled_cases())})", "CASE")
+
+
+def set_dotted(data: dict[str, Any], key: str, value: Any) -> None:
+    """Set ``data["a"]["b"] = value`` for ``key = "a.b"`` (creating tables as needed)."""
+    parts = key.split(".")
+    if not all(parts):
+        raise InputError(f"bad key {key!r}", "--set")
+    node = data
+    for p in parts[:-1]:
+        nxt = node.setdefault(p, {})
+        if not isinstance(nxt, dict):
+            raise InputError(f"{p!r} is not a table, cannot set {key!r}", key)
+        node = nxt
+    node[parts[-1]] = value
+
+
+def parse_override(text: str) -> tuple[str, Any]:
+    """``"winding.tension=30 N"`` -> ``("winding.tension", "30 N")``; TOML values are honoured."""
+    key, sep, raw = text.partition("=")
+    if not sep:
+        raise InputError(f"expected dotted.key=value, got {text!r}", "--set")
+    raw = raw.strip()
+    try:
+        value = tomllib.loads(f"v = {raw}")["v"]
+    except tomllib.TOMLDecodeError:
+        value = raw
+    return key.strip(), value
+
+
+def load_case(source: str | Path | dict[str, Any], overrides: list[str] | None = None) -> Case:
+    """Read a case from a TOML file, a bundled case name, or a dict, with ``--set`` overrides.
+
+    Raises
+    ------
+    InputError
+        For a missing file, TOML syntax, unknown keys, bad values, units or dimensions.
+    """
+    base_dir = None
+    if isinstance(source, dict):
+        data = source
+    else:
+        path = resolve_case_path(source)
+        try:
+            data = tomllib.loads(path.read_text(encoding="utf-8"))
+        except tomllib.TOMLDecodeError as exc:
+            raise InputError(f"{path.name} is not valid TOML: {exc}", "CASE") from None
+        base_dir = path.parent
+    data = _deepcopy(data)
+    for text in overrides or []:
+        key, value = parse_override(text)
+        set_dotted(data, key, value)
+    return case_from_dict(data, base_dir)
+
+
+def _merge(base: dict[str, Any], top: dict[str, Any]) -> dict[str, Any]:
+    """``top`` over ``base``, recursively for tables (a preset under the case's own keys)."""
+    out = dict(base)
+    for k, v in top.items():
+        old = out.get(k)
+        same_law = isinstance(old, dict) and isinstance(v, dict) and v.get("law", old.get("law")) == old.get("law")
+        out[k] = _merge(old, v) if same_law else v
+    return out
+
+
+def _deepcopy(data: Any) -> Any:
+    if isinstance(data, dict):
+        return {k: _deepcopy(v) for k, v in data.items()}
+    if isinstance(data, list):
+        return [_deepcopy(v) for v in data]
+    return data
