@@ -1,0 +1,174 @@
+"""The ``woundroll`` command line.
+
+``woundroll run CASE`` runs a case file or a bundled case; ``woundroll cases`` lists the
+bundled ones; ``woundroll materials`` lists material presets; ``woundroll fit-stack``
+fits radial-modulus laws to a stack test. Input errors print one line naming the field
+and exit with status 2; a solver that does not converge exits with status 1.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from woundroll.errors import ConvergenceError, InputError
+
+app = typer.Typer(add_completion=False, no_args_is_help=True,
+                  help="Wound-roll stresses from winder settings, and the hardness readings they cause.")
+err = Console(stderr=True)
+out = Console()
+
+
+def _fail(exc: Exception, status: int) -> None:
+    err.print(f"[bold red]error:[/] {exc}", highlight=False, soft_wrap=True)
+    raise typer.Exit(status)
+
+
+@app.command()
+def run(
+    case: Annotated[str, typer.Argument(help="Case file (TOML) or bundled case name (see `woundroll cases`).")],
+    set_: Annotated[list[str] | None, typer.Option("--set", help="Override a case key: dotted.key=value (repeatable).")] = None,
+    out_dir: Annotated[Path | None, typer.Option("--out", help="Write result.json and PNG plots here.")] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON on stdout.")] = False,
+    quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar or summary.")] = False,
+) -> None:
+    """Run the models a case asks for: winding, and with a tester section the hardness reading."""
+    from woundroll.case import load_case
+    from woundroll.pipeline import run as run_case
+
+    try:
+        c = load_case(case, set_ or [])
+        if quiet or as_json or not sys.stderr.isatty():
+            result = run_case(c)
+        else:
+            result = _run_with_progress(c, run_case)
+        written = result.write(out_dir) if out_dir is not None else []
+    except InputError as exc:
+        _fail(exc, 2)
+    except ConvergenceError as exc:
+        _fail(exc, 1)
+    if as_json:
+        sys.stdout.write(result.to_json() + "\n")
+        return
+    if not quiet:
+        _summary(result)
+        for p in written:
+            out.print(f"wrote {p}")
+
+
+def _run_with_progress(c, run_case):  # type: ignore[no-untyped-def]
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    with Progress(TextColumn("{task.description}"), BarColumn(), TextColumn("{task.percentage:>3.0f}%"),
+                  TimeElapsedColumn(), console=err, transient=True) as bar:
+        tasks: dict[str, int] = {}
+
+        def progress(stage: str, fraction: float) -> None:
+            if stage not in tasks:
+                tasks[stage] = bar.add_task(stage, total=1.0)
+            bar.update(tasks[stage], completed=min(max(fraction, 0.0), 1.0))
+
+        return run_case(c, progress=progress)
+
+
+def _summary(result) -> None:  # type: ignore[no-untyped-def]
+    t = Table(title=result.case.title or "result", show_header=True)
+    t.add_column("quantity")
+    t.add_column("value", justify="right")
+    for name, value in result_summary(result):
+        t.add_row(name, value)
+    out.print(t)
+
+
+def result_summary(result) -> list[tuple[str, str]]:  # type: ignore[no-untyped-def]
+    """Headline numbers of a run, as (label, formatted value) rows."""
+    rows: list[tuple[str, str]] = []
+    w = result.winding
+    if w is not None:
+        rows += [("layers", f"{len(w.radius) - 1}"),
+                 ("outer radius", f"{w.radius[-1] * 100:.3f} cm"),
+                 ("core pressure", f"{-w.sigma_r[0] / 1e3:.1f} kPa"),
+                 ("max pressure", f"{-w.sigma_r.min() / 1e3:.1f} kPa")]
+    h = result.hardness
+    if h is not None:
+        d = h.to_dict()
+        for key, label, fmt in (("rho_fd", "Rho (finite difference)", "{:.1f}"),
+                                ("rho_energy", "Rho (energy)", "{:.1f}"),
+                                ("impulse_Ns", "impulse [N s]", "{:.4f}"),
+                                ("delta_max_m", "max depth [mm]", "{:.3f}")):
+            if key in d and d[key] is not None:
+                v = d[key] * (1e3 if key == "delta_max_m" else 1)
+                rows.append((label, fmt.format(v)))
+    return rows
+
+
+@app.command()
+def cases() -> None:
+    """List the bundled cases."""
+    from woundroll.case import bundled_cases
+
+    t = Table("name", "title")
+    for name, title in bundled_cases().items():
+        t.add_row(name, title)
+    out.print(t)
+
+
+@app.command()
+def materials() -> None:
+    """List the bundled web-material presets and their sources."""
+    from woundroll.materials.presets import list_materials
+
+    t = Table("preset", "description", "source")
+    for name, table in list_materials().items():
+        t.add_row(name, str(table.get("description", "")), str(table.get("source", "")))
+    out.print(t)
+
+
+@app.command("fit-stack")
+def fit_stack_cmd(
+    csv_file: Annotated[Path, typer.Argument(help="CSV with columns strain and pressure (units in the header, e.g. 'pressure [kPa]').")],
+    law: Annotated[str, typer.Option(help="pfeiffer, polynomial, constant, or all.")] = "all",
+    as_json: Annotated[bool, typer.Option("--json")] = False,
+) -> None:
+    """Fit radial-modulus laws to a stack test and print their parameters and fit quality."""
+    import json
+
+    from woundroll.materials.radial_modulus import read_stack_csv
+    from woundroll.materials.stack_fit import FIT_LAWS, fit_stack
+
+    try:
+        eps, p = read_stack_csv(csv_file, "CSV_FILE")
+        laws = FIT_LAWS if law == "all" else (law,)
+        fits = {}
+        for name in laws:
+            try:
+                fits[name] = fit_stack(eps, p, name)
+            except InputError as exc:
+                if law != "all":
+                    raise
+                err.print(f"{name}: {exc.message}")
+    except InputError as exc:
+        _fail(exc, 2)
+    except ConvergenceError as exc:
+        _fail(exc, 1)
+    if as_json:
+        sys.stdout.write(json.dumps({k: f.to_dict() for k, f in fits.items()}) + "\n")
+        return
+    t = Table("law", "R^2", "RMS rel. error", "max rel. error", "case-file table")
+    for name, f in fits.items():
+        t.add_row(name, f"{f.r2:.5f}", f"{f.rms_rel_error:.2%}", f"{f.max_rel_error:.2%}", f.toml())
+    out.print(t)
+
+
+def main() -> None:
+    """Entry point of the ``woundroll`` script."""
+    app()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,136 @@
+"""Fitting radial-modulus laws to a stack test (pressure against compressive strain).
+
+A stack test compresses a pile of web sheets and records the pressure ``P`` against the
+strain ``eps``. Each law of :mod:`woundroll.materials.radial_modulus` implies a stack
+curve; the fit finds its parameters.
+
+``pfeiffer``
+    P = K1 (exp(K2 eps) - 1) (integral of {2}); nonlinear least squares on log P
+    (stack data span decades of pressure, and relative errors are what matter for E_r),
+    started from the linear regression of the secant modulus on P.
+``polynomial``
+    P = C1 eps + C2 eps^2 + C3 eps^3 (Hakiel 1987), linear least squares.
+``constant``
+    P = E_r eps, linear least squares through the origin.
+
+Quality reported: R^2 of P, RMS and maximum relative error of P over the points with
+P > 0.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.optimize import least_squares
+
+from woundroll.errors import ConvergenceError, InputError
+from woundroll.materials.radial_modulus import Constant, Pfeiffer, Polynomial, RadialModulusLaw
+
+FIT_LAWS = ("pfeiffer", "polynomial", "constant")
+
+
+@dataclass(frozen=True)
+class StackFit:
+    """A fitted law and how well it fits the stack data."""
+
+    law: RadialModulusLaw
+    r2: float
+    rms_rel_error: float
+    max_rel_error: float
+    n_points: int
+    strain_max: float
+    pressure_max: float
+
+    def to_dict(self) -> dict[str, Any]:
+        return {**self.law.to_dict(), "r2": self.r2, "rms_rel_error": self.rms_rel_error,
+                "max_rel_error": self.max_rel_error, "n_points": self.n_points,
+                "strain_max": self.strain_max, "pressure_max_Pa": self.pressure_max}
+
+    def toml(self) -> str:
+        """The case-file inline table for ``web.radial_modulus``."""
+        d = self.law.to_dict()
+        if d["law"] == "pfeiffer":
+            return f'{{ law = "pfeiffer", K1 = "{d["K1_Pa"] / 1e3:.6g} kPa", K2 = {d["K2"]:.6g} }}'
+        if d["law"] == "constant":
+            return f'{{ law = "constant", E_r = "{d["E_r_Pa"] / 1e6:.6g} MPa" }}'
+        return (f'{{ law = "polynomial", C1 = "{d["C1_Pa"]:.6g} Pa", C2 = "{d["C2_Pa"]:.6g} Pa", '
+                f'C3 = "{d["C3_Pa"]:.6g} Pa", strain_max = {d["strain_max"]:.4g} }}')
+
+
+def _check(strain: ArrayLike, pressure: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    eps = np.asarray(strain, dtype=float)
+    p = np.asarray(pressure, dtype=float)
+    if eps.ndim != 1 or eps.shape != p.shape:
+        raise InputError("strain and pressure must be 1-D arrays of equal length", "stack")
+    if eps.size < 3:
+        raise InputError(f"needs at least 3 points, got {eps.size}", "stack")
+    if not (np.all(np.isfinite(eps)) and np.all(np.isfinite(p))):
+        raise InputError("strain and pressure must be finite numbers", "stack")
+    if np.any(eps < 0) or np.any(p < 0):
+        raise InputError("strain and pressure must be >= 0 (compression positive)", "stack")
+    if np.count_nonzero(p > 0) < 3:
+        raise InputError("needs at least 3 points with positive pressure", "stack")
+    return eps, p
+
+
+def _quality(law: RadialModulusLaw, eps: np.ndarray, p: np.ndarray) -> StackFit:
+    model = law.pressure(eps)
+    ss_res = float(np.sum((model - p) ** 2))
+    ss_tot = float(np.sum((p - p.mean()) ** 2))
+    pos = p > 0
+    rel = np.abs(model[pos] - p[pos]) / p[pos]
+    return StackFit(law, 1.0 - ss_res / ss_tot if ss_tot > 0 else float("nan"),
+                    float(np.sqrt(np.mean(rel**2))), float(rel.max()), int(eps.size),
+                    float(eps.max()), float(p.max()))
+
+
+def fit_stack(strain: ArrayLike, pressure: ArrayLike, law: str = "pfeiffer") -> StackFit:
+    """Fit ``law`` to stack-test data.
+
+    Parameters
+    ----------
+    strain : array [-]
+        Compressive strain (positive).
+    pressure : array [Pa]
+        Stack pressure at each strain.
+    law : {"pfeiffer", "polynomial", "constant"}
+
+    Returns
+    -------
+    StackFit
+    """
+    eps, p = _check(strain, pressure)
+    if law == "constant":
+        E = float(np.dot(eps, p) / np.dot(eps, eps))
+        return _quality(Constant(E), eps, p)
+    if law == "polynomial":
+        A = np.column_stack([eps, eps**2, eps**3])
+        c, *_ = np.linalg.lstsq(A, p, rcond=None)
+        try:
+            fitted = Polynomial(C1=c[0], C2=c[1], C3=c[2], strain_max=float(min(eps.max(), 0.99)))
+        except InputError as exc:
+            raise InputError(f"the fitted polynomial is not a stiffening curve ({exc.message})",
+                             "stack") from None
+        return _quality(fitted, eps, p)
+    if law != "pfeiffer":
+        raise InputError(f"cannot fit law {law!r}; choose one of {', '.join(FIT_LAWS)}", "law")
+
+    pos = (p > 0) & (eps > 0)
+    e_pos, p_pos = eps[pos], p[pos]
+    # Start: K2 from the slope of log P at high strain, K1 from the low-strain secant.
+    hi = e_pos >= np.median(e_pos)
+    k2_0 = max(np.polyfit(e_pos[hi], np.log(p_pos[hi]), 1)[0], 1.0)
+    k1_0 = max(float(np.median(p_pos / np.expm1(k2_0 * e_pos))), 1e-6 * p_pos.max())
+
+    def resid(x: np.ndarray) -> np.ndarray:
+        k1, k2 = np.exp(x)
+        return np.log(k1 * np.expm1(k2 * e_pos)) - np.log(p_pos)
+
+    sol = least_squares(resid, np.log([k1_0, k2_0]), method="lm", x_scale="jac")
+    if not sol.success or not np.all(np.isfinite(sol.x)):
+        raise ConvergenceError(f"Pfeiffer stack fit did not converge: {sol.message}")
+    k1, k2 = (float(v) for v in np.exp(sol.x))
+    return _quality(Pfeiffer(K1=k1, K2=k2), eps, p)
