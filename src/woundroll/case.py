@@ -53,7 +53,7 @@ class _Section(BaseModel):
 
 
 class WebSpec(_Section):
-    """``[web]``: the web as wound. ``preset`` fills any key not given (see ``woundroll materials``)."""
+    """``[web]``: the web as wound; ``preset`` fills keys not given (``woundroll materials``)."""
 
     preset: str | None = None
     thickness: Q("length")
@@ -76,13 +76,16 @@ class WebSpec(_Section):
             data = _merge(material_preset(data["preset"]), data)
         if isinstance(data, dict) and isinstance(data.get("radial_modulus"), dict):
             data = dict(data)
-            data["radial_modulus"] = law_from_spec(data["radial_modulus"], "web.radial_modulus",
-                                                   _BASE_DIR.get())
+            data["radial_modulus"] = law_from_spec(
+                data["radial_modulus"], "web.radial_modulus", _BASE_DIR.get()
+            )
         return data
 
     def build(self) -> Web:
         """The SI :class:`~woundroll.materials.web.Web` of this section."""
-        return Web(**self.model_dump(exclude={"preset"}))
+        return Web(
+            **{name: getattr(self, name) for name in type(self).model_fields if name != "preset"}
+        )
 
 
 class CoreSpec(_Section):
@@ -100,12 +103,19 @@ class CoreSpec(_Section):
         tube = (self.inner_radius, self.E, self.nu)
         ways = sum([self.stiffness is not None, self.rigid, any(v is not None for v in tube)])
         if ways != 1:
-            raise InputError("give exactly one of: stiffness = E_c, rigid = true, or a tube "
-                             "(inner_radius, E, nu)", "core")
+            raise InputError(
+                "give exactly one of: stiffness = E_c, rigid = true, or a tube "
+                "(inner_radius, E, nu)",
+                "core",
+            )
         if any(v is not None for v in tube) and any(v is None for v in tube):
-            missing = [n for n, v in zip(("inner_radius", "E", "nu"), tube, strict=True) if v is None]
-            raise InputError(f"a tube core needs inner_radius, E and nu (missing {', '.join(missing)})",
-                             "core." + missing[0])
+            missing = [
+                n for n, v in zip(("inner_radius", "E", "nu"), tube, strict=True) if v is None
+            ]
+            raise InputError(
+                f"a tube core needs inner_radius, E and nu (missing {', '.join(missing)})",
+                "core." + missing[0],
+            )
         return self
 
     def build(self) -> Core:
@@ -138,13 +148,17 @@ def _tension(value: Any) -> tuple[str, float]:
         except InputError:
             continue
         if q.unitless:
-            raise ValueError("needs a unit: a force over the whole width ('26.7 N'), a force per "
-                             "width ('2 pli', '175 N/m') or a stress ('1.75 MPa')")
+            raise ValueError(
+                "needs a unit: a force over the whole width ('26.7 N'), a force per "
+                "width ('2 pli', '175 N/m') or a stress ('1.75 MPa')"
+            )
         if not (v >= 0):
             raise ValueError(f"must be zero or positive, got {value!r}")
         return kind, v
-    raise ValueError(f"{value!r} is neither a force ('26.7 N'), a force per width ('2 pli') nor a "
-                     "stress ('1.75 MPa')")
+    raise ValueError(
+        f"{value!r} is neither a force ('26.7 N'), a force per width ('2 pli') nor a "
+        "stress ('1.75 MPa')"
+    )
 
 
 class WindingSpec(_Section):
@@ -174,17 +188,25 @@ class WindingSpec(_Section):
         if r <= core.outer_radius + web.thickness:
             raise InputError(
                 f"outer radius {r:g} m must exceed the core radius {core.outer_radius:g} m "
-                "by at least one layer", "winding.outer_radius")
+                "by at least one layer",
+                "winding.outer_radius",
+            )
         return r
 
     def schedule(self, web: Web) -> TensionSchedule:
         """The SI :class:`TensionSchedule`; tension converted to a stress in the web."""
         kind, v = self.tension
-        stress = {"force": v / (web.width * web.thickness),
-                  "force_per_length": v / web.thickness,
-                  "pressure": v}[kind]
-        return TensionSchedule(web_stress=stress, taper=self.taper.build(),
-                               nip_load=self.nip_load, friction=self.friction)
+        stress = {
+            "force": v / (web.width * web.thickness),
+            "force_per_length": v / web.thickness,
+            "pressure": v,
+        }[kind]
+        return TensionSchedule(
+            web_stress=stress,
+            taper=self.taper.build(),
+            nip_load=self.nip_load,
+            friction=self.friction,
+        )
 
 
 class Case(_Section):
@@ -267,8 +289,11 @@ def resolve_case_path(name_or_path: str | Path) -> Path:
     bundled = resources.files("woundroll.data.cases") / f"{name_or_path}.toml"
     if bundled.is_file():
         return Path(str(bundled))
-    raise InputError(f"no case file or bundled case named {str(name_or_path)!r} "
-                     f"(bundled: {', '.join(bundled_cases())})", "CASE")
+    raise InputError(
+        f"no case file or bundled case named {str(name_or_path)!r} "
+        f"(bundled: {', '.join(bundled_cases())})",
+        "CASE",
+    )
 
 
 def set_dotted(data: dict[str, Any], key: str, value: Any) -> None:
@@ -328,7 +353,11 @@ def _merge(base: dict[str, Any], top: dict[str, Any]) -> dict[str, Any]:
     out = dict(base)
     for k, v in top.items():
         old = out.get(k)
-        same_law = isinstance(old, dict) and isinstance(v, dict) and v.get("law", old.get("law")) == old.get("law")
+        same_law = (
+            isinstance(old, dict)
+            and isinstance(v, dict)
+            and v.get("law", old.get("law")) == old.get("law")
+        )
         out[k] = _merge(old, v) if same_law else v
     return out
 

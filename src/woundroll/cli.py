@@ -18,8 +18,11 @@ from rich.table import Table
 
 from woundroll.errors import ConvergenceError, InputError
 
-app = typer.Typer(add_completion=False, no_args_is_help=True,
-                  help="Wound-roll stresses from winder settings, and the hardness readings they cause.")
+app = typer.Typer(
+    add_completion=False,
+    no_args_is_help=True,
+    help="Wound-roll stresses from winder settings, and the hardness readings they cause.",
+)
 err = Console(stderr=True)
 out = Console()
 
@@ -31,11 +34,22 @@ def _fail(exc: Exception, status: int) -> None:
 
 @app.command()
 def run(
-    case: Annotated[str, typer.Argument(help="Case file (TOML) or bundled case name (see `woundroll cases`).")],
-    set_: Annotated[list[str] | None, typer.Option("--set", help="Override a case key: dotted.key=value (repeatable).")] = None,
-    out_dir: Annotated[Path | None, typer.Option("--out", help="Write result.json and PNG plots here.")] = None,
-    as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON on stdout.")] = False,
-    quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar or summary.")] = False,
+    case: Annotated[
+        str, typer.Argument(help="Case file (TOML) or bundled case name (see `woundroll cases`).")
+    ],
+    set_: Annotated[
+        list[str] | None,
+        typer.Option("--set", help="Override a case key: dotted.key=value (repeatable)."),
+    ] = None,
+    out_dir: Annotated[
+        Path | None, typer.Option("--out", help="Write result.json and PNG plots here.")
+    ] = None,
+    as_json: Annotated[
+        bool, typer.Option("--json", help="Print the result as JSON on stdout.")
+    ] = False,
+    quiet: Annotated[
+        bool, typer.Option("--quiet", "-q", help="No progress bar or summary.")
+    ] = False,
 ) -> None:
     """Run the models a case asks for: winding, and with a tester section the hardness reading."""
     from woundroll.case import load_case
@@ -64,8 +78,14 @@ def run(
 def _run_with_progress(c, run_case):  # type: ignore[no-untyped-def]
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
-    with Progress(TextColumn("{task.description}"), BarColumn(), TextColumn("{task.percentage:>3.0f}%"),
-                  TimeElapsedColumn(), console=err, transient=True) as bar:
+    with Progress(
+        TextColumn("{task.description}"),
+        BarColumn(),
+        TextColumn("{task.percentage:>3.0f}%"),
+        TimeElapsedColumn(),
+        console=err,
+        transient=True,
+    ) as bar:
         tasks: dict[str, int] = {}
 
         def progress(stage: str, fraction: float) -> None:
@@ -90,17 +110,21 @@ def result_summary(result) -> list[tuple[str, str]]:  # type: ignore[no-untyped-
     rows: list[tuple[str, str]] = []
     w = result.winding
     if w is not None:
-        rows += [("layers", f"{len(w.radius) - 1}"),
-                 ("outer radius", f"{w.radius[-1] * 100:.3f} cm"),
-                 ("core pressure", f"{-w.sigma_r[0] / 1e3:.1f} kPa"),
-                 ("max pressure", f"{-w.sigma_r.min() / 1e3:.1f} kPa")]
+        rows += [
+            ("layers", f"{len(w.radius) - 1}"),
+            ("outer radius", f"{w.radius[-1] * 100:.3f} cm"),
+            ("core pressure", f"{-w.sigma_r[0] / 1e3:.1f} kPa"),
+            ("max pressure", f"{-w.sigma_r.min() / 1e3:.1f} kPa"),
+        ]
     h = result.hardness
     if h is not None:
         d = h.to_dict()
-        for key, label, fmt in (("rho_fd", "Rho (finite difference)", "{:.1f}"),
-                                ("rho_energy", "Rho (energy)", "{:.1f}"),
-                                ("impulse_Ns", "impulse [N s]", "{:.4f}"),
-                                ("delta_max_m", "max depth [mm]", "{:.3f}")):
+        for key, label, fmt in (
+            ("rho_fd", "Rho (finite difference)", "{:.1f}"),
+            ("rho_energy", "Rho (energy)", "{:.1f}"),
+            ("impulse_Ns", "impulse [N s]", "{:.4f}"),
+            ("delta_max_m", "max depth [mm]", "{:.3f}"),
+        ):
             if key in d and d[key] is not None:
                 v = d[key] * (1e3 if key == "delta_max_m" else 1)
                 rows.append((label, fmt.format(v)))
@@ -131,7 +155,12 @@ def materials() -> None:
 
 @app.command("fit-stack")
 def fit_stack_cmd(
-    csv_file: Annotated[Path, typer.Argument(help="CSV with columns strain and pressure (units in the header, e.g. 'pressure [kPa]').")],
+    csv_file: Annotated[
+        Path,
+        typer.Argument(
+            help="CSV with columns strain and pressure (units in the header: 'pressure [kPa]')."
+        ),
+    ],
     law: Annotated[str, typer.Option(help="pfeiffer, polynomial, constant, or all.")] = "all",
     as_json: Annotated[bool, typer.Option("--json")] = False,
 ) -> None:

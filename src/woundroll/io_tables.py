@@ -18,9 +18,22 @@ from woundroll.errors import InputError
 from woundroll.units import to_si
 
 _BRACKET = re.compile(r"^\s*([A-Za-z_ ]+?)\s*[\[(]\s*([^\])]+)\s*[\])]\s*$")
-_SUFFIX_UNITS = {"m": "m", "mm": "mm", "um": "um", "in": "inch", "mil": "mil", "pa": "Pa",
-                 "kpa": "kPa", "mpa": "MPa", "psi": "psi", "n": "N", "npm": "N/m", "pli": "pli",
-                 "pct": "%", "percent": "%"}
+_SUFFIX_UNITS = {
+    "m": "m",
+    "mm": "mm",
+    "um": "um",
+    "in": "inch",
+    "mil": "mil",
+    "pa": "Pa",
+    "kpa": "kPa",
+    "mpa": "MPa",
+    "psi": "psi",
+    "n": "N",
+    "npm": "N/m",
+    "pli": "pli",
+    "pct": "%",
+    "percent": "%",
+}
 
 
 def parse_header(name: str) -> tuple[str, str | None]:
@@ -34,7 +47,9 @@ def parse_header(name: str) -> tuple[str, str | None]:
     return name.strip().lower(), None
 
 
-def read_columns(path: Path | str, wanted: dict[str, str], field: str = "file") -> dict[str, NDArray[np.float64]]:
+def read_columns(
+    path: Path | str, wanted: dict[str, str], field: str = "file"
+) -> dict[str, NDArray[np.float64]]:
     """Read the columns named in ``wanted`` (name -> dimension kind) from a CSV, in SI.
 
     Raises :class:`InputError` naming ``field`` when the file is missing, a column is
@@ -55,7 +70,9 @@ def read_columns(path: Path | str, wanted: dict[str, str], field: str = "file") 
     out: dict[str, NDArray[np.float64]] = {}
     for want, kind in wanted.items():
         if want not in names:
-            raise InputError(f"{path.name}: no column '{want}' (columns: {', '.join(rows[0])})", field)
+            raise InputError(
+                f"{path.name}: no column '{want}' (columns: {', '.join(rows[0])})", field
+            )
         j = names.index(want)
         unit = header[j][1]
         scale = to_si(f"1 {unit}", kind, f"{field}:{rows[0][j]}") if unit else 1.0
@@ -64,9 +81,13 @@ def read_columns(path: Path | str, wanted: dict[str, str], field: str = "file") 
             try:
                 v = float(row[j])
             except (ValueError, IndexError):
-                raise InputError(f"{path.name} line {i}: column '{rows[0][j]}' is not a number", field) from None
+                raise InputError(
+                    f"{path.name} line {i}: column '{rows[0][j]}' is not a number", field
+                ) from None
             if not np.isfinite(v):
-                raise InputError(f"{path.name} line {i}: column '{rows[0][j]}' is not finite", field)
+                raise InputError(
+                    f"{path.name} line {i}: column '{rows[0][j]}' is not finite", field
+                )
             vals.append(v * scale)
         out[want] = np.asarray(vals, dtype=float)
     return out

@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Sequence
-from functools import lru_cache
+from functools import cache
 from typing import Any
 
 import numpy as np
@@ -71,7 +71,7 @@ _EXAMPLES = {
 }
 
 
-@lru_cache(maxsize=None)
+@cache
 def _dimensionality(kind: str):
     spec = DIMENSIONS[kind]
     return ureg.Quantity(1.0).dimensionality if not spec else ureg.get_dimensionality(spec)
@@ -97,7 +97,7 @@ def parse_quantity(value: Any, field: str | None = None) -> pint.Quantity:
     text = _MIL.sub("thou", text)
     try:
         q = ureg.Quantity(text)
-    except (pint.errors.UndefinedUnitError,) as exc:
+    except pint.errors.UndefinedUnitError as exc:
         raise InputError(f"unknown unit in {value!r} ({exc})", field) from None
     except Exception:  # pint raises a variety of parser errors
         raise InputError(f"cannot read {value!r} as a quantity", field) from None
@@ -127,7 +127,9 @@ def to_si(value: Any, kind: str, field: str | None = None, *, bare_is_si: bool =
     target = _dimensionality(kind)
     if kind == "dimensionless":
         if not q.dimensionless:
-            raise InputError(f"{value!r} must be a plain number (it has dimension {q.dimensionality})", field)
+            raise InputError(
+                f"{value!r} must be a plain number (it has dimension {q.dimensionality})", field
+            )
         mag = float(q.to("").magnitude)
     elif q.unitless:
         if not bare_is_si:
@@ -146,7 +148,9 @@ def to_si(value: Any, kind: str, field: str | None = None, *, bare_is_si: bool =
     return mag
 
 
-def to_si_array(values: Sequence[Any] | np.ndarray, kind: str, field: str | None = None) -> np.ndarray:
+def to_si_array(
+    values: Sequence[Any] | np.ndarray, kind: str, field: str | None = None
+) -> np.ndarray:
     """Vector form of :func:`to_si`; every entry must be finite."""
     return np.array([to_si(v, kind, f"{field}[{i}]") for i, v in enumerate(values)], dtype=float)
 
@@ -156,7 +160,9 @@ def check_positive(value: float, field: str, *, allow_zero: bool = False) -> flo
     if not math.isfinite(value):
         raise InputError(f"must be a finite number, got {value}", field)
     if value < 0 or (value == 0 and not allow_zero):
-        raise InputError(f"must be {'zero or ' if allow_zero else ''}positive, got {value:g}", field)
+        raise InputError(
+            f"must be {'zero or ' if allow_zero else ''}positive, got {value:g}", field
+        )
     return value
 
 

@@ -11,5 +11,14 @@ from woundroll.materials.radial_modulus import (
 )
 from woundroll.materials.web import Core, Web
 
-__all__ = ["LAWS", "Constant", "Core", "Pfeiffer", "Polynomial", "RadialModulusLaw", "Tabulated",
-           "Web", "law_from_spec"]
+__all__ = [
+    "LAWS",
+    "Constant",
+    "Core",
+    "Pfeiffer",
+    "Polynomial",
+    "RadialModulusLaw",
+    "Tabulated",
+    "Web",
+    "law_from_spec",
+]

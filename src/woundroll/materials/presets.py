@@ -34,6 +34,7 @@ def material_preset(name: str, field: str = "web.preset") -> dict[str, Any]:
     """The web keys of preset ``name`` (case-insensitive), without description/source."""
     table = _all_presets().get(str(name).upper())
     if table is None:
-        raise InputError(f"unknown material preset {name!r}; bundled: {', '.join(_all_presets())}",
-                         field)
+        raise InputError(
+            f"unknown material preset {name!r}; bundled: {', '.join(_all_presets())}", field
+        )
     return {k: v for k, v in table.items() if k not in {"description", "source"}}

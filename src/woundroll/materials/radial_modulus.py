@@ -185,7 +185,9 @@ class Polynomial(_CurveLaw):
 
     def __post_init__(self) -> None:
         if not (0 < self.strain_max < 1):
-            raise InputError(f"strain_max must lie in (0, 1), got {self.strain_max:g}", "strain_max")
+            raise InputError(
+                f"strain_max must lie in (0, 1), got {self.strain_max:g}", "strain_max"
+            )
         eps = np.linspace(0.0, self.strain_max, 2001)
         e = self.C1 + 2 * self.C2 * eps + 3 * self.C3 * eps**2
         if np.any(e <= 0):
@@ -202,8 +204,13 @@ class Polynomial(_CurveLaw):
         return self.C1 * s + self.C2 * s**2 + self.C3 * s**3
 
     def to_dict(self) -> dict[str, Any]:
-        return {"law": self.name, "C1_Pa": self.C1, "C2_Pa": self.C2, "C3_Pa": self.C3,
-                "strain_max": self.strain_max}
+        return {
+            "law": self.name,
+            "C1_Pa": self.C1,
+            "C2_Pa": self.C2,
+            "C3_Pa": self.C3,
+            "strain_max": self.strain_max,
+        }
 
 
 @dataclass(frozen=True)
@@ -239,8 +246,12 @@ class Tabulated(_CurveLaw):
         return np.interp(np.asarray(strain, dtype=float), self._eps, self._p)
 
     def to_dict(self) -> dict[str, Any]:
-        return {"law": self.name, "strain": list(self.strain),
-                "pressure_Pa": list(self.stack_pressure), "source": self.source}
+        return {
+            "law": self.name,
+            "strain": list(self.strain),
+            "pressure_Pa": list(self.stack_pressure),
+            "source": self.source,
+        }
 
 
 #: Registry of laws by case-file name.
@@ -261,16 +272,21 @@ def read_stack_csv(path: Path, field_name: str = "file") -> tuple[FloatArray, Fl
     return cols["strain"], cols["pressure"]
 
 
-def law_from_spec(spec: dict[str, Any], field_name: str = "web.radial_modulus",
-                  base_dir: Path | None = None) -> RadialModulusLaw:
+def law_from_spec(
+    spec: dict[str, Any], field_name: str = "web.radial_modulus", base_dir: Path | None = None
+) -> RadialModulusLaw:
     """Build a law from a case-file inline table (values may carry units)."""
     if not isinstance(spec, dict):
-        raise InputError("must be an inline table such as { law = \"pfeiffer\", K1 = \"4.62 kPa\", "
-                         "K2 = 123.88 }", field_name)
+        raise InputError(
+            'must be an inline table such as { law = "pfeiffer", K1 = "4.62 kPa", K2 = 123.88 }',
+            field_name,
+        )
     spec = dict(spec)
     law = spec.pop("law", None)
     if law not in LAWS:
-        raise InputError(f"unknown law {law!r}; choose one of {', '.join(LAWS)}", f"{field_name}.law")
+        raise InputError(
+            f"unknown law {law!r}; choose one of {', '.join(LAWS)}", f"{field_name}.law"
+        )
 
     def take(key: str, kind: str, default: Any = None) -> float:
         if key not in spec:
@@ -281,13 +297,18 @@ def law_from_spec(spec: dict[str, Any], field_name: str = "web.radial_modulus",
 
     try:
         if law == "pfeiffer":
-            out: RadialModulusLaw = Pfeiffer(K1=take("K1", "pressure"), K2=take("K2", "dimensionless"))
+            out: RadialModulusLaw = Pfeiffer(
+                K1=take("K1", "pressure"), K2=take("K2", "dimensionless")
+            )
         elif law == "constant":
             out = Constant(E_r=take("E_r", "pressure"))
         elif law == "polynomial":
-            out = Polynomial(C1=take("C1", "pressure"), C2=take("C2", "pressure", 0.0),
-                             C3=take("C3", "pressure", 0.0),
-                             strain_max=take("strain_max", "dimensionless", 0.2))
+            out = Polynomial(
+                C1=take("C1", "pressure"),
+                C2=take("C2", "pressure", 0.0),
+                C3=take("C3", "pressure", 0.0),
+                strain_max=take("strain_max", "dimensionless", 0.2),
+            )
         else:
             if "file" in spec:
                 path = Path(spec.pop("file"))
@@ -296,16 +317,26 @@ def law_from_spec(spec: dict[str, Any], field_name: str = "web.radial_modulus",
                 eps, p = read_stack_csv(path, f"{field_name}.file")
                 source = str(path.name)
             else:
-                eps = np.asarray([to_si(v, "dimensionless", f"{field_name}.strain")
-                                  for v in spec.pop("strain", [])])
-                p = np.asarray([to_si(v, "pressure", f"{field_name}.pressure")
-                                for v in spec.pop("pressure", [])])
+                eps = np.asarray(
+                    [
+                        to_si(v, "dimensionless", f"{field_name}.strain")
+                        for v in spec.pop("strain", [])
+                    ]
+                )
+                p = np.asarray(
+                    [
+                        to_si(v, "pressure", f"{field_name}.pressure")
+                        for v in spec.pop("pressure", [])
+                    ]
+                )
                 source = "inline"
             out = Tabulated(strain=tuple(eps), stack_pressure=tuple(p), source=source)
     except InputError as exc:
         if exc.field and exc.field.startswith(field_name):
             raise
-        raise InputError(exc.message, f"{field_name}.{exc.field}" if exc.field else field_name) from None
+        raise InputError(
+            exc.message, f"{field_name}.{exc.field}" if exc.field else field_name
+        ) from None
     if spec:
         raise InputError(f"unknown key(s) for law {law!r}: {', '.join(spec)}", field_name)
     return out

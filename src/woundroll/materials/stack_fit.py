@@ -45,9 +45,15 @@ class StackFit:
     pressure_max: float
 
     def to_dict(self) -> dict[str, Any]:
-        return {**self.law.to_dict(), "r2": self.r2, "rms_rel_error": self.rms_rel_error,
-                "max_rel_error": self.max_rel_error, "n_points": self.n_points,
-                "strain_max": self.strain_max, "pressure_max_Pa": self.pressure_max}
+        return {
+            **self.law.to_dict(),
+            "r2": self.r2,
+            "rms_rel_error": self.rms_rel_error,
+            "max_rel_error": self.max_rel_error,
+            "n_points": self.n_points,
+            "strain_max": self.strain_max,
+            "pressure_max_Pa": self.pressure_max,
+        }
 
     def toml(self) -> str:
         """The case-file inline table for ``web.radial_modulus``."""
@@ -56,8 +62,10 @@ class StackFit:
             return f'{{ law = "pfeiffer", K1 = "{d["K1_Pa"] / 1e3:.6g} kPa", K2 = {d["K2"]:.6g} }}'
         if d["law"] == "constant":
             return f'{{ law = "constant", E_r = "{d["E_r_Pa"] / 1e6:.6g} MPa" }}'
-        return (f'{{ law = "polynomial", C1 = "{d["C1_Pa"]:.6g} Pa", C2 = "{d["C2_Pa"]:.6g} Pa", '
-                f'C3 = "{d["C3_Pa"]:.6g} Pa", strain_max = {d["strain_max"]:.4g} }}')
+        return (
+            f'{{ law = "polynomial", C1 = "{d["C1_Pa"]:.6g} Pa", C2 = "{d["C2_Pa"]:.6g} Pa", '
+            f'C3 = "{d["C3_Pa"]:.6g} Pa", strain_max = {d["strain_max"]:.4g} }}'
+        )
 
 
 def _check(strain: ArrayLike, pressure: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
@@ -82,9 +90,15 @@ def _quality(law: RadialModulusLaw, eps: np.ndarray, p: np.ndarray) -> StackFit:
     ss_tot = float(np.sum((p - p.mean()) ** 2))
     pos = p > 0
     rel = np.abs(model[pos] - p[pos]) / p[pos]
-    return StackFit(law, 1.0 - ss_res / ss_tot if ss_tot > 0 else float("nan"),
-                    float(np.sqrt(np.mean(rel**2))), float(rel.max()), int(eps.size),
-                    float(eps.max()), float(p.max()))
+    return StackFit(
+        law,
+        1.0 - ss_res / ss_tot if ss_tot > 0 else float("nan"),
+        float(np.sqrt(np.mean(rel**2))),
+        float(rel.max()),
+        int(eps.size),
+        float(eps.max()),
+        float(p.max()),
+    )
 
 
 def fit_stack(strain: ArrayLike, pressure: ArrayLike, law: str = "pfeiffer") -> StackFit:
@@ -112,8 +126,9 @@ def fit_stack(strain: ArrayLike, pressure: ArrayLike, law: str = "pfeiffer") -> 
         try:
             fitted = Polynomial(C1=c[0], C2=c[1], C3=c[2], strain_max=float(min(eps.max(), 0.99)))
         except InputError as exc:
-            raise InputError(f"the fitted polynomial is not a stiffening curve ({exc.message})",
-                             "stack") from None
+            raise InputError(
+                f"the fitted polynomial is not a stiffening curve ({exc.message})", "stack"
+            ) from None
         return _quality(fitted, eps, p)
     if law != "pfeiffer":
         raise InputError(f"cannot fit law {law!r}; choose one of {', '.join(FIT_LAWS)}", "law")

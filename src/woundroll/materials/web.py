@@ -24,7 +24,9 @@ from woundroll.errors import InputError
 from woundroll.materials.radial_modulus import RadialModulusLaw
 
 
-def _positive(value: float, name: str, *, allow_zero: bool = False, allow_inf: bool = False) -> None:
+def _positive(
+    value: float, name: str, *, allow_zero: bool = False, allow_inf: bool = False
+) -> None:
     if value is None or math.isnan(value) or (math.isinf(value) and not allow_inf):
         raise InputError(f"must be a finite number, got {value}", name)
     if value < 0 or (value == 0 and not allow_zero):
@@ -131,7 +133,7 @@ class Core:
             raise InputError(f"must lie in (-1, 0.5), got {nu:g}", "core.nu")
         if inner_radius >= outer_radius:
             raise InputError(
-                f"must be smaller than core.outer_radius ({outer_radius:g} m), got {inner_radius:g} m",
+                f"must be below core.outer_radius ({outer_radius:g} m), got {inner_radius:g} m",
                 "core.inner_radius",
             )
         a2, b2 = inner_radius**2, outer_radius**2

@@ -43,11 +43,14 @@ class Taper:
 
     def __post_init__(self) -> None:
         if self.kind not in {"none", "linear", "hyperbolic", "table"}:
-            raise InputError(f"unknown taper {self.kind!r}; choose none, linear, hyperbolic or table",
-                             "winding.taper.kind")
+            raise InputError(
+                f"unknown taper {self.kind!r}; choose none, linear, hyperbolic or table",
+                "winding.taper.kind",
+            )
         if not (math.isfinite(self.fraction) and 0.0 <= self.fraction <= 1.0):
-            raise InputError(f"must lie in [0, 1] (0.2 = 20 %), got {self.fraction:g}",
-                             "winding.taper.fraction")
+            raise InputError(
+                f"must lie in [0, 1] (0.2 = 20 %), got {self.fraction:g}", "winding.taper.fraction"
+            )
         if self.kind == "table":
             r, f = np.asarray(self.radius, float), np.asarray(self.factor, float)
             if r.size < 2 or r.shape != f.shape:
@@ -89,9 +92,13 @@ class TensionSchedule:
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.web_stress) and self.web_stress >= 0):
-            raise InputError(f"must be zero or positive, got {self.web_stress:g} Pa", "winding.tension")
+            raise InputError(
+                f"must be zero or positive, got {self.web_stress:g} Pa", "winding.tension"
+            )
         if not (math.isfinite(self.nip_load) and self.nip_load >= 0):
-            raise InputError(f"must be zero or positive, got {self.nip_load:g} N/m", "winding.nip_load")
+            raise InputError(
+                f"must be zero or positive, got {self.nip_load:g} N/m", "winding.nip_load"
+            )
         if not (math.isfinite(self.friction) and 0 <= self.friction <= 2):
             raise InputError(f"must lie in [0, 2], got {self.friction:g}", "winding.friction")
 
@@ -103,7 +110,8 @@ class TensionSchedule:
         """Nip-induced tension mu N / h [Pa] (Good, Wu and Fikes 1994)."""
         return self.friction * self.nip_load / thickness
 
-    def wound_on_tension(self, r: ArrayLike, r_core: float, r_outer: float,
-                         thickness: float) -> NDArray[np.float64]:
+    def wound_on_tension(
+        self, r: ArrayLike, r_core: float, r_outer: float, thickness: float
+    ) -> NDArray[np.float64]:
         """WOT(r) = T_w(r) + mu N / h [Pa] for the layer wound at radius ``r``."""
         return self.web_tension(r, r_core, r_outer) + self.nip_induced(thickness)
