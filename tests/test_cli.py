@@ -1,0 +1,78 @@
+"""The command line: one-line errors naming the field with exit status 2, JSON output."""
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from woundroll.cli import app
+
+runner = CliRunner()
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+
+@pytest.mark.parametrize(
+    ("args", "field"),
+    [
+        (["run", "no-such-case"], "CASE"),
+        (["run", "pet1-26.7N", "--set", "web.thickness=-1"], "web.thickness"),
+        (["run", "pet1-26.7N", "--set", "web.thickness='1 psi'"], "web.thickness"),
+        (["run", "pet1-26.7N", "--set", "web.radial_modulus.K2=0"], "web.radial_modulus.K2"),
+        (["run", "pet1-26.7N", "--set", "winding.outer_radius='2 cm'"], "winding.outer_radius"),
+        (["run", "pet1-26.7N", "--set", "winding.tension='3 furlong'"], "winding.tension"),
+        (["run", "pet1-26.7N", "--set", "core.E=nan"], "core.E"),
+        (["run", "pet1-26.7N", "--set", "nonsense"], "--set"),
+    ],
+)
+def test_bad_input_is_one_line_exit_2(args, field):
+    res = runner.invoke(app, args)
+    assert res.exit_code == 2, res.output
+    lines = [line for line in res.output.splitlines() if line.strip()]
+    assert len(lines) == 1, res.output
+    assert f"{field}:" in lines[0]
+    assert "Traceback" not in res.output
+
+
+def test_real_process_has_no_traceback():
+    proc = subprocess.run(
+        [sys.executable, "-m", "woundroll.cli", "run", "pet1-26.7N", "--set", "web.thickness=0"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert proc.returncode == 2
+    assert proc.stderr.strip().startswith("error: web.thickness:")
+    assert "Traceback" not in proc.stderr + proc.stdout
+
+
+def test_cases_and_materials_list():
+    res = runner.invoke(app, ["cases"])
+    assert res.exit_code == 0 and "pet2-80N" in res.output
+    res = runner.invoke(app, ["materials"])
+    assert res.exit_code == 0 and "PET3" in res.output
+
+
+def test_fit_stack_json():
+    res = runner.invoke(
+        app,
+        [
+            "fit-stack",
+            str(EXAMPLES / "data" / "stack_test_pet1_synthetic.csv"),
+            "--law",
+            "pfeiffer",
+            "--json",
+        ],
+    )
+    assert res.exit_code == 0, res.output
+    fit = json.loads(res.output)["pfeiffer"]
+    # the synthetic file was generated from K2 = 123.88 with 1.5 % noise
+    assert fit["K2"] == pytest.approx(123.88, rel=0.02)
+
+
+def test_fit_stack_missing_file():
+    res = runner.invoke(app, ["fit-stack", "nope.csv"])
+    assert res.exit_code == 2
+    assert "CSV_FILE: file not found" in res.output
