@@ -1,0 +1,305 @@
+"""Instrument definitions as data: the striker, its spring, its head and its readout.
+
+Presets live in ``woundroll/data/instruments/*.toml`` (package data), one file per instrument,
+every quantity with its unit and every value with its source. :func:`get_instrument` and
+:func:`list_instruments` are the registry; :meth:`Instrument.with_overrides` changes fields.
+
+Coordinates (reference paper, Fig. 11): ``x`` is the striker position from its spring's
+equilibrium, positive towards the roll. The striker is released at rest at ``x = -x_in``
+(``release_position``) and touches the roll at ``x = +x_gap`` (``contact_position``, past
+equilibrium on the Rho-meter: Table 1's "impact position -0.24 cm", sign as in NOTES.md).
+
+Mass: a preset may give the striker ``mass`` directly or ``natural_frequency`` instead, then
+``mass = spring_stiffness / natural_frequency^2`` {1}. An override of ``spring_stiffness``
+keeps the mass; an override of ``natural_frequency`` (without ``mass``) recomputes it.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field, fields, replace
+from functools import lru_cache
+from importlib import resources
+from typing import Any
+
+from woundroll.errors import InputError
+from woundroll.instruments.readout import G_STANDARD, READOUTS, RHO_PER_G
+from woundroll.units import to_si
+
+__all__ = ["Instrument", "get_instrument", "list_instruments", "load_instrument_file"]
+
+#: Instrument fields with a physical dimension (name -> unit kind for :func:`to_si`).
+QUANTITY_FIELDS: dict[str, str] = {
+    "mass": "mass",
+    "spring_stiffness": "stiffness",
+    "natural_frequency": "frequency",
+    "release_position": "length",
+    "contact_position": "length",
+    "head_radius": "length",
+    "head_length": "length",
+    "rho_per_g": "dimensionless",
+}  # "g" (an acceleration) is converted separately in _convert
+_TEXT_FIELDS = ("name", "title", "readout", "head_shape", "notes")
+_HEAD_SHAPES = ("cylinder", "sphere")
+
+
+@dataclass(frozen=True)
+class Instrument:
+    """A spring-driven impact hardness tester (striker side of the 1.5D model), SI.
+
+    Attributes
+    ----------
+    name : str
+        Registry key ("rho-meter").
+    mass : float [kg]
+        Striker effective mass m_s ({1}: ``K_eff / omega_n^2``).
+    spring_stiffness : float [N/m]
+        Striker spring k_s.
+    release_position : float [m]
+        x_in: the striker starts at rest at ``x = -x_in``.
+    contact_position : float [m]
+        x_gap: first contact at ``x = +x_gap``; ``-x_in < x_gap < x_in``.
+    head_radius : float [m]
+        Radius of the head's contact surface (cylinder radius, or sphere radius).
+    head_length : float or None [m]
+        Cylinder length along the CMD (None for a spherical tip). Also the CMD length that
+        multiplies the tapered-column volume {17} for the roll's active mass.
+    head_shape : str
+        "cylinder" (axis along the CMD) or "sphere".
+    readout : str
+        One of :data:`woundroll.instruments.readout.READOUTS`.
+    natural_frequency : float or None [rad/s]
+        omega_n, if the mass came from {1}.
+    rho_per_g, g : float [-], [m/s^2]
+        1 Rho = ``rho_per_g`` g ({22}: 3.76 and 9.81).
+    calibrated : bool
+        False when no calibration data exist for rolls (readings are then model output only).
+    sources : dict
+        Field -> where its value comes from.
+    """
+
+    name: str
+    mass: float
+    spring_stiffness: float
+    release_position: float
+    contact_position: float
+    head_radius: float
+    head_length: float | None = None
+    head_shape: str = "cylinder"
+    readout: str = "rho"
+    title: str = ""
+    natural_frequency: float | None = None
+    rho_per_g: float = RHO_PER_G
+    g: float = G_STANDARD
+    calibrated: bool = True
+    notes: str = ""
+    sources: dict[str, str] = field(default_factory=dict, compare=False)
+
+    def __post_init__(self) -> None:
+        p = "instrument" if not self.name else f"instrument[{self.name}]"
+        for name in ("mass", "spring_stiffness", "release_position", "head_radius", "g",
+                     "rho_per_g"):
+            _check(getattr(self, name), f"{p}.{name}", positive=True)
+        _check(self.contact_position, f"{p}.contact_position", positive=False)
+        if self.head_length is not None:
+            _check(self.head_length, f"{p}.head_length", positive=True)
+        if self.natural_frequency is not None:
+            _check(self.natural_frequency, f"{p}.natural_frequency", positive=True)
+        if not -self.release_position < self.contact_position < self.release_position:
+            raise InputError(
+                f"contact position x_gap = {self.contact_position:g} m must lie strictly between "
+                f"-x_in and x_in = {self.release_position:g} m (release position), otherwise the "
+                "striker never reaches the roll with speed", f"{p}.contact_position",
+            )
+        if self.head_shape not in _HEAD_SHAPES:
+            raise InputError(f"must be one of {', '.join(_HEAD_SHAPES)}, got {self.head_shape!r}",
+                             f"{p}.head_shape")
+        if self.head_shape == "cylinder" and self.head_length is None:
+            raise InputError("a cylindrical head needs its length along the CMD",
+                             f"{p}.head_length")
+        if self.readout not in READOUTS:
+            raise InputError(f"must be one of {', '.join(READOUTS)}, got {self.readout!r}",
+                             f"{p}.readout")
+
+    # -- derived quantities -------------------------------------------------------------
+    @property
+    def impact_speed(self) -> float:
+        """Striker speed at first contact [m/s]: ``sqrt(k/m (x_in^2 - x_gap^2))``."""
+        return math.sqrt(self.spring_stiffness / self.mass
+                         * (self.release_position**2 - self.contact_position**2))
+
+    @property
+    def impact_energy(self) -> float:
+        """Kinetic energy at first contact [J]: ``k (x_in^2 - x_gap^2) / 2``."""
+        return 0.5 * self.spring_stiffness * (self.release_position**2
+                                              - self.contact_position**2)
+
+    @property
+    def omega(self) -> float:
+        """Natural frequency of the free striker sqrt(k/m) [rad/s] {1}."""
+        return math.sqrt(self.spring_stiffness / self.mass)
+
+    @property
+    def rho_unit(self) -> float:
+        """Deceleration of one Rho [m/s^2] (3.76 g, {22})."""
+        return self.rho_per_g * self.g
+
+    # -- changes ------------------------------------------------------------------------
+    def with_overrides(self, field_prefix: str = "instrument", **changes: Any) -> Instrument:
+        """A copy with some fields changed; values may be SI numbers or strings with units.
+
+        Parameters
+        ----------
+        field_prefix : str
+            Dotted prefix for error messages ("tester").
+        **changes
+            Any :class:`Instrument` field, e.g. ``head_radius="1 cm"``, ``mass=0.2``.
+
+        Raises
+        ------
+        InputError
+            Unknown field, wrong unit or an inconsistent instrument.
+        """
+        known = {f.name for f in fields(self)}
+        new: dict[str, Any] = {}
+        for key, value in changes.items():
+            fld = f"{field_prefix}.{key}"
+            if key not in known or key == "sources":
+                raise InputError(f"unknown instrument field (known: {', '.join(sorted(known))})",
+                                 fld)
+            new[key] = _convert(key, value, fld)
+        if "natural_frequency" in new and "mass" not in new:
+            new["mass"] = (new.get("spring_stiffness", self.spring_stiffness)
+                           / new["natural_frequency"] ** 2)
+        elif "mass" in new and "natural_frequency" not in new:
+            new["natural_frequency"] = None
+        try:
+            return replace(self, **new)
+        except InputError as exc:
+            # re-point the field to the caller's prefix
+            tail = exc.field.split(".", 1)[1] if exc.field and "." in exc.field else exc.field
+            raise InputError(exc.message, f"{field_prefix}.{tail}") from None
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain SI dictionary (JSON-ready)."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+
+def _check(value: Any, fld: str, *, positive: bool) -> None:
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise InputError(f"must be a number, got {value!r}", fld)
+    if not math.isfinite(value):
+        raise InputError(f"must be a finite number, got {value!r}", fld)
+    if positive and value <= 0:
+        raise InputError(f"must be positive, got {value:g}", fld)
+
+
+def _convert(key: str, value: Any, fld: str) -> Any:
+    if key in _TEXT_FIELDS:
+        if not isinstance(value, str):
+            raise InputError(f"must be text, got {value!r}", fld)
+        return value
+    if key == "calibrated":
+        if not isinstance(value, bool):
+            raise InputError(f"must be true or false, got {value!r}", fld)
+        return value
+    if key == "g":
+        from woundroll.units import parse_quantity, ureg
+
+        q = parse_quantity(value, fld)
+        if q.unitless:
+            return float(q.magnitude)
+        if q.dimensionality != ureg.get_dimensionality("[length] / [time] ** 2"):
+            raise InputError(f"{value!r} is not an acceleration; use e.g. '9.81 m/s^2'", fld)
+        return float(q.to_base_units().magnitude)
+    if key in ("head_length", "natural_frequency") and value is None:
+        return None
+    return to_si(value, QUANTITY_FIELDS[key], fld)
+
+
+def _from_table(data: dict[str, Any], origin: str) -> Instrument:
+    data = dict(data)
+    name = data.get("name")
+    if not isinstance(name, str) or not name:
+        raise InputError(f"{origin}: needs a 'name'", "instrument.name")
+    prefix = f"instrument[{name}]"
+    sources = data.pop("sources", {})
+    data.pop("calibration_block", None)
+    if not isinstance(sources, dict):
+        raise InputError("must be a table", f"{prefix}.sources")
+    known = {f.name for f in fields(Instrument)} - {"sources"}
+    kw: dict[str, Any] = {}
+    for key, value in data.items():
+        if key not in known:
+            raise InputError(f"{origin}: unknown key", f"{prefix}.{key}")
+        kw[key] = _convert(key, value, f"{prefix}.{key}")
+    if "mass" not in kw:
+        if "natural_frequency" not in kw or "spring_stiffness" not in kw:
+            raise InputError("give 'mass', or 'spring_stiffness' and 'natural_frequency' ({1})",
+                             f"{prefix}.mass")
+        kw["mass"] = kw["spring_stiffness"] / kw["natural_frequency"] ** 2
+    for req in ("spring_stiffness", "release_position", "contact_position", "head_radius"):
+        if req not in kw:
+            raise InputError(f"{origin}: missing", f"{prefix}.{req}")
+    return Instrument(sources={str(k): str(v) for k, v in sources.items()}, **kw)
+
+
+def _data_dir():
+    return resources.files("woundroll") / "data" / "instruments"
+
+
+@lru_cache(maxsize=1)
+def _registry() -> dict[str, tuple[Instrument, dict[str, Any]]]:
+    reg: dict[str, tuple[Instrument, dict[str, Any]]] = {}
+    for entry in sorted(_data_dir().iterdir(), key=lambda p: p.name):
+        if not entry.name.endswith(".toml"):
+            continue
+        raw = tomllib.loads(entry.read_text(encoding="utf-8"))
+        inst = _from_table(raw, entry.name)
+        if inst.name in reg:
+            raise InputError(f"instrument defined twice ({entry.name})", "instrument.name")
+        reg[inst.name] = (inst, raw)
+    return reg
+
+
+def load_instrument_file(path: str) -> Instrument:
+    """Read one instrument definition from a TOML file (same format as the presets)."""
+    from pathlib import Path
+
+    p = Path(path)
+    if not p.is_file():
+        raise InputError(f"file not found: {p}", "instrument")
+    try:
+        raw = tomllib.loads(p.read_text(encoding="utf-8"))
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise InputError(f"{p.name}: not valid TOML ({exc})", "instrument") from None
+    return _from_table(raw, p.name)
+
+
+def list_instruments() -> list[str]:
+    """Names of the preset instruments, sorted."""
+    return sorted(_registry())
+
+
+def get_instrument(name: str, field: str = "tester.instrument") -> Instrument:
+    """The preset instrument called ``name`` (case-insensitive).
+
+    Raises
+    ------
+    InputError
+        Unknown name (the message lists the known ones).
+    """
+    if not isinstance(name, str):
+        raise InputError(f"must be an instrument name, got {name!r}", field)
+    key = name.strip().lower()
+    reg = _registry()
+    if key not in reg:
+        raise InputError(f"unknown instrument {name!r} (known: {', '.join(sorted(reg))})", field)
+    return reg[key][0]
+
+
+def preset_table(name: str, table: str) -> dict[str, Any] | None:
+    """A raw sub-table of a preset file (e.g. its ``calibration_block``), or None."""
+    get_instrument(name)
+    return _registry()[name.strip().lower()][1].get(table)
