@@ -1,0 +1,512 @@
+"""Axisymmetric (r, z) center-winding model with a CMD thickness profile.
+
+The roll is cut along the CMD (z) into ``n_sectors`` columns. Each column has its own web
+thickness ``h_j`` (the sector average of the thickness profile) and builds its own radius:
+after ``n`` layers its undeformed outer radius is ``r_core + n h_j``. The roll is grown
+layer group by layer group (``n_groups`` increments of about equal layer counts); every
+increment solves the incremental elasticity problem of the wound stack under the pressure
+the new group exerts, with the radial modulus taken at the current pressure.
+
+Discretisation ("generalised plane stress per column + axial shear coupling")
+----------------------------------------------------------------------------
+* Unknowns: the radial displacement ``u(k, j)`` of node ``k`` (group boundary; node 0 on the
+  core) of column ``j``. One linear 1-D axisymmetric element per group and column,
+  2-point Gauss in r, strains ``eps_r = du/dr``, ``eps_theta = u/r``.
+* In each column the web is in plane stress in z (``sigma_z = 0``): the film is free to
+  contract across the web, so ``sigma_z`` is reported as zero. Constitutive law
+  ``eps_r = sigma_r/E_r - nu_theta_r sigma_theta/E_theta``,
+  ``eps_theta = -nu_theta_r sigma_r/E_theta + sigma_theta/E_theta``
+  (convention ``nu_ij = -eps_j/eps_i`` under ``sigma_i``, so
+  ``nu_r_theta/E_r = nu_theta_r/E_theta``).
+* Neighbouring columns are coupled by the transverse shear ``tau_rz = G_rz du/dz``
+  (``G_rz = 2 E_r`` at the current pressure by default, Table 2/3 of the reference paper):
+  a shear spring ``G_rz r L / dz`` between nodes of equal index ``k`` in columns ``j`` and
+  ``j + 1`` (``L`` the radial tributary length, ``dz`` the distance of the sector centres).
+  The axial displacement ``u_z`` is not an unknown: no interlayer slip in z and no
+  ``du_z/dr`` shear, so this coupling is the stiff bound of the shear transfer. The CMD
+  edges are free (no shear beyond them).
+* Core: Hakiel's condition ``u(r_c) = r_c sigma_r(r_c) / E_c`` (a spring on node 0);
+  a rigid core fixes node 0.
+* Radial modulus per element at the mid-increment pressure (midpoint rule): a predictor
+  with ``E_r`` at the old pressure plus half the applied increment, a corrector with
+  ``E_r`` at the old pressure plus half the predicted increment. With ``K1 = 0``
+  (Table 3) ``E_r = K2 P`` vanishes at zero pressure; the mid-increment pressure is
+  positive wherever load arrives, and ``E_r`` is floored at ``E_r_floor``
+  (default ``1e-6 E_theta``) so that an unloaded (slack) column stays solvable
+  with zero stress.
+
+Tension allocation (relaxation radius)
+--------------------------------------
+The incoming web of line tension ``F = T_w h_nom W`` (``T_w`` the web stress of the
+:class:`~woundroll.winding.tension.TensionSchedule`, tapered at the mean radius of the
+group, ``h_nom`` the web's nominal thickness, ``W`` the profile's CMD extent) is stress-free
+at a radius ``R0``. At the deformed radius ``rho_j`` where the group lands on column ``j``
+(current deformed outer radius + half the group's thickness), the MD stress is
+``sigma_j = E_theta max(rho_j - R0, 0) / R0``; ``R0`` is solved exactly (the total is
+piecewise linear in ``1/R0``) so that ``sum_j sigma_j h_j w_j = F``. A nip adds
+``mu N_j / h_j`` with ``N_j`` the local nip load per width (uniform ``tension.nip_load``
+unless a ``nip`` callable gives the CMD distribution). The group's layers carry their
+wound-on tension as initial hoop stress and press on the stack below with
+``p_j = sigma_j m h_j / rho_j`` (``m`` layers in the group); the group's own radial stress
+starts at ``-p_j / 2`` (the mean of the linear rise across the group).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+from scipy.sparse.linalg import splu
+
+from woundroll.errors import ConvergenceError, InputError
+from woundroll.materials.web import Core, Web
+from woundroll.profile.thickness import ThicknessProfile
+from woundroll.winding.tension import TensionSchedule
+
+FloatArray = NDArray[np.float64]
+
+#: Nip hook: ``nip(group_index, outer_radius[j], sigma_r_top[j]) -> N[j]`` [N/m per width].
+NipHook = Callable[[int, FloatArray, FloatArray], FloatArray]
+
+
+@dataclass(frozen=True)
+class AxisymmetricResult:
+    """Stresses of an axisymmetric wound roll, SI; 2-D arrays are ``(n_groups, n_sectors)``,
+    rows from the core outward, values at element (group) centres.
+
+    Attributes
+    ----------
+    z : ndarray [m]          sector centres (CMD).
+    dz : ndarray [m]         sector widths.
+    thickness : ndarray [m]  sector web thickness.
+    radius : ndarray [m]     element-centre radii (undeformed build).
+    sigma_r, sigma_theta, sigma_z, tau_rz : ndarray [Pa]
+    E_r : ndarray [Pa]       radial modulus at the final pressure.
+    wot : ndarray [Pa]       wound-on tension of each group in each sector.
+    nip_load : ndarray [N/m] nip load per width used for each group (zeros without nip).
+    relaxation_radius : ndarray [m]  ``R0`` of each group (``inf`` when no web tension).
+    outer_radius : ndarray [m]  final deformed outer radius of each sector.
+    layers_per_group : ndarray  layers wound in each group.
+    """
+
+    z: FloatArray
+    dz: FloatArray
+    thickness: FloatArray
+    radius: FloatArray
+    sigma_r: FloatArray
+    sigma_theta: FloatArray
+    sigma_z: FloatArray
+    tau_rz: FloatArray
+    E_r: FloatArray
+    wot: FloatArray
+    nip_load: FloatArray
+    relaxation_radius: FloatArray
+    outer_radius: FloatArray
+    layers_per_group: NDArray[np.int64]
+    info: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def n_layers(self) -> int:
+        return int(self.layers_per_group.sum())
+
+    @property
+    def sigma_r_outer(self) -> FloatArray:
+        """Radial stress [Pa] of the outermost group, per sector."""
+        return self.sigma_r[-1]
+
+    @property
+    def sigma_r_core(self) -> FloatArray:
+        """Radial stress [Pa] of the group on the core, per sector."""
+        return self.sigma_r[0]
+
+    @property
+    def wot_mean(self) -> FloatArray:
+        """Layer-weighted mean wound-on tension [Pa] per sector."""
+        w = self.layers_per_group[:, None].astype(float)
+        return (self.wot * w).sum(axis=0) / w.sum()
+
+    def column(self, j: int) -> dict[str, FloatArray]:
+        """Radial profiles of sector ``j``: radius, sigma_r, sigma_theta, E_r."""
+        return {
+            "radius": self.radius[:, j],
+            "sigma_r": self.sigma_r[:, j],
+            "sigma_theta": self.sigma_theta[:, j],
+            "E_r": self.E_r[:, j],
+        }
+
+
+def allocate_tension(
+    rho: FloatArray, weight: FloatArray, line_force: float, E_theta: float
+) -> tuple[FloatArray, float]:
+    """Relaxation-radius allocation of a line tension across the CMD.
+
+    Solves ``sum_j E_theta max(rho_j / R0 - 1, 0) weight_j = line_force`` for ``R0`` exactly
+    (piecewise linear in ``s = 1/R0``; the active set is the ``k`` largest radii).
+
+    Parameters
+    ----------
+    rho : ndarray [m]
+        Radius where the web lands in each sector.
+    weight : ndarray [m^2]
+        ``h_j w_j`` (thickness times sector width).
+    line_force : float [N]
+        Total web tension force.
+    E_theta : float [Pa]
+
+    Returns
+    -------
+    sigma : ndarray [Pa]
+        MD stress per sector (zero where slack).
+    R0 : float [m]
+        Relaxation radius (``inf`` when ``line_force`` is 0).
+    """
+    if line_force <= 0:
+        return np.zeros_like(rho), math.inf
+    order = np.argsort(-rho)
+    r_sorted = rho[order]
+    a = np.cumsum(weight[order] * r_sorted)  # sum of rho w over the k largest
+    b = np.cumsum(weight[order])
+    s = (line_force / E_theta + b) / a  # 1/R0 if the k largest are active
+    # consistent k: the k-th radius taut (rho s > 1) and the next one slack (rho s <= 1)
+    taut = r_sorted * s > 1.0
+    nxt = np.append(r_sorted[1:], -np.inf) * s <= 1.0
+    k = int(np.argmax(taut & nxt))
+    s_k = s[k]
+    sigma = E_theta * np.maximum(rho * s_k - 1.0, 0.0)
+    return sigma, 1.0 / s_k
+
+
+def _element_coefficients(
+    r1: FloatArray, r2: FloatArray, E_r: FloatArray, E_t: float, nu: float
+) -> tuple[FloatArray, ...]:
+    """Exact ring element: with constant E_r, E_theta the radial stress is
+    ``A x^(g-1) + B x^(-g-1)`` (``x = r / r_m``, ``r_m`` the element centre, ``g^2 = E_theta/E_r``)
+    and ``u = r_m (A (g - nu) x^g - B (g + nu) x^(-g)) / E_theta``. Returns the inverse of the
+    map (A, B) -> (u1, u2) and the powers needed for forces and stresses."""
+    g = np.sqrt(E_t / E_r)
+    rm = 0.5 * (r1 + r2)
+    x1, x2 = r1 / rm, r2 / rm
+    p1, p2 = x1**g, x2**g
+    q1, q2 = 1.0 / p1, 1.0 / p2
+    c = rm / E_t
+    m11, m12 = c * (g - nu) * p1, -c * (g + nu) * q1
+    m21, m22 = c * (g - nu) * p2, -c * (g + nu) * q2
+    det = m11 * m22 - m12 * m21
+    return g, x1, x2, p1, p2, q1, q2, m22 / det, -m12 / det, -m21 / det, m11 / det
+
+
+def _element_stiffness(
+    r1: FloatArray, r2: FloatArray, E_r: FloatArray, E_t: float, nu: float, w: FloatArray
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Exact stiffness (per radian, sector width ``w``) of ring elements [r1, r2]: entries
+    k11, k12, k22 of the symmetric 2x2 matrix mapping (u1, u2) to the nodal forces
+    ``(-r1 sigma_r(r1) w, r2 sigma_r(r2) w)``."""
+    g, x1, x2, p1, p2, q1, q2, i11, i12, i21, i22 = _element_coefficients(r1, r2, E_r, E_t, nu)
+    # sigma_r(x) = A x^(g-1) + B x^(-g-1); row vectors of the maps (A, B) -> forces
+    s1a, s1b = -r1 * p1 / x1 * w, -r1 * q1 / x1 * w
+    s2a, s2b = r2 * p2 / x2 * w, r2 * q2 / x2 * w
+    k11 = s1a * i11 + s1b * i21
+    k12 = s1a * i12 + s1b * i22
+    k21 = s2a * i11 + s2b * i21
+    k22 = s2a * i12 + s2b * i22
+    return k11, 0.5 * (k12 + k21), k22
+
+
+def _element_stress(
+    r1: FloatArray,
+    r2: FloatArray,
+    E_r: FloatArray,
+    E_t: float,
+    nu: float,
+    u1: FloatArray,
+    u2: FloatArray,
+    r_at: FloatArray,
+) -> tuple[FloatArray, FloatArray]:
+    """sigma_r, sigma_theta [Pa] at ``r_at`` (the element centre) of the exact ring solution
+    with end displacements u1, u2."""
+    g, *_, i11, i12, i21, i22 = _element_coefficients(r1, r2, E_r, E_t, nu)
+    A = i11 * u1 + i12 * u2
+    B = i21 * u1 + i22 * u2
+    x = r_at / (0.5 * (r1 + r2))
+    xa, xb = x ** (g - 1.0), x ** (-g - 1.0)
+    return A * xa + B * xb, g * (A * xa - B * xb)
+
+
+def _split_layers(n_layers: int, n_groups: int) -> NDArray[np.int64]:
+    base, extra = divmod(n_layers, n_groups)
+    out = np.full(n_groups, base, dtype=np.int64)
+    out[:extra] += 1
+    return out
+
+
+def wind_axisymmetric(
+    web: Web,
+    core: Core,
+    outer_radius: float,
+    tension: TensionSchedule,
+    thickness: ThicknessProfile | None = None,
+    *,
+    n_sectors: int = 61,
+    n_groups: int | None = None,
+    shear_coupling: bool = True,
+    nip: NipHook | None = None,
+    E_r_floor: float | None = None,
+    progress: Callable[[int, int], None] | None = None,
+) -> AxisymmetricResult:
+    """Wind a roll with a CMD thickness profile; stresses over (r, z).
+
+    Parameters
+    ----------
+    web : Web
+        Material (E_theta, radial-modulus law, nu_theta_r, G_r_z) and nominal thickness [m].
+    core : Core
+        Core radius [m] and stiffness E_c [Pa] (``inf``: rigid).
+    outer_radius : float [m]
+        Target final radius; the layer count is ``round((R - r_c) / mean thickness)``.
+    tension : TensionSchedule
+        Web stress [Pa] (line tension = web stress x nominal thickness x width), taper,
+        nip load [N/m] and friction.
+    thickness : ThicknessProfile, optional
+        CMD profile; default uniform ``web.thickness`` over ``web.width``.
+    n_sectors : int
+        CMD sectors (columns).
+    n_groups : int, optional
+        Winding increments; default ``min(n_layers, 150)``. Convergence under refinement:
+        see docs/profile.md.
+    shear_coupling : bool
+        Couple neighbouring sectors through ``G_rz`` (default) or treat them independently.
+    nip : callable, optional
+        ``nip(g, outer_radius, sigma_r_top) -> N`` [N/m], the CMD nip-load distribution for
+        group ``g``; default uniform ``tension.nip_load``.
+    E_r_floor : float, optional [Pa]
+        Lower bound of the radial modulus (default ``1e-6 E_theta``).
+    progress : callable, optional
+        ``progress(done, total)`` after each group.
+
+    Raises
+    ------
+    InputError
+        Inconsistent geometry or counts. ConvergenceError: a singular or non-finite solve.
+    """
+    if thickness is None:
+        thickness = ThicknessProfile.uniform(web.thickness, web.width)
+    if not (isinstance(n_sectors, int | np.integer) and n_sectors >= 1):
+        raise InputError(f"must be a whole number >= 1, got {n_sectors!r}", "profile.n_sectors")
+    if not (math.isfinite(outer_radius) and outer_radius > core.outer_radius):
+        raise InputError(
+            f"must exceed the core radius {core.outer_radius:g} m, got {outer_radius:g} m",
+            "roll.outer_radius",
+        )
+    edges = thickness.sector_edges(int(n_sectors))
+    _, h = thickness.sector_average(int(n_sectors))
+    w = np.diff(edges)
+    z = 0.5 * (edges[1:] + edges[:-1])
+    ncol = h.size
+    h_mean = float(np.sum(h * w) / np.sum(w))
+    r_c = core.outer_radius
+    n_layers = int(round((outer_radius - r_c) / h_mean))
+    if n_layers < 1:
+        raise InputError("the roll must hold at least one layer", "roll.outer_radius")
+    if n_groups is None:
+        n_groups = min(n_layers, 150)
+    if not (isinstance(n_groups, int | np.integer) and 1 <= n_groups <= n_layers):
+        raise InputError(
+            f"must be a whole number in [1, {n_layers}] (the layer count), got {n_groups!r}",
+            "winding.n_groups",
+        )
+    G = int(n_groups)
+    m = _split_layers(n_layers, G)
+    E_t = web.E_theta
+    nu = web.nu_theta_r
+    floor = 1e-6 * E_t if E_r_floor is None else float(E_r_floor)
+    if not (math.isfinite(floor) and floor > 0):
+        raise InputError(f"must be positive, got {floor:g} Pa", "winding.E_r_floor")
+    law = web.radial_modulus
+    width = float(np.sum(w))
+    line_force_0 = tension.web_stress * web.thickness * width
+
+    # undeformed node radii (G+1, ncol) and element geometry
+    cum = np.concatenate([[0], np.cumsum(m)])
+    r_node = r_c + cum[:, None] * h[None, :]
+    L = np.diff(r_node, axis=0)  # (G, ncol)
+    r_mid = 0.5 * (r_node[:-1] + r_node[1:])
+    dzc = 0.5 * (w[1:] + w[:-1])  # centre distances (ncol-1)
+
+    u = np.zeros((G + 1, ncol))
+    s_r = np.zeros((G, ncol))
+    s_t = np.zeros((G, ncol))
+    tau = np.zeros((G, ncol))
+    wot = np.zeros((G, ncol))
+    nip_used = np.zeros((G, ncol))
+    R0 = np.full(G, math.inf)
+    rigid = core.rigid
+    k_core = 0.0 if rigid else core.stiffness * w  # per radian: E_c w_j
+
+    def modulus(sig: FloatArray) -> FloatArray:
+        return np.maximum(law.modulus(sig), floor)
+
+    def geometry(g: int) -> FloatArray:
+        """Node radii of the stack of g elements whose top element is the new group at
+        half its thickness (midpoint rule for the layers wound in sequence)."""
+        rn = r_node[: g + 1].copy()
+        rn[g] = r_node[g - 1] + 0.5 * L[g - 1]
+        return rn
+
+    def solve(g: int, E_r: FloatArray, f: FloatArray) -> FloatArray:
+        """Incremental displacements of nodes 0..g of the stack of g elements, loads ``f``."""
+        rn = geometry(g)
+        n = (g + 1) * ncol
+        idx = np.arange(n).reshape(g + 1, ncol)
+        rows: list[FloatArray] = []
+        cols: list[FloatArray] = []
+        vals: list[FloatArray] = []
+        diag = np.zeros((g + 1, ncol))
+        if not rigid:
+            diag[0] += k_core
+        if g > 0:
+            Er = E_r[:g]
+            k11, k12, k22 = _element_stiffness(rn[:-1], rn[1:], Er, E_t, nu, w)
+            Lg = np.diff(rn, axis=0)
+            diag[:g] += k11
+            diag[1 : g + 1] += k22
+            rows += [idx[:g].ravel(), idx[1 : g + 1].ravel()]
+            cols += [idx[1 : g + 1].ravel(), idx[:g].ravel()]
+            vals += [k12.ravel(), k12.ravel()]
+            if shear_coupling and ncol > 1:
+                G_el = web.shear_r_z(Er)  # (g, ncol)
+                # nodal tributary length and shear modulus (mean of adjacent elements)
+                Ltr = np.zeros((g + 1, ncol))
+                Gn = np.zeros((g + 1, ncol))
+                Ltr[:g] += 0.5 * Lg
+                Ltr[1:] += 0.5 * Lg
+                Gn[:g] += 0.5 * Lg * G_el
+                Gn[1:] += 0.5 * Lg * G_el
+                Gn /= Ltr
+                ks = (
+                    0.5
+                    * (Gn[:, 1:] + Gn[:, :-1])
+                    * 0.5
+                    * (Ltr[:, 1:] + Ltr[:, :-1])
+                    * 0.5
+                    * (rn[:, 1:] + rn[:, :-1])
+                    / dzc[None, :]
+                )
+                diag[:, :-1] += ks
+                diag[:, 1:] += ks
+                rows += [idx[:, :-1].ravel(), idx[:, 1:].ravel()]
+                cols += [idx[:, 1:].ravel(), idx[:, :-1].ravel()]
+                vals += [-ks.ravel(), -ks.ravel()]
+        rhs = f.copy()
+        if rigid:
+            diag[0] = 1.0
+            rhs[0] = 0.0
+        rows.append(idx.ravel())
+        cols.append(idx.ravel())
+        vals.append(diag.ravel())
+        ri, ci, vi = np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
+        if rigid:  # decouple node 0 (fixed): drop its off-diagonal entries
+            keep = (ri >= ncol) & (ci >= ncol) | (ri == ci)
+            ri, ci, vi = ri[keep], ci[keep], vi[keep]
+        A = sp.csc_matrix((vi, (ri, ci)), shape=(n, n))
+        try:
+            x = splu(A, permc_spec="MMD_AT_PLUS_A").solve(rhs.ravel())
+        except RuntimeError as exc:  # singular factor
+            raise ConvergenceError(
+                f"winding increment {g + 1}: singular stiffness ({exc})"
+            ) from None
+        if not np.all(np.isfinite(x)):
+            raise ConvergenceError(f"winding increment {g + 1}: non-finite displacements")
+        return x.reshape(g + 1, ncol)
+
+    def stress_increment(g: int, E_r: FloatArray, du: FloatArray) -> tuple[FloatArray, FloatArray]:
+        rn = geometry(g)
+        return _element_stress(
+            rn[:-1], rn[1:], E_r[:g], E_t, nu, du[:g], du[1 : g + 1], 0.5 * (rn[:-1] + rn[1:])
+        )
+
+    for g in range(G):
+        r_top = r_node[g] + u[g]
+        T_g = m[g] * h
+        rho = r_top + 0.5 * T_g
+        r_bar = float(np.sum(rho * w) / width)
+        line_force = float(line_force_0 * tension.taper.factor_at(r_bar, r_c, outer_radius))
+        sig_w, R0[g] = allocate_tension(rho, h * w, line_force, E_t)
+        if nip is not None:
+            N = np.asarray(nip(g, r_top, s_r[g - 1] if g > 0 else np.zeros(ncol)), dtype=float)
+            if N.shape != (ncol,) or not np.all(np.isfinite(N)) or np.any(N < 0):
+                raise InputError(
+                    "the nip callable must return finite loads >= 0, one per sector", "winding.nip"
+                )
+        else:
+            N = np.full(ncol, tension.nip_load)
+        nip_used[g] = N
+        sig = sig_w + tension.friction * N / h
+        wot[g] = sig
+        p = sig * T_g / rho
+        s_t[g] = sig  # initial hoop stress of the new group (sigma_r starts at 0)
+        u[g + 1] = u[g]  # the group lands on the deformed stack (radius bookkeeping)
+        if np.any(sig > 0):
+            # the group's layers are wound in sequence, each pressing on the stack below it;
+            # midpoint rule: the whole group load sig w L (per radian) acts at the group's
+            # mid-radius, on the stack extended by half the group
+            f = np.zeros((g + 2, ncol))
+            f[g + 1] = -sig * w * L[g]
+            s_old = s_r[: g + 1].copy()
+            # predictor: E_r at the old pressure + half the pressure the group exerts
+            pred = s_old - 0.5 * p[None, :]
+            pred[g] = -0.25 * p
+            E1 = modulus(pred)
+            du = solve(g + 1, E1, f)
+            dsr, _ = stress_increment(g + 1, E1, du)
+            # corrector: E_r at the mid-increment pressure
+            E2 = modulus(s_old + 0.5 * dsr)
+            du = solve(g + 1, E2, f)
+            dsr, dst = stress_increment(g + 1, E2, du)
+            s_r[:g] += dsr[:g]
+            s_t[:g] += dst[:g]
+            # the group's own layers: each felt the load of the layers wound after it, on
+            # average half the group's load, so half the increments (sigma_r: 0 at the top,
+            # -p at the bottom)
+            s_r[g] = -0.5 * p
+            s_t[g] += 0.5 * dst[g]
+            u[: g + 2] += du
+            if shear_coupling and ncol > 1:
+                Gm = web.shear_r_z(E2)
+                umid = 0.5 * (du[1 : g + 2] + du[: g + 1])
+                t_if = 0.5 * (Gm[:, 1:] + Gm[:, :-1]) * np.diff(umid, axis=1) / dzc[None, :]
+                tau[: g + 1, :-1] += 0.5 * t_if
+                tau[: g + 1, 1:] += 0.5 * t_if
+        if progress is not None:
+            progress(g + 1, G)
+
+    E_final = np.asarray(law.modulus(s_r), dtype=float)
+    if not (np.all(np.isfinite(s_r)) and np.all(np.isfinite(s_t))):
+        raise ConvergenceError("non-finite stresses in the axisymmetric winding solution")
+    return AxisymmetricResult(
+        z=z,
+        dz=w,
+        thickness=h,
+        radius=r_mid,
+        sigma_r=s_r,
+        sigma_theta=s_t,
+        sigma_z=np.zeros_like(s_r),
+        tau_rz=tau,
+        E_r=E_final,
+        wot=wot,
+        nip_load=nip_used,
+        relaxation_radius=R0,
+        outer_radius=r_node[-1] + u[-1],
+        layers_per_group=m,
+        info={
+            "n_layers": n_layers,
+            "n_groups": G,
+            "shear_coupling": shear_coupling,
+            "E_r_floor_Pa": floor,
+            "line_force_N": line_force_0,
+        },
+    )
