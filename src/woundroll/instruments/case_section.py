@@ -1,0 +1,345 @@
+"""The case file's ``[tester]`` table, and one hardness reading from a roll spring.
+
+Example::
+
+    [tester]
+    instrument = "rho-meter"          # a preset (woundroll.instruments.list_instruments())
+    head_radius = "1 cm"              # any instrument field, with units
+    collision = "plastic"             # or "keep-velocity" (the paper's eq. {9})
+    time_step = "1 us"                # optional; default: contact time / steps_per_contact
+    pile_height = "8.89 cm"           # H of the tapered column {17}
+    semi_contact_width = "0.6 cm"     # a of {14}-{18} (paper: 0.6 cm accepted)
+    restitution = 1.0                 # energetic coefficient of restitution of the roll
+
+    [tester.roll_spring]              # optional: bypasses the contact model
+    alpha = "3.7e8 N/m^2"
+    beta = "5.4e5 N/m"
+    effective_mass = "0 kg"
+
+The pipeline passes the JSON of :meth:`HardnessResult.to_dict` under the key ``hardness``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, fields
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from woundroll.errors import InputError
+from woundroll.instruments.definitions import Instrument, get_instrument
+from woundroll.instruments.impact import (
+    COLLISIONS,
+    EnergyResult,
+    ImpactResult,
+    impact_energy,
+    impact_fd,
+)
+from woundroll.instruments.roll_side import RollSpring, roll_effective_mass
+from woundroll.units import to_si
+
+__all__ = ["HardnessResult", "TesterSetup", "hardness_from_spring", "tester_from_spec"]
+
+#: Default semi-contact width a of the tapered column (the paper: "0.6 cm can be accepted").
+DEFAULT_SEMI_CONTACT_WIDTH = 0.006
+
+_INSTRUMENT_FIELDS = {f.name for f in fields(Instrument)} - {"name", "sources", "notes", "title"}
+_OPTION_KINDS = {
+    "time_step": "time",
+    "pile_height": "length",
+    "semi_contact_width": "length",
+    "density": "density",
+    "restitution": "dimensionless",
+}
+_ROLL_SPRING_KINDS = {
+    "alpha": "force_per_area",
+    "beta": "stiffness",
+    "effective_mass": "mass",
+    "restitution": "dimensionless",
+}
+
+
+@dataclass(frozen=True)
+class TesterSetup:
+    """Everything the impact models need besides the roll's stiffness (SI).
+
+    Attributes
+    ----------
+    instrument : Instrument
+        Preset with the case's overrides.
+    collision : str
+        "plastic" (default) or "keep-velocity".
+    time_step : float or None [s]
+    steps_per_contact : int
+    pile_height : float or None [m]
+        H of {17}; None: the pipeline supplies it (outer minus core radius).
+    semi_contact_width : float [m]
+        a of {14}-{18}.
+    density : float or None [kg/m^3]
+        Roll density for {18}; None: the pipeline supplies the web's.
+    restitution : float [-]
+        Energetic coefficient of restitution of the roll (1 = elastic, the paper).
+    roll_spring : RollSpring or None
+        Explicit roll spring from ``[tester.roll_spring]`` (bypasses the contact model).
+    field : str
+        Dotted name of the table (for messages).
+    """
+
+    instrument: Instrument
+    collision: str = COLLISIONS[0]
+    time_step: float | None = None
+    steps_per_contact: int = 2000
+    pile_height: float | None = None
+    semi_contact_width: float = DEFAULT_SEMI_CONTACT_WIDTH
+    density: float | None = None
+    restitution: float = 1.0
+    roll_spring: RollSpring | None = None
+    field: str = field(default="tester", compare=False)
+
+    def effective_mass(self, pile_height: float | None = None, density: float | None = None
+                       ) -> float:
+        """Active roll mass ``kappa rho (2a + H) H L_head`` [kg] {17}, {18}.
+
+        Uses the explicit ``[tester.roll_spring] effective_mass`` if given; otherwise needs a
+        pile height and a density (arguments override the setup's); the CMD length is the
+        head length, or ``2 a`` for a head without one (spherical tip).
+        """
+        if self.roll_spring is not None:
+            return self.roll_spring.effective_mass
+        H = pile_height if pile_height is not None else self.pile_height
+        rho = density if density is not None else self.density
+        if H is None or rho is None:
+            raise InputError("the roll's active mass needs pile_height and density "
+                             "(or give [tester.roll_spring] effective_mass)",
+                             f"{self.field}.pile_height")
+        L = self.instrument.head_length or 2.0 * self.semi_contact_width
+        return roll_effective_mass(self.semi_contact_width, H, rho, L)
+
+
+def _get_str(spec: dict[str, Any], key: str, fld: str) -> str:
+    v = spec[key]
+    if not isinstance(v, str):
+        raise InputError(f"must be text, got {v!r}", fld)
+    return v
+
+
+def tester_from_spec(spec: dict[str, Any], field: str = "tester") -> TesterSetup:
+    """Read a case file's ``[tester]`` table (module docstring) into a :class:`TesterSetup`.
+
+    Parameters
+    ----------
+    spec : dict
+        The parsed TOML table.
+    field : str
+        Its dotted name, used in error messages.
+
+    Raises
+    ------
+    InputError
+        Unknown key, unknown instrument, wrong unit or bad value, naming the dotted field.
+    """
+    if not isinstance(spec, dict):
+        raise InputError("must be a table", field)
+    spec = dict(spec)
+    name = "rho-meter"
+    if "instrument" in spec:
+        name = _get_str(spec, "instrument", f"{field}.instrument")
+    inst = get_instrument(name, f"{field}.instrument")
+    overrides: dict[str, Any] = {}
+    opts: dict[str, Any] = {}
+    roll_spring = None
+    for key, value in spec.items():
+        fld = f"{field}.{key}"
+        if key == "instrument":
+            continue
+        if key in _INSTRUMENT_FIELDS:
+            overrides[key] = value
+        elif key == "collision":
+            v = _get_str(spec, key, fld)
+            if v not in COLLISIONS:
+                raise InputError(f"must be one of {', '.join(COLLISIONS)}, got {v!r}", fld)
+            opts[key] = v
+        elif key == "steps_per_contact":
+            if isinstance(value, bool) or not isinstance(value, int) or value < 20:
+                raise InputError(f"must be an integer >= 20, got {value!r}", fld)
+            opts[key] = value
+        elif key in _OPTION_KINDS:
+            v = to_si(value, _OPTION_KINDS[key], fld)
+            if key == "restitution":
+                if not 0.0 < v <= 1.0:
+                    raise InputError(f"must lie in (0, 1], got {v:g}", fld)
+            elif v <= 0:
+                raise InputError(f"must be positive, got {v:g}", fld)
+            opts[key] = v
+        elif key == "roll_spring":
+            roll_spring = _roll_spring(value, fld, opts.get("restitution",
+                                                             spec.get("restitution", 1.0)))
+        else:
+            known = sorted(set(_INSTRUMENT_FIELDS) | set(_OPTION_KINDS)
+                           | {"instrument", "collision", "steps_per_contact", "roll_spring"})
+            raise InputError(f"unknown key (known: {', '.join(known)})", fld)
+    if overrides:
+        inst = inst.with_overrides(field_prefix=field, **overrides)
+    return TesterSetup(instrument=inst, roll_spring=roll_spring, field=field, **opts)
+
+
+def _roll_spring(value: Any, fld: str, restitution: Any) -> RollSpring:
+    if not isinstance(value, dict):
+        raise InputError("must be a table with alpha, beta and effective_mass", fld)
+    for key in value:
+        if key not in _ROLL_SPRING_KINDS:
+            raise InputError(f"unknown key (known: {', '.join(_ROLL_SPRING_KINDS)})",
+                             f"{fld}.{key}")
+    for key in ("alpha", "beta"):
+        if key not in value:
+            raise InputError("missing", f"{fld}.{key}")
+    vals = {k: to_si(v, _ROLL_SPRING_KINDS[k], f"{fld}.{k}") for k, v in value.items()}
+    e = vals.get("restitution", to_si(restitution, "dimensionless", f"{fld}.restitution"))
+    try:
+        return RollSpring.quadratic(vals["alpha"], vals["beta"], vals.get("effective_mass", 0.0),
+                                    e)
+    except InputError as exc:
+        tail = exc.field.split(".", 1)[1] if exc.field and "." in exc.field else ""
+        raise InputError(exc.message, f"{fld}.{tail}" if tail else fld) from None
+
+
+@dataclass(frozen=True)
+class HardnessResult:
+    """One simulated reading: FD and energy model for one roll spring.
+
+    Attributes
+    ----------
+    instrument : Instrument
+    alpha, beta : float [N/m^2], [N/m]
+    effective_mass : float [kg]
+    fd : ImpactResult
+    energy : EnergyResult
+    """
+
+    instrument: Instrument
+    alpha: float
+    beta: float
+    effective_mass: float
+    restitution: float
+    fd: ImpactResult
+    energy: EnergyResult
+
+    @property
+    def reading(self) -> float:
+        """The instrument's own reading (its ``readout``), from the FD model."""
+        ro = self.instrument.readout
+        if ro == "rho":
+            return self.fd.rho
+        if ro == "g":
+            return self.fd.peak_g
+        if ro == "schmidt-r":
+            return self.fd.rebound_r
+        return self.fd.rebound_l
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary: SI scalars (unit in the key) and time histories."""
+        fd = self.fd
+
+        def lst(a: NDArray[np.float64]) -> list[float]:
+            return [float(x) for x in a]
+
+        return {
+            "instrument": self.instrument.name,
+            "readout": self.instrument.readout,
+            "reading": float(self.reading),
+            "rho_energy": float(self.energy.rho),
+            "rho_fd": float(fd.rho),
+            "peak_g": float(fd.peak_g),
+            "rebound_R": float(fd.rebound_r),
+            "parotester_L": float(fd.rebound_l),
+            "impulse_Ns": float(fd.impulse),
+            "delta_max_m": float(fd.max_depth),
+            "delta_max_energy_m": float(self.energy.max_depth),
+            "peak_force_N": float(fd.peak_force),
+            "peak_force_energy_N": float(self.energy.peak_force),
+            "peak_deceleration_m_per_s2": float(fd.peak_deceleration),
+            "contact_time_s": float(fd.contact_time),
+            "impact_speed_m_per_s": float(fd.impact_speed),
+            "rebound_speed_m_per_s": float(fd.rebound_speed),
+            "alpha_N_per_m2": float(self.alpha),
+            "beta_N_per_m": float(self.beta),
+            "effective_mass_kg": float(self.effective_mass),
+            "restitution": float(self.restitution),
+            "collision": fd.collision,
+            "time_step_s": float(fd.time_step),
+            "time_s": lst(fd.time),
+            "depth_m": lst(fd.position - self.instrument.contact_position),
+            "velocity_m_per_s": lst(fd.velocity),
+            "force_N": lst(fd.contact_force),
+            "deceleration_m_per_s2": lst(fd.deceleration),
+        }
+
+    def plot(self, path: str | None = None) -> Any:
+        """Contact force and striker deceleration against time; returns the Figure.
+
+        Parameters
+        ----------
+        path : str, optional
+            Save a PNG there.
+        """
+        import matplotlib
+
+        if path is not None:
+            matplotlib.use("Agg", force=False)
+        import matplotlib.pyplot as plt
+
+        fd = self.fd
+        t_ms = (fd.time - fd.contact_start) * 1e3
+        fig, ax = plt.subplots(figsize=(6.4, 4.0))
+        ax.plot(t_ms, fd.contact_force, color="C0", label="contact force")
+        ax.set_xlabel("time from contact [ms]")
+        ax.set_ylabel("contact force [N]", color="C0")
+        ax2 = ax.twinx()
+        ax2.plot(t_ms, fd.deceleration / self.instrument.rho_unit, color="C1",
+                 label="deceleration")
+        ax2.set_ylabel("striker deceleration [Rho = 3.76 g]", color="C1")
+        ax.set_title(f"{self.instrument.title or self.instrument.name}: "
+                     f"FD {fd.rho:.1f} Rho, energy {self.energy.rho:.1f} Rho, "
+                     f"impulse {fd.impulse:.3f} N s", fontsize=9)
+        fig.tight_layout()
+        if path is not None:
+            fig.savefig(path, dpi=120)
+        return fig
+
+
+def hardness_from_spring(
+    setup: TesterSetup, alpha: float | None = None, beta: float | None = None,
+    effective_mass: float | None = None,
+) -> HardnessResult:
+    """Run the FD model {4}-{13} and the energy model {19}-{22} for one roll spring.
+
+    Parameters
+    ----------
+    setup : TesterSetup
+    alpha, beta : float, optional [N/m^2], [N/m]
+        Roll spring {3}; default: the setup's ``[tester.roll_spring]``.
+    effective_mass : float, optional [kg]
+        Active roll mass; default: the explicit roll spring's, else 0.
+    """
+    if alpha is None or beta is None:
+        if setup.roll_spring is None:
+            raise InputError("no roll spring: give alpha and beta or [tester.roll_spring]",
+                             f"{setup.field}.roll_spring")
+        spring = setup.roll_spring
+        if effective_mass is not None:
+            spring = RollSpring(spring.law, effective_mass, spring.restitution)
+    else:
+        m = 0.0 if effective_mass is None else effective_mass
+        spring = RollSpring.quadratic(alpha, beta, m, setup.restitution)
+    if not math.isfinite(spring.effective_mass):
+        raise InputError("must be finite", f"{setup.field}.roll_spring.effective_mass")
+    fd = impact_fd(setup.instrument, spring, collision=setup.collision,
+                   time_step=setup.time_step, steps_per_contact=setup.steps_per_contact)
+    en = impact_energy(setup.instrument, spring)
+    law = spring.law
+    return HardnessResult(instrument=setup.instrument, alpha=float(getattr(law, "alpha", math.nan)),
+                          beta=float(getattr(law, "beta", math.nan)),
+                          effective_mass=spring.effective_mass, restitution=spring.restitution,
+                          fd=fd, energy=en)
