@@ -185,6 +185,9 @@ def tester_from_spec(spec: dict[str, Any], field: str = "tester") -> TesterSetup
     return TesterSetup(instrument=inst, roll_spring=roll_spring, field=field, **opts)
 
 
+tester_from_spec.__test__ = False  # type: ignore[attr-defined]  # not a pytest test
+
+
 def _roll_spring(value: Any, fld: str, restitution: Any) -> RollSpring:
     if not isinstance(value, dict):
         raise InputError("must be a table with alpha, beta and effective_mass", fld)
