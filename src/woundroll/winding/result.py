@@ -1,0 +1,123 @@
+"""The result of a 1D winding computation: stresses and moduli from the core outward."""
+
+from __future__ import annotations
+
+import io
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+FloatArray = NDArray[np.float64]
+
+_COLUMNS = (
+    ("radius", "radius_m", "radius [m]"),
+    ("sigma_r", "sigma_r_Pa", "sigma_r [Pa]"),
+    ("sigma_theta", "sigma_theta_Pa", "sigma_theta [Pa]"),
+    ("E_r", "E_r_Pa", "E_r [Pa]"),
+    ("wot", "wot_Pa", "wound-on tension [Pa]"),
+)
+
+
+@dataclass(frozen=True, eq=False)
+class WindingResult:
+    """Stresses in a center-wound roll, per node from the core (index 0) to the surface.
+
+    Nodes are the layer interfaces plus any sub-layer nodes; a node carries the stresses of
+    the layer it is the inner face of (the outermost node: of the last layer). The hoop
+    stress jumps from layer to layer (each layer is wound on stretched), the radial stress
+    is continuous.
+
+    Attributes
+    ----------
+    radius : ndarray [m]
+    sigma_r : ndarray [Pa]
+        Radial stress, compression negative; ``sigma_r[-1] = 0`` (free surface).
+    sigma_theta : ndarray [Pa]
+        Hoop (MD) stress.
+    E_r : ndarray [Pa]
+        Radial tangent modulus at the final pressure (floored, see ``docs/winding.md``).
+    wot : ndarray [Pa]
+        Wound-on tension of the layer the node belongs to.
+    core_pressure : float [Pa]
+        ``-sigma_r`` at the core surface.
+    n_layers : int
+        Number of layers wound.
+    inputs : dict
+        SI summary of web, core and tension schedule.
+    options : dict
+        The numerical options used.
+    stats : dict
+        Solver statistics (increments, largest number of iterations in an increment).
+    """
+
+    radius: FloatArray
+    sigma_r: FloatArray
+    sigma_theta: FloatArray
+    E_r: FloatArray
+    wot: FloatArray
+    core_pressure: float
+    n_layers: int
+    inputs: dict[str, Any] = field(default_factory=dict)
+    options: dict[str, Any] = field(default_factory=dict)
+    stats: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def pressure(self) -> FloatArray:
+        """Interlayer pressure ``P = -sigma_r`` [Pa]."""
+        return -self.sigma_r
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict: profiles as lists (SI, units in the key names) and scalars."""
+        out: dict[str, Any] = {key: getattr(self, attr).tolist() for attr, key, _ in _COLUMNS}
+        out.update(
+            core_pressure_Pa=float(self.core_pressure),
+            n_layers=int(self.n_layers),
+            n_nodes=int(self.radius.size),
+            outer_radius_m=float(self.radius[-1]),
+            max_pressure_Pa=float(np.max(-self.sigma_r)),
+            inputs=self.inputs,
+            options=self.options,
+            stats=self.stats,
+        )
+        return out
+
+    def to_table(self) -> str:
+        """CSV text, one row per node, units in the header."""
+        buf = io.StringIO()
+        data = np.column_stack([getattr(self, attr) for attr, _, _ in _COLUMNS])
+        np.savetxt(buf, data, delimiter=",", fmt="%.9g",
+                   header=",".join(h for _, _, h in _COLUMNS), comments="")
+        return buf.getvalue()
+
+    def plot(self, path: str | Path | None = None) -> Any:
+        """Two panels: sigma_r, sigma_theta [kPa] and E_r [MPa] against radius [cm].
+
+        Parameters
+        ----------
+        path : str or Path, optional
+            Save a PNG there.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+        """
+        from matplotlib.figure import Figure  # pyplot-free: no GUI backend is touched
+
+        fig = Figure(figsize=(7.0, 6.0), layout="constrained")
+        ax1, ax2 = fig.subplots(2, 1, sharex=True)
+        rc = self.radius * 100.0
+        ax1.plot(rc, self.sigma_r / 1e3, label=r"$\sigma_r$")
+        ax1.plot(rc, self.sigma_theta / 1e3, label=r"$\sigma_\theta$")
+        ax1.axhline(0.0, color="0.6", lw=0.5)
+        ax1.set_ylabel("stress [kPa]")
+        ax1.legend()
+        ax1.set_title(f"{self.n_layers} layers, core pressure {self.core_pressure / 1e3:.1f} kPa")
+        ax2.plot(rc, self.E_r / 1e6, color="C2")
+        ax2.set_ylabel(r"$E_r$ [MPa]")
+        ax2.set_xlabel("radius [cm]")
+        if path is not None:
+            fig.savefig(path, dpi=120)
+        return fig
