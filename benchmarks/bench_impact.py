@@ -41,16 +41,21 @@ def main() -> None:
     res = impact_fd(rm, quad_spring)
     n_steps = round(res.contact_time / res.time_step)
     t = best_of(lambda: impact_fd(rm, quad_spring), 20)
-    print(f"FD impact, quadratic spring: {n_steps} steps in contact, {t * 1e3:.2f} ms "
-          f"(Rho {res.rho:.2f})")
+    print(
+        f"FD impact, quadratic spring: {n_steps} steps in contact, {t * 1e3:.2f} ms "
+        f"(Rho {res.rho:.2f})"
+    )
     block = CalibrationBlock.from_preset("rho-meter")
     law = HertzLineContact(rm.head_radius, rm.head_length, block).law(0.5 * k * xi * xi)
     res_h = impact_fd(rm, law)
-    t_table = best_of(lambda: HertzLineContact(rm.head_radius, rm.head_length, block).law(
-        0.5 * k * xi * xi), 5)
+    t_table = best_of(
+        lambda: HertzLineContact(rm.head_radius, rm.head_length, block).law(0.5 * k * xi * xi), 5
+    )
     t_h = best_of(lambda: impact_fd(rm, law), 20)
-    print(f"FD impact, Hertz block curve ({law.depth.size} points): "
-          f"{t_h * 1e3:.2f} ms (+ {t_table * 1e3:.2f} ms to tabulate), Rho {res_h.rho:.2f}")
+    print(
+        f"FD impact, Hertz block curve ({law.depth.size} points): "
+        f"{t_h * 1e3:.2f} ms (+ {t_table * 1e3:.2f} ms to tabulate), Rho {res_h.rho:.2f}"
+    )
 
     # 2. energy model, 1e6 pairs
     n = 1_000_000
@@ -67,8 +72,15 @@ def main() -> None:
         out = np.empty(n_loop)
         for i in range(n_loop):
             a, b = alpha[i], beta[i]
-            d = brentq(lambda x, a=a, b=b: a * x**3 / 3 + (b + k) * x**2 / 2 + k * xg * x
-                       + k * (xg * xg - xi * xi) / 2, 0.0, xi, xtol=1e-16, rtol=1e-14)
+            d = brentq(
+                lambda x, a=a, b=b: (
+                    a * x**3 / 3 + (b + k) * x**2 / 2 + k * xg * x + k * (xg * xg - xi * xi) / 2
+                ),
+                0.0,
+                xi,
+                xtol=1e-16,
+                rtol=1e-14,
+            )
             out[i] = (a * d + b) * d / (rm.rho_unit * m)
         return out
 
@@ -76,10 +88,14 @@ def main() -> None:
     rho_loop = loop()
     t_loop_full = t_loop * n / n_loop
     err = np.max(np.abs(rho_loop - rho_vec[:n_loop]) / rho_loop)
-    print(f"energy model, {n:.0e} (alpha, beta) pairs, vectorised Newton: {t_vec * 1e3:.0f} ms "
-          f"({t_vec / n * 1e9:.0f} ns per pair)")
-    print(f"scalar brentq loop: {n_loop} pairs in {t_loop:.2f} s -> {t_loop_full:.1f} s "
-          f"extrapolated to {n:.0e}")
+    print(
+        f"energy model, {n:.0e} (alpha, beta) pairs, vectorised Newton: {t_vec * 1e3:.0f} ms "
+        f"({t_vec / n * 1e9:.0f} ns per pair)"
+    )
+    print(
+        f"scalar brentq loop: {n_loop} pairs in {t_loop:.2f} s -> {t_loop_full:.1f} s "
+        f"extrapolated to {n:.0e}"
+    )
     print(f"speed-up {t_loop_full / t_vec:.0f}x; largest relative difference in Rho {err:.1e}")
 
 

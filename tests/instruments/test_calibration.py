@@ -30,12 +30,18 @@ def test_hertz_half_width_and_asymptotic_approach():
     F = 1e-3
     P = F / 0.0254
     a = float(c.half_width(F))
-    assert a == pytest.approx(math.sqrt(4 * P * 0.01 / (math.pi * BLOCK.plane_strain_modulus)),
-                              rel=1e-14)
+    assert a == pytest.approx(
+        math.sqrt(4 * P * 0.01 / (math.pi * BLOCK.plane_strain_modulus)), rel=1e-14
+    )
     assert a / BLOCK.thickness < 2e-4
     nu, E = BLOCK.poisson_ratio, BLOCK.youngs_modulus
-    asym = 2 * P * (1 - nu**2) / (math.pi * E) * (math.log(2 * BLOCK.thickness / a)
-                                                   - nu / (2 * (1 - nu)))
+    asym = (
+        2
+        * P
+        * (1 - nu**2)
+        / (math.pi * E)
+        * (math.log(2 * BLOCK.thickness / a) - nu / (2 * (1 - nu)))
+    )
     assert float(c.approach(F)) == pytest.approx(asym, rel=1e-7)
 
 
@@ -61,14 +67,16 @@ def test_hertz_approach_equals_integrated_axis_strain():
 def test_preset_reads_77_rho_on_the_block():
     # the deliverable: the shipped head geometry reads 77 +- 0.5 Rho (FD = accelerometer)
     law = HertzLineContact(RM.head_radius, RM.head_length, BLOCK).law(
-        0.5 * RM.spring_stiffness * RM.release_position**2)
+        0.5 * RM.spring_stiffness * RM.release_position**2
+    )
     fd = impact_fd(RM, law)
     assert fd.rho == pytest.approx(77.0, abs=0.5)
     # the energy model {22} reads lower by the striker spring's share (a few per cent)
     en = impact_energy(RM, law)
     assert fd.rho - en.rho == pytest.approx(
         RM.spring_stiffness * (RM.contact_position + en.max_depth) / (RM.rho_unit * RM.mass),
-        abs=1e-3)
+        abs=1e-3,
+    )
 
 
 def test_calibration_reproduces_the_preset_radius():
@@ -95,12 +103,18 @@ def test_calibration_accepts_any_roll_source():
     A, B, C = k, 2 * k * xg + F_t, k * (xg**2 - xi**2)
     d = (-B + math.sqrt(B * B - 4 * A * C)) / (2 * A)
     R_exact = F_t / d / c
-    cal = calibrate_head(RM, BLOCK, 60.0, contact=lambda inst: (0.0, c * inst.head_radius),
-                         model="energy")
+    cal = calibrate_head(
+        RM, BLOCK, 60.0, contact=lambda inst: (0.0, c * inst.head_radius), model="energy"
+    )
     assert cal.head_radius == pytest.approx(R_exact, rel=1e-8)
     # a callable F(d) is tabulated and works as well
-    cal2 = calibrate_head(RM, BLOCK, 60.0, model="energy",
-                          contact=lambda inst: (lambda x: c * inst.head_radius * np.asarray(x)))
+    cal2 = calibrate_head(
+        RM,
+        BLOCK,
+        60.0,
+        model="energy",
+        contact=lambda inst: lambda x: c * inst.head_radius * np.asarray(x),
+    )
     assert cal2.head_radius == pytest.approx(R_exact, rel=1e-6)
 
 

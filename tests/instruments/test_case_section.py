@@ -53,8 +53,10 @@ def test_full_spec():
         ({"roll_spring": {"alpha": -1e8, "beta": 1e5}}, "tester.roll_spring.alpha"),
         ({"roll_spring": {"alpha": 1e8, "beta": "1 N"}}, "tester.roll_spring.beta"),
         ({"roll_spring": {"alpha": 1e8, "beta": 1e5, "gamma": 1}}, "tester.roll_spring.gamma"),
-        ({"roll_spring": {"alpha": 1e8, "beta": 1e5, "effective_mass": "-1 g"}},
-         "tester.roll_spring.effective_mass"),
+        (
+            {"roll_spring": {"alpha": 1e8, "beta": 1e5, "effective_mass": "-1 g"}},
+            "tester.roll_spring.effective_mass",
+        ),
         ({"roll_spring": 3}, "tester.roll_spring"),
     ],
 )
@@ -68,8 +70,17 @@ def test_hardness_from_spring_dict_and_models():
     s = tester_from_spec({"instrument": "rho-meter"})
     r = hardness_from_spring(s, 3.7e8, 5.4e5, 0.0)
     d = r.to_dict()
-    for key in ("rho_energy", "rho_fd", "impulse_Ns", "delta_max_m", "peak_force_N",
-                "contact_time_s", "time_s", "force_N", "deceleration_m_per_s2"):
+    for key in (
+        "rho_energy",
+        "rho_fd",
+        "impulse_Ns",
+        "delta_max_m",
+        "peak_force_N",
+        "contact_time_s",
+        "time_s",
+        "force_N",
+        "deceleration_m_per_s2",
+    ):
         assert key in d
     text = json.dumps(d, allow_nan=False)  # JSON-ready and no NaN anywhere
     assert len(text) > 1000
@@ -96,8 +107,9 @@ def test_schmidt_reading_is_rebound_number():
 def test_effective_mass_from_the_tapered_column():
     s = tester_from_spec({"pile_height": "8.89 cm", "density": "1.4 g/cm^3"})
     L = s.instrument.head_length
-    assert s.effective_mass() == pytest.approx(roll_effective_mass(0.006, 0.0889, 1400.0, L),
-                                               rel=1e-12)
+    assert s.effective_mass() == pytest.approx(
+        roll_effective_mass(0.006, 0.0889, 1400.0, L), rel=1e-12
+    )
     with pytest.raises(InputError) as exc:
         tester_from_spec({}).effective_mass()
     assert exc.value.field == "tester.pile_height"
@@ -115,5 +127,6 @@ def test_plot(tmp_path):
     fig = r.plot(str(path))
     assert path.stat().st_size > 5000
     assert len(fig.axes) == 2 and math.isclose(
-        max(fig.axes[0].lines[0].get_ydata()), max(r.fd.contact_force))
+        max(fig.axes[0].lines[0].get_ydata()), max(r.fd.contact_force)
+    )
     plt.close(fig)

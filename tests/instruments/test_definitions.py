@@ -96,8 +96,10 @@ def test_instrument_file(tmp_path):
     inst = load_instrument_file(str(good))
     assert inst.mass == pytest.approx(0.05, rel=1e-12)
     bad = tmp_path / "bad.toml"
-    bad.write_text('name = "bad"\nspring_stiffness = "10 N/cm"\nmass = "50 g"\n'
-                   'release_position = "1 cm"\nhead_radius = "5 mm"\nhead_length = "1 cm"\n')
+    bad.write_text(
+        'name = "bad"\nspring_stiffness = "10 N/cm"\nmass = "50 g"\n'
+        'release_position = "1 cm"\nhead_radius = "5 mm"\nhead_length = "1 cm"\n'
+    )
     with pytest.raises(InputError) as exc:
         load_instrument_file(str(bad))
     assert exc.value.field == "instrument[bad].contact_position"

@@ -49,21 +49,30 @@ def test_vectorised_matches_scalar_root_finder():
     beta = 10 ** rng.uniform(3, 7, 50)
     d = energy_max_depth(alpha, beta, K, XI, XG)
     for al, be, dd in zip(alpha, beta, d, strict=True):
-        ref = brentq(lambda x, al=al, be=be: al * x**3 / 3 + (be + K) * x**2 / 2 + K * XG * x
-                     + K * (XG**2 - XI**2) / 2, 0.0, XI, xtol=1e-18, rtol=1e-14)
+        ref = brentq(
+            lambda x, al=al, be=be: (
+                al * x**3 / 3 + (be + K) * x**2 / 2 + K * XG * x + K * (XG**2 - XI**2) / 2
+            ),
+            0.0,
+            XI,
+            xtol=1e-18,
+            rtol=1e-14,
+        )
         assert dd == pytest.approx(ref, rel=1e-12)
 
 
 def test_extremes_no_nan_and_limits():
-    d = energy_max_depth(np.array([0.0, 1e-6, 1e20, 0.0]), np.array([1e-9, 0.0, 0.0, 1e15]),
-                         K, XI, XG)
+    d = energy_max_depth(
+        np.array([0.0, 1e-6, 1e20, 0.0]), np.array([1e-9, 0.0, 0.0, 1e15]), K, XI, XG
+    )
     assert np.all(np.isfinite(d)) and np.all(d > 0)
     # a roll with no stiffness lets the striker swing to +x_in: d = x_in - x_gap
     assert float(energy_max_depth(0.0, 0.0, K, XI, XG)) == pytest.approx(XI - XG, rel=1e-14)
     # contact before equilibrium (x_gap < 0) still has one positive root (energy balance)
     dn = float(energy_max_depth(3e8, 5e5, K, XI, -0.002))
     assert 0.5 * K * (-0.002 + dn) ** 2 + 1e8 * dn**3 + 2.5e5 * dn**2 == pytest.approx(
-        0.5 * K * XI**2, rel=1e-13)
+        0.5 * K * XI**2, rel=1e-13
+    )
 
 
 def test_rho_rises_with_alpha_and_beta():
@@ -85,5 +94,6 @@ def test_bad_coefficients_rejected():
 def test_impact_energy_result_consistent():
     res = impact_energy(RM, (3.7e8, 5.4e5))
     assert res.rho == pytest.approx(float(rho_energy(3.7e8, 5.4e5, RM)), rel=1e-14)
-    assert res.peak_force == pytest.approx(3.7e8 * res.max_depth**2 + 5.4e5 * res.max_depth,
-                                           rel=1e-14)
+    assert res.peak_force == pytest.approx(
+        3.7e8 * res.max_depth**2 + 5.4e5 * res.max_depth, rel=1e-14
+    )

@@ -53,12 +53,12 @@ def test_linear_spring_with_roll_mass_plastic_and_separation():
     res = impact_fd(RM, RollSpring.quadratic(0.0, beta, effective_mass=m_r), collision="plastic")
     x_max, T, J = _linear_two_regime(beta, Mt, M * RM.impact_speed / Mt, M, m_r)
     assert res.max_depth == pytest.approx(x_max - XG, rel=2e-5)
-    assert res.peak_deceleration == pytest.approx((K * x_max + beta * (x_max - XG)) / Mt,
-                                                  rel=2e-5)
+    assert res.peak_deceleration == pytest.approx((K * x_max + beta * (x_max - XG)) / Mt, rel=2e-5)
     assert res.contact_time == pytest.approx(T, rel=2e-5)
     assert res.impulse == pytest.approx(J, rel=2e-5)
-    kv = impact_fd(RM, RollSpring.quadratic(0.0, beta, effective_mass=m_r),
-                   collision="keep-velocity")
+    kv = impact_fd(
+        RM, RollSpring.quadratic(0.0, beta, effective_mass=m_r), collision="keep-velocity"
+    )
     x_max_kv, _, _ = _linear_two_regime(beta, Mt, RM.impact_speed, M, m_r)
     assert kv.max_depth == pytest.approx(x_max_kv - XG, rel=2e-5)
     assert kv.rho > res.rho  # eq. {9} adds m_r v^2/2 of energy
@@ -105,8 +105,9 @@ def test_impulse_below_elastic_bound_and_momentum_balance():
     mv = M * RM.impact_speed
     assert mv < res.impulse < 2 * mv
     int_kx = K * np.trapezoid(res.position, res.time)
-    assert res.impulse + int_kx == pytest.approx(M * (RM.impact_speed + res.rebound_speed),
-                                                 rel=1e-5)
+    assert res.impulse + int_kx == pytest.approx(
+        M * (RM.impact_speed + res.rebound_speed), rel=1e-5
+    )
     assert res.rebound_speed == pytest.approx(RM.impact_speed, rel=1e-6)  # elastic
     assert res.position[-1] == pytest.approx(XG, abs=1e-9)  # contact ends at x_gap
 

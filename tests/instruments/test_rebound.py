@@ -48,8 +48,9 @@ def test_schmidt_r_against_energy_balance():
 def test_energy_loss_lowers_rebound_monotonically():
     es = np.linspace(1.0, 0.3, 8)
     for inst in (SN, RM):
-        R = [impact_fd(inst, RollSpring.quadratic(3.7e8, 5.4e5, restitution=e)).rebound_r
-             for e in es]
+        R = [
+            impact_fd(inst, RollSpring.quadratic(3.7e8, 5.4e5, restitution=e)).rebound_r for e in es
+        ]
         assert np.all(np.diff(R) < 0)
     # the reading of peak deceleration does not depend on unloading (loading branch only)
     a = impact_fd(RM, RollSpring.quadratic(3.7e8, 5.4e5, restitution=1.0))

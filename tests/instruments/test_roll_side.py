@@ -29,6 +29,7 @@ def _kappa_printed(a, H):
 def _kappa_by_quadrature(a, H):
     """Independent: kinetic-energy-equivalent mass of the column A(z) = 2(z + a) {16}, loaded
     at the top, fixed at depth H, with the static shape u ~ ln((H + a)/(z + a)), over rho V."""
+
     def shape(z):
         return math.log((H + a) / (z + a)) / math.log((H + a) / a)
 
@@ -66,8 +67,9 @@ def test_kappa_uniform_column_limit():
 def test_effective_mass_formula():
     a, H, rho, L = 0.006, 0.0889, 1400.0, 0.0254
     m = roll_effective_mass(a, H, rho, L)
-    assert m == pytest.approx(float(tapered_column_factor(a, H)) * rho * (2 * a + H) * H * L,
-                              rel=1e-14)
+    assert m == pytest.approx(
+        float(tapered_column_factor(a, H)) * rho * (2 * a + H) * H * L, rel=1e-14
+    )
     # order of magnitude used in the docs: ~19 g for the PET rolls under a 1 inch head
     assert m == pytest.approx(0.0191, abs=5e-4)
     with pytest.raises(InputError) as exc:
@@ -94,11 +96,11 @@ def test_unloading_returns_e_squared_of_stored_energy(e):
     d_max = 4.9e-4
     W = float(spring.law.energy(d_max))
     d_res = spring.residual_depth(d_max)
-    back, _ = quad(lambda x: float(spring.unloading_force(x, d_max)), d_res, d_max,
-                   epsrel=1e-13)
+    back, _ = quad(lambda x: float(spring.unloading_force(x, d_max)), d_res, d_max, epsrel=1e-13)
     assert back == pytest.approx(e * e * W, rel=1e-10)
     assert float(spring.unloading_force(d_max, d_max)) == pytest.approx(
-        float(spring.law.force(d_max)), rel=1e-14)
+        float(spring.law.force(d_max)), rel=1e-14
+    )
     assert float(spring.unloading_force(d_res, d_max)) == pytest.approx(0.0, abs=1e-9)
     if e == 1.0:  # elastic: unloading is the loading curve
         x = np.linspace(0, d_max, 7)

@@ -167,7 +167,9 @@ class HertzLineContact:
                     f"head radius {self.radius:g} m: the Hertz approach stops growing before the "
                     f"roll spring stores {energy:g} J (contact half-width "
                     f"{float(self.half_width(F_hi)):.3g} m vs block thickness "
-                    f"{self.block.thickness:g} m)", "tester.head_radius")
+                    f"{self.block.thickness:g} m)",
+                    "tester.head_radius",
+                )
             W = float(np.sum(0.5 * (F[1:] + F[:-1]) * np.diff(d)))
             if W >= 2.0 * energy:
                 return TabulatedLaw(d, F, "block")
@@ -278,7 +280,8 @@ def calibrate_head(
     def source(inst: Instrument) -> RollSpring:
         if contact is None:
             law = HertzLineContact(inst.head_radius, inst.head_length, block).law(
-                inst.impact_energy + 0.5 * inst.spring_stiffness * inst.contact_position**2)
+                inst.impact_energy + 0.5 * inst.spring_stiffness * inst.contact_position**2
+            )
             return RollSpring(law, effective_mass)
         return as_roll_spring(contact(inst), effective_mass)
 
@@ -294,9 +297,11 @@ def calibrate_head(
     if r_lo * r_hi > 0:
         raise ConvergenceError(
             f"calibrate_head: {target:g} Rho is not reached for head radii {lo:g}..{hi:g} m "
-            f"(readings {r_lo + target:.4g}..{r_hi + target:.4g} Rho)")
-    log_r = brentq(lambda s: reading(math.exp(s)) - target, math.log(lo), math.log(hi),
-                   xtol=1e-12, rtol=rtol)
+            f"(readings {r_lo + target:.4g}..{r_hi + target:.4g} Rho)"
+        )
+    log_r = brentq(
+        lambda s: reading(math.exp(s)) - target, math.log(lo), math.log(hi), xtol=1e-12, rtol=rtol
+    )
     R = math.exp(log_r)
     inst = instrument.with_overrides(head_radius=R)
     spring = source(inst)
@@ -304,8 +309,21 @@ def calibrate_head(
     en = impact_energy(inst, spring)
     alpha, beta = fit_quadratic(spring.law, fd.max_depth)
     fit = impact_fd(inst, RollSpring.quadratic(alpha, beta, effective_mass), collision=collision)
-    a = (float(HertzLineContact(R, inst.head_length, block).half_width(fd.peak_force))
-         if contact is None else math.nan)
-    return HeadCalibration(instrument=inst, head_radius=R, rho_fd=fd.rho, rho_energy=en.rho,
-                           max_depth=fd.max_depth, peak_force=fd.peak_force, half_width=a,
-                           alpha=alpha, beta=beta, rho_fd_fit=fit.rho, model=model)
+    a = (
+        float(HertzLineContact(R, inst.head_length, block).half_width(fd.peak_force))
+        if contact is None
+        else math.nan
+    )
+    return HeadCalibration(
+        instrument=inst,
+        head_radius=R,
+        rho_fd=fd.rho,
+        rho_energy=en.rho,
+        max_depth=fd.max_depth,
+        peak_force=fd.peak_force,
+        half_width=a,
+        alpha=alpha,
+        beta=beta,
+        rho_fd_fit=fit.rho,
+        model=model,
+    )

@@ -98,8 +98,9 @@ class TesterSetup:
     roll_spring: RollSpring | None = None
     field: str = field(default="tester", compare=False)
 
-    def effective_mass(self, pile_height: float | None = None, density: float | None = None
-                       ) -> float:
+    def effective_mass(
+        self, pile_height: float | None = None, density: float | None = None
+    ) -> float:
         """Active roll mass ``kappa rho (2a + H) H L_head`` [kg] {17}, {18}.
 
         Uses the explicit ``[tester.roll_spring] effective_mass`` if given; otherwise needs a
@@ -111,9 +112,11 @@ class TesterSetup:
         H = pile_height if pile_height is not None else self.pile_height
         rho = density if density is not None else self.density
         if H is None or rho is None:
-            raise InputError("the roll's active mass needs pile_height and density "
-                             "(or give [tester.roll_spring] effective_mass)",
-                             f"{self.field}.pile_height")
+            raise InputError(
+                "the roll's active mass needs pile_height and density "
+                "(or give [tester.roll_spring] effective_mass)",
+                f"{self.field}.pile_height",
+            )
         L = self.instrument.head_length or 2.0 * self.semi_contact_width
         return roll_effective_mass(self.semi_contact_width, H, rho, L)
 
@@ -174,11 +177,15 @@ def tester_from_spec(spec: dict[str, Any], field: str = "tester") -> TesterSetup
                 raise InputError(f"must be positive, got {v:g}", fld)
             opts[key] = v
         elif key == "roll_spring":
-            roll_spring = _roll_spring(value, fld, opts.get("restitution",
-                                                             spec.get("restitution", 1.0)))
+            roll_spring = _roll_spring(
+                value, fld, opts.get("restitution", spec.get("restitution", 1.0))
+            )
         else:
-            known = sorted(set(_INSTRUMENT_FIELDS) | set(_OPTION_KINDS)
-                           | {"instrument", "collision", "steps_per_contact", "roll_spring"})
+            known = sorted(
+                set(_INSTRUMENT_FIELDS)
+                | set(_OPTION_KINDS)
+                | {"instrument", "collision", "steps_per_contact", "roll_spring"}
+            )
             raise InputError(f"unknown key (known: {', '.join(known)})", fld)
     if overrides:
         inst = inst.with_overrides(field_prefix=field, **overrides)
@@ -193,16 +200,16 @@ def _roll_spring(value: Any, fld: str, restitution: Any) -> RollSpring:
         raise InputError("must be a table with alpha, beta and effective_mass", fld)
     for key in value:
         if key not in _ROLL_SPRING_KINDS:
-            raise InputError(f"unknown key (known: {', '.join(_ROLL_SPRING_KINDS)})",
-                             f"{fld}.{key}")
+            raise InputError(
+                f"unknown key (known: {', '.join(_ROLL_SPRING_KINDS)})", f"{fld}.{key}"
+            )
     for key in ("alpha", "beta"):
         if key not in value:
             raise InputError("missing", f"{fld}.{key}")
     vals = {k: to_si(v, _ROLL_SPRING_KINDS[k], f"{fld}.{k}") for k, v in value.items()}
     e = vals.get("restitution", to_si(restitution, "dimensionless", f"{fld}.restitution"))
     try:
-        return RollSpring.quadratic(vals["alpha"], vals["beta"], vals.get("effective_mass", 0.0),
-                                    e)
+        return RollSpring.quadratic(vals["alpha"], vals["beta"], vals.get("effective_mass", 0.0), e)
     except InputError as exc:
         tail = exc.field.split(".", 1)[1] if exc.field and "." in exc.field else ""
         raise InputError(exc.message, f"{fld}.{tail}" if tail else fld) from None
@@ -300,12 +307,14 @@ class HardnessResult:
         ax.set_xlabel("time from contact [ms]")
         ax.set_ylabel("contact force [N]", color="C0")
         ax2 = ax.twinx()
-        ax2.plot(t_ms, fd.deceleration / self.instrument.rho_unit, color="C1",
-                 label="deceleration")
+        ax2.plot(t_ms, fd.deceleration / self.instrument.rho_unit, color="C1", label="deceleration")
         ax2.set_ylabel("striker deceleration [Rho = 3.76 g]", color="C1")
-        ax.set_title(f"{self.instrument.title or self.instrument.name}: "
-                     f"FD {fd.rho:.1f} Rho, energy {self.energy.rho:.1f} Rho, "
-                     f"impulse {fd.impulse:.3f} N s", fontsize=9)
+        ax.set_title(
+            f"{self.instrument.title or self.instrument.name}: "
+            f"FD {fd.rho:.1f} Rho, energy {self.energy.rho:.1f} Rho, "
+            f"impulse {fd.impulse:.3f} N s",
+            fontsize=9,
+        )
         fig.tight_layout()
         if path is not None:
             fig.savefig(path, dpi=120)
@@ -313,7 +322,9 @@ class HardnessResult:
 
 
 def hardness_from_spring(
-    setup: TesterSetup, alpha: float | None = None, beta: float | None = None,
+    setup: TesterSetup,
+    alpha: float | None = None,
+    beta: float | None = None,
     effective_mass: float | None = None,
 ) -> HardnessResult:
     """Run the FD model {4}-{13} and the energy model {19}-{22} for one roll spring.
@@ -328,8 +339,10 @@ def hardness_from_spring(
     """
     if alpha is None or beta is None:
         if setup.roll_spring is None:
-            raise InputError("no roll spring: give alpha and beta or [tester.roll_spring]",
-                             f"{setup.field}.roll_spring")
+            raise InputError(
+                "no roll spring: give alpha and beta or [tester.roll_spring]",
+                f"{setup.field}.roll_spring",
+            )
         spring = setup.roll_spring
         if effective_mass is not None:
             spring = RollSpring(spring.law, effective_mass, spring.restitution)
@@ -338,11 +351,21 @@ def hardness_from_spring(
         spring = RollSpring.quadratic(alpha, beta, m, setup.restitution)
     if not math.isfinite(spring.effective_mass):
         raise InputError("must be finite", f"{setup.field}.roll_spring.effective_mass")
-    fd = impact_fd(setup.instrument, spring, collision=setup.collision,
-                   time_step=setup.time_step, steps_per_contact=setup.steps_per_contact)
+    fd = impact_fd(
+        setup.instrument,
+        spring,
+        collision=setup.collision,
+        time_step=setup.time_step,
+        steps_per_contact=setup.steps_per_contact,
+    )
     en = impact_energy(setup.instrument, spring)
     law = spring.law
-    return HardnessResult(instrument=setup.instrument, alpha=float(getattr(law, "alpha", math.nan)),
-                          beta=float(getattr(law, "beta", math.nan)),
-                          effective_mass=spring.effective_mass, restitution=spring.restitution,
-                          fd=fd, energy=en)
+    return HardnessResult(
+        instrument=setup.instrument,
+        alpha=float(getattr(law, "alpha", math.nan)),
+        beta=float(getattr(law, "beta", math.nan)),
+        effective_mass=spring.effective_mass,
+        restitution=spring.restitution,
+        fd=fd,
+        energy=en,
+    )

@@ -98,8 +98,14 @@ class Instrument:
 
     def __post_init__(self) -> None:
         p = "instrument" if not self.name else f"instrument[{self.name}]"
-        for name in ("mass", "spring_stiffness", "release_position", "head_radius", "g",
-                     "rho_per_g"):
+        for name in (
+            "mass",
+            "spring_stiffness",
+            "release_position",
+            "head_radius",
+            "g",
+            "rho_per_g",
+        ):
             _check(getattr(self, name), f"{p}.{name}", positive=True)
         _check(self.contact_position, f"{p}.contact_position", positive=False)
         if self.head_length is not None:
@@ -110,30 +116,37 @@ class Instrument:
             raise InputError(
                 f"contact position x_gap = {self.contact_position:g} m must lie strictly between "
                 f"-x_in and x_in = {self.release_position:g} m (release position), otherwise the "
-                "striker never reaches the roll with speed", f"{p}.contact_position",
+                "striker never reaches the roll with speed",
+                f"{p}.contact_position",
             )
         if self.head_shape not in _HEAD_SHAPES:
-            raise InputError(f"must be one of {', '.join(_HEAD_SHAPES)}, got {self.head_shape!r}",
-                             f"{p}.head_shape")
+            raise InputError(
+                f"must be one of {', '.join(_HEAD_SHAPES)}, got {self.head_shape!r}",
+                f"{p}.head_shape",
+            )
         if self.head_shape == "cylinder" and self.head_length is None:
-            raise InputError("a cylindrical head needs its length along the CMD",
-                             f"{p}.head_length")
+            raise InputError(
+                "a cylindrical head needs its length along the CMD", f"{p}.head_length"
+            )
         if self.readout not in READOUTS:
-            raise InputError(f"must be one of {', '.join(READOUTS)}, got {self.readout!r}",
-                             f"{p}.readout")
+            raise InputError(
+                f"must be one of {', '.join(READOUTS)}, got {self.readout!r}", f"{p}.readout"
+            )
 
     # -- derived quantities -------------------------------------------------------------
     @property
     def impact_speed(self) -> float:
         """Striker speed at first contact [m/s]: ``sqrt(k/m (x_in^2 - x_gap^2))``."""
-        return math.sqrt(self.spring_stiffness / self.mass
-                         * (self.release_position**2 - self.contact_position**2))
+        return math.sqrt(
+            self.spring_stiffness
+            / self.mass
+            * (self.release_position**2 - self.contact_position**2)
+        )
 
     @property
     def impact_energy(self) -> float:
         """Kinetic energy at first contact [J]: ``k (x_in^2 - x_gap^2) / 2``."""
-        return 0.5 * self.spring_stiffness * (self.release_position**2
-                                              - self.contact_position**2)
+        return 0.5 * self.spring_stiffness * (self.release_position**2 - self.contact_position**2)
 
     @property
     def omega(self) -> float:
@@ -166,12 +179,14 @@ class Instrument:
         for key, value in changes.items():
             fld = f"{field_prefix}.{key}"
             if key not in known or key == "sources":
-                raise InputError(f"unknown instrument field (known: {', '.join(sorted(known))})",
-                                 fld)
+                raise InputError(
+                    f"unknown instrument field (known: {', '.join(sorted(known))})", fld
+                )
             new[key] = _convert(key, value, fld)
         if "natural_frequency" in new and "mass" not in new:
-            new["mass"] = (new.get("spring_stiffness", self.spring_stiffness)
-                           / new["natural_frequency"] ** 2)
+            new["mass"] = (
+                new.get("spring_stiffness", self.spring_stiffness) / new["natural_frequency"] ** 2
+            )
         elif "mass" in new and "natural_frequency" not in new:
             new["natural_frequency"] = None
         try:
@@ -236,8 +251,9 @@ def _from_table(data: dict[str, Any], origin: str) -> Instrument:
         kw[key] = _convert(key, value, f"{prefix}.{key}")
     if "mass" not in kw:
         if "natural_frequency" not in kw or "spring_stiffness" not in kw:
-            raise InputError("give 'mass', or 'spring_stiffness' and 'natural_frequency' ({1})",
-                             f"{prefix}.mass")
+            raise InputError(
+                "give 'mass', or 'spring_stiffness' and 'natural_frequency' ({1})", f"{prefix}.mass"
+            )
         kw["mass"] = kw["spring_stiffness"] / kw["natural_frequency"] ** 2
     for req in ("spring_stiffness", "release_position", "contact_position", "head_radius"):
         if req not in kw:

@@ -80,8 +80,13 @@ _NEWTON_MAX_ITER = 60
 # Energy model
 # ----------------------------------------------------------------------------------------
 def energy_max_depth(
-    alpha: ArrayLike, beta: ArrayLike, spring_stiffness: float, release_position: float,
-    contact_position: float, *, rtol: float = 4e-16,
+    alpha: ArrayLike,
+    beta: ArrayLike,
+    spring_stiffness: float,
+    release_position: float,
+    contact_position: float,
+    *,
+    rtol: float = 4e-16,
 ) -> NDArray[np.float64]:
     """Maximum depth d_max [m] of the energy model, the positive root of {21}; vectorised.
 
@@ -106,8 +111,9 @@ def energy_max_depth(
     a = np.asarray(alpha, dtype=float)
     b = np.asarray(beta, dtype=float)
     if not np.all(np.isfinite(a)) or np.any(a < 0):
-        raise InputError("alpha must be finite and >= 0 (the roll spring stiffens)",
-                         "roll_spring.alpha")
+        raise InputError(
+            "alpha must be finite and >= 0 (the roll spring stiffens)", "roll_spring.alpha"
+        )
     if not np.all(np.isfinite(b)) or np.any(b < 0):
         raise InputError("beta must be finite and >= 0", "roll_spring.beta")
     k, xi, xg = float(spring_stiffness), float(release_position), float(contact_position)
@@ -145,8 +151,13 @@ def rho_energy(alpha: ArrayLike, beta: ArrayLike, instrument: Instrument) -> NDA
     instrument : Instrument
         The striker (k_s, m_s, x_in, x_gap, Rho unit).
     """
-    d = energy_max_depth(alpha, beta, instrument.spring_stiffness,
-                         instrument.release_position, instrument.contact_position)
+    d = energy_max_depth(
+        alpha,
+        beta,
+        instrument.spring_stiffness,
+        instrument.release_position,
+        instrument.contact_position,
+    )
     a = np.asarray(alpha, dtype=float)
     b = np.asarray(beta, dtype=float)
     return (a * d + b) * d / (instrument.rho_unit * instrument.mass)
@@ -220,8 +231,7 @@ def impact_energy(instrument: Instrument, roll: object) -> EnergyResult:
     d = _energy_depth_law(instrument, spring.law)
     F = float(spring.law.force(d))
     a = F / instrument.mass
-    return EnergyResult(max_depth=d, peak_force=F, peak_deceleration=a,
-                        rho=a / instrument.rho_unit)
+    return EnergyResult(max_depth=d, peak_force=F, peak_deceleration=a, rho=a / instrument.rho_unit)
 
 
 # ----------------------------------------------------------------------------------------
@@ -290,8 +300,12 @@ class ImpactResult:
 
 
 def impact_fd(
-    instrument: Instrument, roll: object, *, collision: str = "plastic",
-    time_step: float | None = None, steps_per_contact: int = 2000,
+    instrument: Instrument,
+    roll: object,
+    *,
+    collision: str = "plastic",
+    time_step: float | None = None,
+    steps_per_contact: int = 2000,
 ) -> ImpactResult:
     """Finite-difference solution of one impact ({4}-{13}, module docstring).
 
@@ -317,8 +331,9 @@ def impact_fd(
         The contact did not end within 50 estimated contact durations.
     """
     if collision not in COLLISIONS:
-        raise InputError(f"must be one of {', '.join(COLLISIONS)}, got {collision!r}",
-                         "tester.collision")
+        raise InputError(
+            f"must be one of {', '.join(COLLISIONS)}, got {collision!r}", "tester.collision"
+        )
     spring = as_roll_spring(roll)
     law = spring.law
     m_s, k = instrument.mass, instrument.spring_stiffness
@@ -345,11 +360,14 @@ def impact_fd(
         if dt > T_est / 20:
             raise InputError(
                 f"{dt:.3g} s is too coarse: the contact lasts about {T_est:.3g} s; use at most "
-                f"{T_est / 20:.3g} s (20 steps per contact)", "tester.time_step")
+                f"{T_est / 20:.3g} s (20 steps per contact)",
+                "tester.time_step",
+            )
     max_steps = int(50 * T_est / dt) + 100
 
     Fs = getattr(law, "force_scalar", None)
     if Fs is None:
+
         def Fs(d: float) -> float:
             return float(law.force(d))
 
@@ -374,7 +392,7 @@ def impact_fd(
             Fr = Fs(d_max + (d - d_max) * inv_e2)
         if i > 0:
             Fr_list.append(Fr)
-        x_next = 2.0 * x - x_prev - dt2M * (k * x + Fr)   # {9} ({8} when m_r = 0)
+        x_next = 2.0 * x - x_prev - dt2M * (k * x + Fr)  # {9} ({8} when m_r = 0)
         if loading and x_next < x:
             # turning point: vertex of the parabola through x_prev, x, x_next
             curv = x_next - 2.0 * x + x_prev
@@ -393,7 +411,8 @@ def impact_fd(
         if i > max_steps:
             raise ConvergenceError(
                 f"impact_fd: contact did not end within {max_steps} steps "
-                f"({max_steps * dt:.3g} s); the roll spring may not push the striker back")
+                f"({max_steps * dt:.3g} s); the roll spring may not push the striker back"
+            )
 
     x_arr = np.asarray(xs[: end + 1])
     F_arr = np.asarray(Fr_list[: end + 1])
@@ -452,4 +471,3 @@ def impact_fd(
         deceleration=a_h,
         contact_force=f_h,
     )
-

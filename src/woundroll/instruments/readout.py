@@ -65,8 +65,9 @@ def g_from_deceleration(a: ArrayLike, g: float = G_STANDARD) -> NDArray[np.float
     return np.asarray(a, dtype=float) / g
 
 
-def schmidt_r(back_position: ArrayLike, release_position: float, contact_position: float
-              ) -> NDArray[np.float64]:
+def schmidt_r(
+    back_position: ArrayLike, release_position: float, contact_position: float
+) -> NDArray[np.float64]:
     """Schmidt rebound number ``R = 100 (x_gap + x_back) / (x_in + x_gap)`` [-].
 
     Parameters

@@ -107,8 +107,9 @@ class QuadraticLaw:
         _nonneg(self.alpha, "roll_spring.alpha")
         _nonneg(self.beta, "roll_spring.beta")
         if self.alpha == 0 and self.beta == 0:
-            raise InputError("alpha and beta are both zero: the roll has no stiffness",
-                             "roll_spring")
+            raise InputError(
+                "alpha and beta are both zero: the roll has no stiffness", "roll_spring"
+            )
 
     def force(self, d: ArrayLike) -> NDArray[np.float64]:
         """F(d) [N] {3}."""
@@ -190,7 +191,10 @@ class TabulatedLaw:
 
     @classmethod
     def from_callable(
-        cls, F: Callable[[NDArray[np.float64]], ArrayLike], max_depth: float, n: int = 2001,
+        cls,
+        F: Callable[[NDArray[np.float64]], ArrayLike],
+        max_depth: float,
+        n: int = 2001,
         field: str = "roll_spring",
     ) -> TabulatedLaw:
         """Tabulate a callable F(d) [N] on ``n`` points over [0, max_depth] [m]."""
@@ -240,8 +244,11 @@ class RollSpring:
         cls, alpha: float, beta: float, effective_mass: float = 0.0, restitution: float = 1.0
     ) -> RollSpring:
         """The paper's roll: ``F = alpha d^2 + beta d`` {3} [N/m^2, N/m], mass [kg]."""
-        return cls(QuadraticLaw(_finite(alpha, "roll_spring.alpha"),
-                                _finite(beta, "roll_spring.beta")), effective_mass, restitution)
+        return cls(
+            QuadraticLaw(_finite(alpha, "roll_spring.alpha"), _finite(beta, "roll_spring.beta")),
+            effective_mass,
+            restitution,
+        )
 
     def residual_depth(self, d_max: float) -> float:
         """Depth where the unloading branch reaches zero force, ``(1 - e^2) d_max`` [m]."""
@@ -258,8 +265,11 @@ class RollSpring:
 
 
 def as_roll_spring(
-    source: object, effective_mass: float = 0.0, restitution: float = 1.0,
-    max_depth: float = 0.02, field: str = "roll_spring",
+    source: object,
+    effective_mass: float = 0.0,
+    restitution: float = 1.0,
+    max_depth: float = 0.02,
+    field: str = "roll_spring",
 ) -> RollSpring:
     """Turn any roll-stiffness source into a :class:`RollSpring`.
 
@@ -283,7 +293,8 @@ def as_roll_spring(
         return RollSpring(law, effective_mass, restitution)
     raise InputError(
         f"cannot use {type(source).__name__} as a roll spring: give (alpha, beta), a force law "
-        "or a callable F(d)", field,
+        "or a callable F(d)",
+        field,
     )
 
 
