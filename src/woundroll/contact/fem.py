@@ -1,0 +1,254 @@
+"""Plane-strain bilinear quadrilaterals for a cylindrically orthotropic roll, vectorised.
+
+Degrees of freedom are the polar components ``(u_r, u_theta)`` of each node's displacement
+(in the node's own polar frame), so the core condition and the contact normal are simple.
+Strains are evaluated in Cartesian form and rotated to the local cylindrical axes
+``(r, theta)`` at each integration point, where the material law is diagonal-by-blocks:
+
+    [sigma_r, sigma_theta]^T = C [eps_r, eps_theta]^T,   tau_r_theta = G_r_theta gamma_r_theta.
+
+``C`` is the inverse of the reduced plane-strain compliance (see :func:`plane_strain_moduli`).
+Because ``C`` and ``G`` are constant in each element, every element stiffness is
+``C11 A_rr + C12 A_rt + C22 A_tt + G A_s`` with four geometric matrices computed once; a load
+increment only recombines them (no quadrature in the loop). The shear matrix ``A_s`` is
+integrated with one point at the element centre by default (selective reduced integration),
+which removes the parasitic shear that makes long thin bilinear elements too stiff in
+bending; the normal terms keep 2x2 Gauss points, so no hourglass mode appears.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+
+from woundroll.contact.mesh import RollMesh
+from woundroll.materials.web import Web
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+_G = 1.0 / np.sqrt(3.0)
+_GAUSS = np.array([[-_G, -_G], [_G, -_G], [_G, _G], [-_G, _G]])
+_XI = np.array([-1.0, 1.0, 1.0, -1.0])
+_ETA = np.array([-1.0, -1.0, 1.0, 1.0])
+
+
+def plane_strain_moduli(web: Web, E_r: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray,
+                                                              FloatArray]:
+    """In-plane stiffness ``C11, C12, C22`` [Pa] and shear modulus ``G_r_theta`` [Pa].
+
+    The 3D compliance of the cylindrically orthotropic web in axes (r, theta, z) is
+
+        S = [[1/E_r, -nu_tr/E_t, -nu_zr/E_z],
+             [-nu_tr/E_t, 1/E_t, -nu_tz/E_t],
+             [-nu_zr/E_z, -nu_tz/E_t, 1/E_z]]
+
+    with the web's convention nu_ij / E_i = nu_ji / E_j (``nu_theta_r`` the radial contraction
+    under hoop stress, etc.). Plane strain (eps_z = 0, the roll is long in the CMD) gives
+    sigma_z = -(S_zr sigma_r + S_zt sigma_t) / S_zz and the reduced compliance
+    S'_ij = S_ij - S_iz S_jz / S_zz (i, j in r, theta), whose inverse is ``C``. So E_z,
+    nu_z_r and nu_theta_z enter only through that reduction; for Table 2's data
+    (nu_tr = nu_zr = 0) it is C11 = E_r, C12 = 0, C22 = E_t / (1 - nu_tz^2).
+
+    Parameters
+    ----------
+    web : Web
+        Elastic constants.
+    E_r : ndarray
+        Radial modulus per element [Pa].
+    """
+    E_r = np.asarray(E_r, dtype=float)
+    Et, Ez = web.E_theta, float(web.E_z)
+    s_tt = 1.0 / Et
+    s_zz = 1.0 / Ez
+    s_rt = -web.nu_theta_r / Et
+    s_rz = -web.nu_z_r / Ez
+    s_tz = -web.nu_theta_z / Et
+    s_rr = 1.0 / E_r
+    a = s_rr - s_rz * s_rz / s_zz
+    b = s_rt - s_rz * s_tz / s_zz
+    c = s_tt - s_tz * s_tz / s_zz
+    det = a * c - b * b
+    return c / det, -b / det, a / det, web.shear_r_theta(E_r)
+
+
+@dataclass(frozen=True)
+class ElementBasis:
+    """Geometric element data, computed once per mesh.
+
+    Attributes
+    ----------
+    A : ndarray (4, n_el, 8, 8)
+        The matrices ``A_rr, A_rt, A_tt, A_s`` per element (module docstring), per unit
+        CMD length [m^2 / m^2 = -].
+    B_centre : ndarray (n_el, 3, 8)
+        Local strains ``(eps_r, eps_t, gamma_rt)`` at the element centre from the element's
+        polar nodal displacements [1/m].
+    dofs : ndarray (n_el, 8)
+        Global DOF numbers of each element (``2 node + 0`` radial, ``+1`` tangential).
+    centre_xy : ndarray (n_el, 2)
+        Element centre coordinates [m].
+    area : ndarray (n_el,)
+        Element areas [m^2].
+    """
+
+    A: FloatArray
+    B_centre: FloatArray
+    dofs: IntArray
+    centre_xy: FloatArray
+    area: FloatArray
+
+
+def _local_b(dN_dx: FloatArray, phi: FloatArray, node_angle: FloatArray) -> FloatArray:
+    """Local strain-displacement matrices ``(..., 3, 8)`` in polar nodal DOFs.
+
+    ``dN_dx`` (..., 4, 2) Cartesian shape-function gradients, ``phi`` (...,) the polar angle
+    of the point, ``node_angle`` (n_el, 4) broadcast to match.
+    """
+    nx, ny = dN_dx[..., 0], dN_dx[..., 1]
+    c, s = np.cos(phi)[..., None], np.sin(phi)[..., None]
+    # local gradient components: d/dr along e_r = (c, s), d/(r dtheta) along e_t = (-s, c)
+    dr = c * nx + s * ny
+    dt = -s * nx + c * ny
+    # nodal polar -> Cartesian: ux = cn ur - sn ut, uy = sn ur + cn ut
+    cn, sn = np.cos(node_angle), np.sin(node_angle)
+    # projections of each nodal basis vector on the local axes at the point
+    er_r = c * cn + s * sn      # e_r(node) . e_r(point)
+    er_t = -s * cn + c * sn     # e_r(node) . e_t(point)
+    et_r = -c * sn + s * cn     # e_t(node) . e_r(point)
+    et_t = s * sn + c * cn      # e_t(node) . e_t(point)
+    shape = dN_dx.shape[:-1]
+    B = np.zeros((*shape[:-1], 3, 8))
+    # eps_r = d(u.e_r)/dr, eps_t = d(u.e_t)/(r dt) + u.e_r / r in the fixed local frame:
+    # with u expressed in the fixed point frame, strains are plain Cartesian-like gradients.
+    B[..., 0, 0::2] = dr * er_r
+    B[..., 0, 1::2] = dr * et_r
+    B[..., 1, 0::2] = dt * er_t
+    B[..., 1, 1::2] = dt * et_t
+    B[..., 2, 0::2] = dt * er_r + dr * er_t
+    B[..., 2, 1::2] = dt * et_r + dr * et_t
+    return B
+
+
+def element_basis(mesh: RollMesh, *, reduced_shear: bool = True) -> ElementBasis:
+    """Compute :class:`ElementBasis` for ``mesh`` (vectorised over all elements)."""
+    xy = mesh.node_xy()
+    conn = mesh.connectivity()
+    ang = mesh.node_angle()[conn]                      # (ne, 4)
+    X = xy[conn]                                       # (ne, 4, 2)
+
+    def gradients(xi: FloatArray, eta: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        dN = np.stack([0.25 * _XI * (1 + eta * _ETA), 0.25 * _ETA * (1 + xi * _XI)], axis=-1)
+        N = 0.25 * (1 + xi * _XI) * (1 + eta * _ETA)
+        J = np.einsum("na,enb->eab", dN, X)            # (ne, 2, 2): J[a, b] = dx_b/dxi_a
+        det = J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0]
+        inv = np.stack([np.stack([J[:, 1, 1], -J[:, 0, 1]], -1),
+                        np.stack([-J[:, 1, 0], J[:, 0, 0]], -1)], -2) / det[:, None, None]
+        dN_dx = np.einsum("eba,na->enb", inv, dN)       # dN/dx_b = sum_a invJ[b,a] dN/dxi_a
+        pt = np.einsum("n,enb->eb", N, X)
+        return dN_dx, det, pt
+
+    ne = conn.shape[0]
+    A = np.zeros((4, ne, 8, 8))
+    area = np.zeros(ne)
+    for xi, eta in _GAUSS:
+        dN_dx, det, pt = gradients(np.float64(xi), np.float64(eta))
+        B = _local_b(dN_dx, np.arctan2(pt[:, 1], pt[:, 0]), ang)
+        w = det[:, None, None]
+        br, bt, bs = B[:, 0, :], B[:, 1, :], B[:, 2, :]
+        A[0] += w * br[:, :, None] * br[:, None, :]
+        rt = br[:, :, None] * bt[:, None, :]
+        A[1] += w * (rt + rt.transpose(0, 2, 1))
+        A[2] += w * bt[:, :, None] * bt[:, None, :]
+        if not reduced_shear:
+            A[3] += w * bs[:, :, None] * bs[:, None, :]
+        area += det
+    dN_dx, det, pt = gradients(np.float64(0.0), np.float64(0.0))
+    Bc = _local_b(dN_dx, np.arctan2(pt[:, 1], pt[:, 0]), ang)
+    if reduced_shear:
+        bs = Bc[:, 2, :]
+        A[3] = 4.0 * det[:, None, None] * bs[:, :, None] * bs[:, None, :]
+    dofs = np.empty((ne, 8), dtype=np.int64)
+    dofs[:, 0::2] = 2 * conn
+    dofs[:, 1::2] = 2 * conn + 1
+    return ElementBasis(A=A, B_centre=Bc, dofs=dofs, centre_xy=pt, area=area)
+
+
+class Assembler:
+    """Assembly of ``K = sum_e (C11 A_rr + C12 A_rt + C22 A_tt + G A_s)`` on the free DOFs.
+
+    The scatter map is built once; :meth:`values` forms the element values (one fused
+    multiply-add over all elements) and :meth:`banded` / :meth:`csc` sum them with
+    :func:`numpy.bincount` into LAPACK lower banded storage (half model: the node numbering
+    makes K banded, solved by banded Cholesky) or a CSC matrix (whole annulus, sparse LU).
+
+    Parameters
+    ----------
+    basis : ElementBasis
+    free : ndarray of bool (n_dof,)
+        True for unconstrained DOFs.
+    diagonal : ndarray (n_dof,), optional
+        Extra diagonal stiffness (elastic-core springs) [N/m per m].
+    """
+
+    def __init__(self, basis: ElementBasis, free: NDArray[np.bool_],
+                 diagonal: FloatArray | None = None) -> None:
+        self.basis = basis
+        n_dof = free.size
+        self.free_index = np.full(n_dof, -1, dtype=np.int64)
+        self.free_index[free] = np.arange(int(free.sum()))
+        n = self.n_free = int(free.sum())
+        d = self.free_index[basis.dofs]                       # (ne, 8)
+        rows = np.broadcast_to(d[:, :, None], (d.shape[0], 8, 8)).ravel()
+        cols = np.broadcast_to(d[:, None, :], (d.shape[0], 8, 8)).ravel()
+        keep = (rows >= 0) & (cols >= 0)
+        self._keep = np.flatnonzero(keep)
+        rows, cols = rows[keep], cols[keep]
+        self._diag_vals = np.array([])
+        diag_idx = np.array([], dtype=np.int64)
+        if diagonal is not None:
+            fd = np.flatnonzero((np.asarray(diagonal) != 0) & free)
+            diag_idx = self.free_index[fd]
+            self._diag_vals = np.asarray(diagonal)[fd]
+        rows = np.concatenate([rows, diag_idx])
+        cols = np.concatenate([cols, diag_idx])
+        self._rows, self._cols = rows, cols
+        #: half-bandwidth of K in the free numbering
+        self.bandwidth = int(np.max(np.abs(rows - cols))) if rows.size else 0
+        lower = rows >= cols
+        self._lower = np.flatnonzero(lower)
+        self._band_index = (rows[lower] - cols[lower]) * n + cols[lower]
+        self._csc = None
+
+    def values(self, C11: FloatArray, C12: FloatArray, C22: FloatArray,
+               G: FloatArray) -> FloatArray:
+        """All element (and spring) contributions, in the order of the scatter map."""
+        A = self.basis.A
+        ke = (C11[:, None, None] * A[0] + C12[:, None, None] * A[1]
+              + C22[:, None, None] * A[2] + G[:, None, None] * A[3])
+        return np.concatenate([ke.ravel()[self._keep], self._diag_vals])
+
+    def banded(self, vals: FloatArray) -> FloatArray:
+        """Lower banded storage ``ab[i - j, j] = K[i, j]``, i >= j (LAPACK ``dpbtrf``, 'L').
+
+        (The lower form: OpenBLAS's threaded upper-form factorisation was found 10-100x
+        slower on a loaded 2-core machine.)
+        """
+        n, bw = self.n_free, self.bandwidth
+        ab = np.bincount(self._band_index, weights=vals[self._lower], minlength=(bw + 1) * n)
+        return ab.reshape(bw + 1, n)
+
+    def csc(self, vals: FloatArray) -> sp.csc_matrix:
+        """Global stiffness on the free DOFs as a CSC matrix."""
+        if self._csc is None:
+            keys, inv = np.unique(self._cols * self.n_free + self._rows, return_inverse=True)
+            indices = (keys % self.n_free).astype(np.int32)
+            indptr = np.searchsorted(keys // self.n_free,
+                                     np.arange(self.n_free + 1)).astype(np.int32)
+            self._csc = (inv, keys.size, indices, indptr)
+        inv, nnz, indices, indptr = self._csc
+        data = np.bincount(inv, weights=vals, minlength=nnz)
+        return sp.csc_matrix((data, indices, indptr), shape=(self.n_free, self.n_free))

@@ -1,0 +1,510 @@
+"""Indentation of a wound roll by a rigid cylindrical head: plane strain, hypoelastic, FE.
+
+This is the "2D contact algorithm" the reference paper takes from its ref. [9] to obtain
+the roll spring F(x_r) = alpha x_r^2 + beta x_r, {3}, and the semi-contact width ``a`` of
+its effective-mass formula {14}-{18}. Ref. [9] is described only in outline; the model
+here is built from mechanics (docs/contact.md lists every choice):
+
+* the whole annulus between the core and the outer surface, plane strain in the CMD
+  (:mod:`woundroll.contact.fem` for the reduced orthotropic compliance);
+* hypoelastic radial modulus: each depth increment uses the tangent E_r of the radial-modulus
+  law at the element's current total radial stress (pre-impact stress from the winding model
+  plus the contact increments so far; explicit forward-Euler in the increments);
+  ``update_modulus=False`` freezes E_r at its pre-impact value (the paper's Figure 8
+  "no update" comparison);
+* frictionless contact with a rigid cylinder (head radius ``head_radius``, axis along the
+  CMD), displacement controlled, by an exact linear complementarity solve per increment on
+  the surface nodes (flexibility matrix of the candidate nodes from one sparse LU);
+* core: rigid (u = 0) or a radial Winkler spring of stiffness E_c / r_c per unit area with
+  zero tangential displacement (Hakiel's axisymmetric core condition applied pointwise).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as la
+import scipy.sparse.linalg as spla
+from numpy.typing import NDArray
+from scipy.optimize import nnls
+
+from woundroll.contact.fem import Assembler, element_basis, plane_strain_moduli
+from woundroll.contact.mesh import RollMesh, build_mesh
+from woundroll.contact.result import ContactResult, fit_spring
+from woundroll.errors import ConvergenceError, InputError
+from woundroll.materials.web import Core, Web
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class ContactOptions:
+    """Numerical settings of :func:`indent`; the defaults meet the project's 2 % mesh bar.
+
+    Attributes
+    ----------
+    n_steps : int
+        Number of depth increments up to ``depth_max`` [-].
+    step_exponent : float
+        Depths ``d_k = depth_max (k / n_steps)^step_exponent`` [-]: > 1 makes the first
+        increments, where the modulus under the head changes fastest, smaller.
+    surface_size : float or None
+        Radial size of the outermost element ring [m]; None -> the web thickness (one layer).
+    radial_growth : float
+        Ratio of neighbouring radial element sizes toward the core [-].
+    tangential_size : float or None
+        Arc length of the surface elements near the contact [m]; None -> the larger of
+        ``surface_size`` and ``a_geo / 40``, with ``a_geo = sqrt(2 R_eff depth_max)`` the
+        half-chord of the head's geometric intersection with the undeformed roll at
+        ``depth_max`` (1/R_eff = 1/head_radius + 1/R_out).
+    fine_halfwidth : float or None
+        Arc half-width of the uniform fine zone around the contact axis [m];
+        None -> ``a_geo`` (an orthotropic roll's contact is much narrower; a contact wider
+        than the fine zone is still solved exactly, on the coarser elements).
+    tangential_growth : float
+        Ratio of neighbouring tangential element sizes away from the fine zone [-].
+    reduced_shear : bool
+        One-point integration of the shear term (module :mod:`woundroll.contact.fem`).
+    min_modulus_ratio : float
+        Floor of E_r as a fraction of E_theta [-]: keeps a law with K1 = 0 (E_r = 0 at zero
+        pressure, Table 3) from giving a singular stiffness.
+    midpoint : bool
+        Two-pass increments: a trial increment with the start-of-step modulus, then the
+        increment redone with the modulus at the mid-step stress (second order in the step).
+        False: plain forward Euler (the start-of-step tangent modulus).
+    half_model : bool
+        Mesh the half 0 <= theta <= pi with symmetry conditions (u_theta = 0 on theta = 0,
+        pi): exact for this symmetric problem, and its banded stiffness is solved by banded
+        Cholesky. False: the whole annulus with a sparse LU (used to verify the symmetry).
+    """
+
+    n_steps: int = 24
+    surface_size: float | None = None
+    radial_growth: float = 1.25
+    tangential_size: float | None = None
+    fine_halfwidth: float | None = None
+    tangential_growth: float = 1.25
+    reduced_shear: bool = True
+    min_modulus_ratio: float = 1e-6
+    midpoint: bool = True
+    half_model: bool = True
+    step_exponent: float = 1.5
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.step_exponent) and 1.0 <= self.step_exponent <= 3.0):
+            raise InputError(f"must lie in [1, 3], got {self.step_exponent!r}",
+                             "options.step_exponent")
+        if not isinstance(self.n_steps, int | np.integer) or isinstance(self.n_steps, bool) \
+                or self.n_steps < 1:
+            raise InputError(f"must be a positive integer, got {self.n_steps!r}", "options.n_steps")
+        for name in ("surface_size", "tangential_size", "fine_halfwidth"):
+            v = getattr(self, name)
+            if v is not None and not (math.isfinite(v) and v > 0):
+                raise InputError(f"must be a positive length, got {v!r}", f"options.{name}")
+        for name in ("radial_growth", "tangential_growth"):
+            v = getattr(self, name)
+            if not (math.isfinite(v) and 1.0 <= v <= 3.0):
+                raise InputError(f"must lie in [1, 3], got {v!r}", f"options.{name}")
+        if not (math.isfinite(self.min_modulus_ratio) and 0 < self.min_modulus_ratio < 1):
+            raise InputError(f"must lie in (0, 1), got {self.min_modulus_ratio!r}",
+                             "options.min_modulus_ratio")
+
+
+def _check_scalar(value: float, field: str) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"must be a number, got {value!r}", field) from None
+    if not math.isfinite(v) or v <= 0:
+        raise InputError(f"must be a positive finite number, got {value!r}", field)
+    return v
+
+
+def _check_profile(web: Web, core: Core, radius: object, sigma_r: object
+                   ) -> tuple[FloatArray, FloatArray]:
+    try:
+        r = np.asarray(radius, dtype=float)
+        s = np.asarray(sigma_r, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError("radius and sigma_r must be arrays of numbers", "radius") from None
+    if r.ndim != 1 or r.size < 2:
+        raise InputError("must be a 1D array of at least 2 radii [m]", "radius")
+    if s.ndim != 1 or s.size != r.size:
+        raise InputError(f"must be a 1D array of the same length as radius ({r.size}), "
+                         f"got shape {s.shape}", "sigma_r")
+    if not np.all(np.isfinite(r)):
+        raise InputError("must hold finite numbers only", "radius")
+    if not np.all(np.isfinite(s)):
+        raise InputError("must hold finite numbers only (NaN or inf found)", "sigma_r")
+    if np.any(np.diff(r) <= 0):
+        raise InputError("must increase strictly from the core outward", "radius")
+    if r[0] < core.outer_radius - 1.01 * web.thickness:
+        raise InputError(f"starts at {r[0]:g} m, inside the core (outer radius "
+                         f"{core.outer_radius:g} m)", "radius")
+    if r[-1] <= core.outer_radius + web.thickness:
+        raise InputError(f"the outer radius {r[-1]:g} m leaves no wound layer on the core "
+                         f"({core.outer_radius:g} m)", "radius")
+    return r, s
+
+
+def _gap(pos: FloatArray, centre: FloatArray, head_radius: float
+         ) -> tuple[FloatArray, FloatArray]:
+    """Signed gap [m] of points ``pos`` (n, 2) to the head circle and the unit normals (n, 2)
+    pointing from the head axis to the points."""
+    d = pos - centre
+    dist = np.hypot(d[:, 0], d[:, 1])
+    return dist - head_radius, d / dist[:, None]
+
+
+def _solve_lcp(W: FloatArray, q: FloatArray) -> FloatArray:
+    """Solve ``lam >= 0, g = q + W lam >= 0, lam . g = 0`` for symmetric positive definite W.
+
+    It is the optimality condition of ``min 1/2 lam W lam + q lam, lam >= 0``; with
+    ``W = L L^T`` that is the non-negative least-squares problem
+    ``min |L^T lam + L^-1 q|``, solved exactly (finite active-set method) by :func:`nnls`.
+    """
+    W = 0.5 * (W + W.T)
+    scale = float(np.max(np.diag(W)))
+    try:
+        L = la.cholesky(W / scale, lower=True)
+    except la.LinAlgError:
+        raise ConvergenceError("contact flexibility matrix is not positive definite "
+                               "(mesh too coarse or roll not supported)") from None
+    b = -la.solve_triangular(L, q / scale, lower=True)
+    lam, _ = nnls(L.T, b, maxiter=50 * max(q.size, 10))
+    return lam
+
+
+class _Roll:
+    """Mesh, element data, boundary conditions and pre-impact state of one roll section."""
+
+    def __init__(self, web: Web, core: Core, radius: FloatArray, sigma_r: FloatArray,
+                 mesh: RollMesh, opts: ContactOptions) -> None:
+        self.web = web
+        self.mesh = mesh
+        self.basis = element_basis(mesh, reduced_shear=opts.reduced_shear)
+        n_dof = 2 * mesh.n_nodes
+        free = np.ones(n_dof, dtype=bool)
+        core_nodes = mesh.core_nodes()
+        free[2 * core_nodes + 1] = False                 # no tangential slip on the core
+        free[2 * mesh.edge_nodes() + 1] = False          # symmetry lines of the half model
+        diagonal = None
+        if core.rigid:
+            free[2 * core_nodes] = False
+        else:
+            # Winkler spring E_c / r_c per unit area, lumped on the tributary arc r_c dtheta
+            th = mesh.theta
+            if mesh.periodic:
+                dth = np.diff(np.concatenate([th, [th[0] + 2 * math.pi]]))
+                trib = 0.5 * (dth + np.roll(dth, 1))
+            else:
+                dth = np.diff(th)
+                trib = 0.5 * (np.concatenate([[0.0], dth]) + np.concatenate([dth, [0.0]]))
+            diagonal = np.zeros(n_dof)
+            diagonal[2 * core_nodes] = core.stiffness * trib
+        self.free = free
+        self.assembler = Assembler(self.basis, free, diagonal)
+        self.xy = mesh.node_xy()
+        self.angle = mesh.node_angle()
+        self.surface = mesh.surface_nodes()
+        r_c = np.hypot(self.basis.centre_xy[:, 0], self.basis.centre_xy[:, 1])
+        self.r_centre = r_c
+        #: pre-impact radial stress at element centres [Pa] (winding model, interpolated)
+        self.sigma_pre = np.interp(r_c, radius, sigma_r)
+        self.E_floor = opts.min_modulus_ratio * web.E_theta
+
+    def moduli(self, sigma_r_total: FloatArray) -> tuple[FloatArray, ...]:
+        E_r = np.maximum(self.web.E_r(sigma_r_total), self.E_floor)
+        return plane_strain_moduli(self.web, E_r)
+
+    def cartesian(self, u: FloatArray, nodes: NDArray[np.int64]) -> FloatArray:
+        """Cartesian displacement (n, 2) of ``nodes`` from the polar nodal DOFs ``u``."""
+        ur, ut = u[2 * nodes], u[2 * nodes + 1]
+        c, s = np.cos(self.angle[nodes]), np.sin(self.angle[nodes])
+        return np.stack([c * ur - s * ut, s * ur + c * ut], axis=1)
+
+    def polar(self, vec: FloatArray, nodes: NDArray[np.int64]) -> tuple[FloatArray, FloatArray]:
+        """Polar components at ``nodes`` of Cartesian vectors ``vec`` (n, 2)."""
+        c, s = np.cos(self.angle[nodes]), np.sin(self.angle[nodes])
+        return c * vec[:, 0] + s * vec[:, 1], -s * vec[:, 0] + c * vec[:, 1]
+
+    def strain_increment(self, du: FloatArray) -> FloatArray:
+        return np.einsum("eij,ej->ei", self.basis.B_centre, du[self.basis.dofs])
+
+
+@dataclass
+class _Step:
+    du: FloatArray
+    dsig: FloatArray
+    lam: FloatArray          # total contact force magnitude per surface node [N/m]
+    normal: FloatArray       # unit normals (n_surf, 2) the forces act along
+    gap: FloatArray          # gaps of the surface nodes after the step [m]
+
+
+class _Factor:
+    """A factorised stiffness: banded Cholesky (half model) or sparse LU (whole annulus)."""
+
+    def __init__(self, banded: FloatArray | None = None, lu: spla.SuperLU | None = None) -> None:
+        self._cb = banded
+        self._lu = lu
+
+    def solve(self, b: FloatArray) -> FloatArray:
+        if self._cb is not None:
+            return la.cho_solve_banded((self._cb, True), b, check_finite=False)
+        assert self._lu is not None
+        return self._lu.solve(b)
+
+
+def _factorize(roll: _Roll, vals: FloatArray) -> _Factor:
+    asm = roll.assembler
+    if not roll.mesh.periodic:
+        try:
+            cb = la.cholesky_banded(asm.banded(vals), lower=True, check_finite=False)
+        except la.LinAlgError:
+            raise ConvergenceError("stiffness matrix is not positive definite") from None
+        return _Factor(banded=cb)
+    try:
+        lu = spla.splu(asm.csc(vals), permc_spec="MMD_AT_PLUS_A")
+    except RuntimeError as exc:
+        raise ConvergenceError(f"stiffness matrix is singular ({exc})") from None
+    return _Factor(lu=lu)
+
+
+def _step(roll: _Roll, moduli: tuple[FloatArray, ...], u: FloatArray, f_contact: FloatArray,
+          lam_old: FloatArray, centre: FloatArray, head_radius: float, tol_gap: float) -> _Step:
+    """One depth increment at fixed moduli: sparse LU, candidate flexibility, exact LCP."""
+    C11, C12, C22, G = moduli
+    lu = _factorize(roll, roll.assembler.values(C11, C12, C22, G))
+    fi = roll.assembler.free_index
+    surf = roll.surface
+    pos = roll.xy[surf] + roll.cartesian(u, surf)
+    g_pred, normal = _gap(pos, centre, head_radius)
+    cand = (g_pred < 0) | (lam_old > 0)
+    # the old contact forces are released and re-applied along the current normals
+    u_release = lu.solve(-f_contact[roll.free])
+    for _ in range(8):
+        band = np.flatnonzero(cand)
+        idx = np.unique(np.clip(np.concatenate([band + k for k in (-2, -1, 0, 1, 2)]),
+                                0, surf.size - 1))
+        nodes = surf[idx]
+        n_r, n_t = roll.polar(normal[idx], nodes)
+        m = idx.size
+        rhs = np.zeros((roll.assembler.n_free, m))
+        rows_r, rows_t = fi[2 * nodes], fi[2 * nodes + 1]
+        rhs[rows_r, np.arange(m)] = n_r
+        rhs[rows_t, np.arange(m)] = n_t
+        X = lu.solve(rhs)
+        W = n_r[:, None] * X[rows_r] + n_t[:, None] * X[rows_t]
+        q = g_pred[idx] + n_r * u_release[rows_r] + n_t * u_release[rows_t]
+        lam_c = _solve_lcp(W, q)
+        du_free = u_release + X @ lam_c
+        du = np.zeros(u.size)
+        du[roll.free] = du_free
+        gap, _ = _gap(pos + roll.cartesian(du, surf), centre, head_radius)
+        outside = np.ones(surf.size, dtype=bool)
+        outside[idx] = False
+        bad = outside & (gap < -tol_gap)
+        if not np.any(bad):
+            lam = np.zeros(surf.size)
+            lam[idx] = lam_c
+            e = roll.strain_increment(du)
+            dsig = np.stack([C11 * e[:, 0] + C12 * e[:, 1], C12 * e[:, 0] + C22 * e[:, 1],
+                             G * e[:, 2]], axis=1)
+            return _Step(du=du, dsig=dsig, lam=lam, normal=normal, gap=gap)
+        cand |= bad
+    raise ConvergenceError("contact set did not settle in 8 enlargements of the candidate "
+                           "nodes; refine options.tangential_size or use more n_steps")
+
+
+def _half_width(s: FloatArray, lam: FloatArray, gap: FloatArray, j0: int,
+                sides: tuple[int, ...] = (1, -1)) -> float:
+    """Contact half-width [m] from the active set, interpolated between nodes.
+
+    Beyond the last node in contact the gap of a Hertz-type contact opens as
+    (s - a)^(3/2); the edge ``a`` is placed where that law through the first two open
+    nodes' gaps vanishes, clamped between the last closed and the first open node.
+    """
+    if lam.max() <= 0:
+        return 0.0
+    active = lam > 1e-9 * lam.max()
+    out = []
+    for sign in sides:
+        j = j0
+        while 0 <= j + 2 * sign < s.size and active[j + sign]:
+            j += sign
+        if not active[j]:
+            out.append(0.0)
+            continue
+        j1, j2 = j + sign, j + 2 * sign
+        s0, s1, s2 = abs(s[j]), abs(s[j1]), abs(s[j2])
+        g1, g2 = gap[j1], gap[j2]
+        if g1 <= 0:
+            out.append(s1)
+        elif g2 <= g1:
+            out.append(0.5 * (s0 + s1))
+        else:
+            rho = (g1 / g2) ** (2.0 / 3.0)
+            out.append(float(np.clip((s1 - rho * s2) / (1.0 - rho), s0, s1)))
+    return float(np.mean(out))
+
+
+def indent(web: Web, core: Core, radius: FloatArray, sigma_r: FloatArray, *,
+           head_radius: float, head_length: float, depth_max: float = 1e-3,
+           friction: float = 0.3, update_modulus: bool = True,
+           options: ContactOptions | None = None) -> ContactResult:
+    """Press a rigid cylindrical head into the wound roll and return F(d), a(d) and the fields.
+
+    Parameters
+    ----------
+    web : Web
+        Web data; E_r follows ``web.radial_modulus`` {2}, G_r_theta ``web.shear_r_theta``.
+    core : Core
+        Core radius [m] and stiffness E_c [Pa] (``inf`` = rigid).
+    radius : ndarray
+        Radii [m] of the pre-impact stress profile, core to outside; ``radius[-1]`` is the
+        roll's outer radius.
+    sigma_r : ndarray
+        Pre-impact radial stress [Pa] at ``radius`` (compression negative), e.g. from
+        :mod:`woundroll.winding`.
+    head_radius : float
+        Radius of the instrument's cylindrical head [m] (axis along the CMD).
+    head_length : float
+        Length of the head along the CMD [m]; it multiplies the plane-strain force per unit
+        length.
+    depth_max : float
+        Largest depth [m] the head is pressed to (displacement control).
+    friction : float
+        Interlayer friction coefficient mu [-] for the slip factor {23}.
+    update_modulus : bool
+        True: hypoelastic E_r at the current stress. False: E_r frozen at its pre-impact
+        value (the paper's "no update").
+    options : ContactOptions, optional
+        Mesh and step settings.
+
+    Returns
+    -------
+    ContactResult
+
+    Raises
+    ------
+    InputError
+        Bad geometry, profile arrays or options (field names as in the signature).
+    ConvergenceError
+        The contact set does not settle or the stiffness is singular.
+    """
+    t0 = time.perf_counter()
+    if not isinstance(web, Web):
+        raise InputError("must be a woundroll.materials.Web", "web")
+    if not isinstance(core, Core):
+        raise InputError("must be a woundroll.materials.Core", "core")
+    head_radius = _check_scalar(head_radius, "head_radius")
+    head_length = _check_scalar(head_length, "head_length")
+    depth_max = _check_scalar(depth_max, "depth_max")
+    friction = _check_scalar(friction, "friction")
+    r, s = _check_profile(web, core, radius, sigma_r)
+    opts = options if options is not None else ContactOptions()
+    if not isinstance(opts, ContactOptions):
+        raise InputError("must be a ContactOptions", "options")
+    r_in, r_out = core.outer_radius, float(r[-1])
+    if depth_max >= 0.5 * head_radius:
+        raise InputError(f"must be below half the head radius ({0.5 * head_radius:g} m), got "
+                         f"{depth_max:g} m", "depth_max")
+    if depth_max >= 0.25 * (r_out - r_in):
+        raise InputError(f"must be below a quarter of the wound thickness "
+                         f"({0.25 * (r_out - r_in):g} m), got {depth_max:g} m", "depth_max")
+    R_eff = 1.0 / (1.0 / head_radius + 1.0 / r_out)
+    a_geo = math.sqrt(2.0 * R_eff * depth_max)
+    surface_size = opts.surface_size if opts.surface_size is not None else web.thickness
+    t_size = (opts.tangential_size if opts.tangential_size is not None
+              else max(surface_size, a_geo / 40.0))
+    fine = opts.fine_halfwidth if opts.fine_halfwidth is not None else a_geo
+    if surface_size >= 0.5 * (r_out - r_in):
+        raise InputError("is too large for the wound thickness", "options.surface_size")
+    mesh = build_mesh(r_in, r_out, surface_size=surface_size, radial_growth=opts.radial_growth,
+                      tangential_size=t_size, fine_halfwidth=max(fine, t_size),
+                      tangential_growth=opts.tangential_growth, periodic=not opts.half_model)
+    sym = 2.0 if opts.half_model else 1.0   # the half model carries half the load
+    roll = _Roll(web, core, r, s, mesh, opts)
+
+    n_dof = 2 * mesh.n_nodes
+    n_surf = roll.surface.size
+    u = np.zeros(n_dof)
+    sig = np.zeros((mesh.n_elements, 3))          # contact-induced (r, theta, r-theta) [Pa]
+    lam = np.zeros(n_surf)
+    f_contact = np.zeros(n_dof)
+    s_surf = r_out * mesh.theta
+    j0 = mesh.j0
+    trib = 0.5 * (np.roll(s_surf, -1) - np.roll(s_surf, 1))
+    if opts.half_model:
+        trib[0] = 0.5 * s_surf[1]
+    n = int(opts.n_steps)
+    delta = depth_max * (np.arange(n + 1) / n) ** opts.step_exponent
+    force = np.zeros(n + 1)
+    half = np.zeros(n + 1)
+    p_peak = np.zeros(n + 1)
+    frozen = roll.moduli(roll.sigma_pre) if not update_modulus else None
+    tol_gap = 1e-3 * delta[1]
+    step = None
+    for k in range(1, n + 1):
+        centre = np.array([r_out + head_radius - delta[k], 0.0])
+        if frozen is not None:
+            mod = frozen
+        else:
+            mod = roll.moduli(roll.sigma_pre + sig[:, 0])
+            if opts.midpoint:
+                trial = _step(roll, mod, u, f_contact, lam, centre, head_radius, tol_gap)
+                mod = roll.moduli(roll.sigma_pre + sig[:, 0] + 0.5 * trial.dsig[:, 0])
+        step = _step(roll, mod, u, f_contact, lam, centre, head_radius, tol_gap)
+        u += step.du
+        sig += step.dsig
+        lam = step.lam
+        f_contact = np.zeros(n_dof)
+        fr, ft = roll.polar(step.normal * lam[:, None], roll.surface)
+        f_contact[2 * roll.surface] = fr
+        f_contact[2 * roll.surface + 1] = ft
+        force[k] = sym * float(np.sum(-lam * step.normal[:, 0]))
+        half[k] = _half_width(s_surf, lam, step.gap, j0, (1,) if opts.half_model else (1, -1))
+        p_peak[k] = float(np.max(lam / trib))
+    assert step is not None
+    sigma_r_total = roll.sigma_pre + sig[:, 0]
+    pressure = np.maximum(-sigma_r_total, 0.0)
+    tau = np.abs(sig[:, 2])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        sf = np.where(pressure > 0, tau / (friction * pressure),
+                      np.where(tau > 0, np.inf, 0.0))
+    alpha, beta, r2, max_res = fit_spring(delta, force * head_length)
+    xy = roll.basis.centre_xy
+    return ContactResult(
+        delta=delta,
+        force=force * head_length,
+        contact_pressure=lam / trib,
+        force_per_length=force,
+        half_width=half,
+        peak_pressure=p_peak,
+        alpha=alpha,
+        beta=beta,
+        fit_r2=r2,
+        fit_max_rel_residual=max_res,
+        contact_s=s_surf,
+        element_x=xy[:, 0],
+        element_y=xy[:, 1],
+        element_r=roll.r_centre,
+        element_theta=np.arctan2(xy[:, 1], xy[:, 0]),
+        sigma_r=sigma_r_total,
+        sigma_r_pre=roll.sigma_pre,
+        sigma_theta=sig[:, 1],
+        tau_r_theta=sig[:, 2],
+        slip_factor=sf,
+        friction=friction,
+        head_radius=head_radius,
+        head_length=head_length,
+        outer_radius=r_out,
+        update_modulus=update_modulus,
+        n_elements=mesh.n_elements,
+        n_dof=int(roll.free.sum()),
+        mesh_shape=(mesh.n_r - 1, mesh.n_theta),
+        solve_time_s=time.perf_counter() - t0,
+    )
