@@ -69,6 +69,20 @@ class WindingResult:
         """Interlayer pressure ``P = -sigma_r`` [Pa]."""
         return -self.sigma_r
 
+    def layer_mean_hoop_stress(self) -> tuple[FloatArray, FloatArray]:
+        """Mid radius [m] and mean hoop stress [Pa] of each layer, from equilibrium.
+
+        ``mean sigma_theta = (F_outer - F_inner) / h`` with ``F = r sigma_r`` (equilibrium
+        sigma_theta = d(r sigma_r)/dr integrated over the layer). Within a layer the hoop
+        stress falls outward (the increments of the layers above grow toward them), so the
+        node values show a saw-tooth of layer period; this is its smooth part.
+        """
+        ns = (self.radius.size - 1) // self.n_layers
+        idx = np.arange(0, self.radius.size, ns)
+        F = self.radius[idx] * self.sigma_r[idx]
+        r = self.radius[idx]
+        return 0.5 * (r[1:] + r[:-1]), np.diff(F) / np.diff(r)
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict: profiles as lists (SI, units in the key names) and scalars."""
         out: dict[str, Any] = {key: getattr(self, attr).tolist() for attr, key, _ in _COLUMNS}
@@ -109,8 +123,11 @@ class WindingResult:
         fig = Figure(figsize=(7.0, 6.0), layout="constrained")
         ax1, ax2 = fig.subplots(2, 1, sharex=True)
         rc = self.radius * 100.0
+        rm, st_mean = self.layer_mean_hoop_stress()
         ax1.plot(rc, self.sigma_r / 1e3, label=r"$\sigma_r$")
-        ax1.plot(rc, self.sigma_theta / 1e3, label=r"$\sigma_\theta$")
+        ax1.plot(rc, self.sigma_theta / 1e3, color="C1", lw=0.4, alpha=0.4,
+                 label=r"$\sigma_\theta$ (nodes)")
+        ax1.plot(rm * 100.0, st_mean / 1e3, color="C1", label=r"$\sigma_\theta$ (layer mean)")
         ax1.axhline(0.0, color="0.6", lw=0.5)
         ax1.set_ylabel("stress [kPa]")
         ax1.legend()
