@@ -12,6 +12,19 @@
 * :mod:`~woundroll.instruments.case_section` -- the case file's ``[tester]`` table.
 """
 
+from woundroll.instruments.calibration import (
+    CalibrationBlock,
+    HeadCalibration,
+    HertzLineContact,
+    calibrate_head,
+    fit_quadratic,
+)
+from woundroll.instruments.case_section import (
+    HardnessResult,
+    TesterSetup,
+    hardness_from_spring,
+    tester_from_spec,
+)
 from woundroll.instruments.definitions import (
     Instrument,
     get_instrument,
@@ -39,6 +52,15 @@ from woundroll.instruments.roll_side import (
 
 __all__ = [
     "COLLISIONS",
+    "CalibrationBlock",
+    "HardnessResult",
+    "HeadCalibration",
+    "HertzLineContact",
+    "TesterSetup",
+    "calibrate_head",
+    "fit_quadratic",
+    "hardness_from_spring",
+    "tester_from_spec",
     "EnergyResult",
     "ForceLaw",
     "ImpactResult",

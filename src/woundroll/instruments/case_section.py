@@ -294,10 +294,6 @@ class HardnessResult:
         path : str, optional
             Save a PNG there.
         """
-        import matplotlib
-
-        if path is not None:
-            matplotlib.use("Agg", force=False)
         import matplotlib.pyplot as plt
 
         fd = self.fd
