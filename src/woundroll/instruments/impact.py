@@ -48,6 +48,7 @@ Energy model (:func:`energy_max_depth`, :func:`rho_energy`, :func:`impact_energy
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -350,7 +351,11 @@ def impact_fd(
     k_sec = float(law.force(d_est)) / d_est + k
     T_est = math.pi * math.sqrt(M / k_sec)
     if time_step is None:
-        if not isinstance(steps_per_contact, int) or steps_per_contact < 20:
+        if (
+            isinstance(steps_per_contact, bool)
+            or not isinstance(steps_per_contact, numbers.Integral)
+            or steps_per_contact < 20
+        ):
             raise InputError("must be an integer >= 20", "tester.steps_per_contact")
         dt = T_est / steps_per_contact
     else:

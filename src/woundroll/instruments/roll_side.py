@@ -41,6 +41,7 @@ Active roll mass (tapered column, {14}-{18})
 from __future__ import annotations
 
 import math
+from bisect import bisect_right
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Protocol, runtime_checkable
@@ -184,8 +185,6 @@ class TabulatedLaw:
 
     def force_scalar(self, d: float) -> float:
         """Fast scalar F(d) for the time-stepping loop."""
-        from bisect import bisect_right
-
         i = min(max(bisect_right(self._dl, d) - 1, 0), len(self._dl) - 2)
         return self._fl[i] + self._sl[i] * (d - self._dl[i])
 
