@@ -61,6 +61,7 @@ from typing import Any
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
+from scipy.linalg import LinAlgError, solveh_banded
 from scipy.sparse.linalg import splu
 
 from woundroll.errors import ConvergenceError, InputError
@@ -256,6 +257,7 @@ def wind_axisymmetric(
     shear_coupling: bool = True,
     nip: NipHook | None = None,
     E_r_floor: float | None = None,
+    corrections: int = 0,
     progress: Callable[[int, int], None] | None = None,
 ) -> AxisymmetricResult:
     """Wind a roll with a CMD thickness profile; stresses over (r, z).
@@ -276,7 +278,7 @@ def wind_axisymmetric(
     n_sectors : int
         CMD sectors (columns).
     n_groups : int, optional
-        Winding increments; default ``min(n_layers, 150)``. Convergence under refinement:
+        Winding increments; default ``min(n_layers, 200)``. Convergence under refinement:
         see docs/profile.md.
     shear_coupling : bool
         Couple neighbouring sectors through ``G_rz`` (default) or treat them independently.
@@ -313,7 +315,7 @@ def wind_axisymmetric(
     if n_layers < 1:
         raise InputError("the roll must hold at least one layer", "roll.outer_radius")
     if n_groups is None:
-        n_groups = min(n_layers, 150)
+        n_groups = min(n_layers, 200)
     if not (isinstance(n_groups, int | np.integer) and 1 <= n_groups <= n_layers):
         raise InputError(
             f"must be a whole number in [1, {n_layers}] (the layer count), got {n_groups!r}",
@@ -347,37 +349,43 @@ def wind_axisymmetric(
     rigid = core.rigid
     k_core = 0.0 if rigid else core.stiffness * w  # per radian: E_c w_j
 
+    coupled = shear_coupling and ncol > 1
+    top_frac = (m - 1) / (2.0 * m)  # fraction of the new group in the stack of its increment
+    g_now = [0]
+
     def modulus(sig: FloatArray) -> FloatArray:
         return np.maximum(law.modulus(sig), floor)
 
-    def geometry(g: int) -> FloatArray:
-        """Node radii of the stack of g elements whose top element is the new group at
-        half its thickness (midpoint rule for the layers wound in sequence)."""
-        rn = r_node[: g + 1].copy()
-        rn[g] = r_node[g - 1] + 0.5 * L[g - 1]
+    def geometry(ne: int) -> FloatArray:
+        """Node radii of a stack of ``ne`` elements. During increment ``g`` with ``m > 1``
+        layers the stack includes the new group's element cut to ``(m - 1) / 2`` layers: the
+        layers of a group are wound in sequence, each pressing on the stack below it, and on
+        average a layer of the group lies on ``(m - 1) / 2`` layers of its own group (midpoint
+        rule). With ``m = 1`` the new layer is not in the stack (Hakiel)."""
+        rn = r_node[: ne + 1].copy()
+        if ne == g_now[0] + 1:
+            rn[ne] = r_node[ne - 1] + top_frac[ne - 1] * L[ne - 1]
         return rn
 
     def solve(g: int, E_r: FloatArray, f: FloatArray) -> FloatArray:
-        """Incremental displacements of nodes 0..g of the stack of g elements, loads ``f``."""
+        """Incremental displacements of nodes 0..g of the stack of g elements, loads ``f``.
+
+        Nodes numbered layer by layer; sparse LU with shear coupling, a tridiagonal
+        Cholesky per column without.
+        """
         rn = geometry(g)
-        n = (g + 1) * ncol
-        idx = np.arange(n).reshape(g + 1, ncol)
-        rows: list[FloatArray] = []
-        cols: list[FloatArray] = []
-        vals: list[FloatArray] = []
         diag = np.zeros((g + 1, ncol))
+        k12 = np.zeros((g, ncol))
+        ks = np.zeros((g + 1, max(ncol - 1, 0)))
         if not rigid:
             diag[0] += k_core
         if g > 0:
             Er = E_r[:g]
             k11, k12, k22 = _element_stiffness(rn[:-1], rn[1:], Er, E_t, nu, w)
-            Lg = np.diff(rn, axis=0)
             diag[:g] += k11
             diag[1 : g + 1] += k22
-            rows += [idx[:g].ravel(), idx[1 : g + 1].ravel()]
-            cols += [idx[1 : g + 1].ravel(), idx[:g].ravel()]
-            vals += [k12.ravel(), k12.ravel()]
-            if shear_coupling and ncol > 1:
+            if coupled:
+                Lg = np.diff(rn, axis=0)
                 G_el = web.shear_r_z(Er)  # (g, ncol)
                 # nodal tributary length and shear modulus (mean of adjacent elements)
                 Ltr = np.zeros((g + 1, ncol))
@@ -388,40 +396,52 @@ def wind_axisymmetric(
                 Gn[1:] += 0.5 * Lg * G_el
                 Gn /= Ltr
                 ks = (
-                    0.5
+                    0.125
                     * (Gn[:, 1:] + Gn[:, :-1])
-                    * 0.5
                     * (Ltr[:, 1:] + Ltr[:, :-1])
-                    * 0.5
                     * (rn[:, 1:] + rn[:, :-1])
                     / dzc[None, :]
                 )
                 diag[:, :-1] += ks
                 diag[:, 1:] += ks
-                rows += [idx[:, :-1].ravel(), idx[:, 1:].ravel()]
-                cols += [idx[:, 1:].ravel(), idx[:, :-1].ravel()]
-                vals += [-ks.ravel(), -ks.ravel()]
         rhs = f.copy()
-        if rigid:
+        if rigid:  # node 0 fixed: unit diagonal, no coupling
             diag[0] = 1.0
             rhs[0] = 0.0
-        rows.append(idx.ravel())
-        cols.append(idx.ravel())
-        vals.append(diag.ravel())
-        ri, ci, vi = np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
-        if rigid:  # decouple node 0 (fixed): drop its off-diagonal entries
-            keep = (ri >= ncol) & (ci >= ncol) | (ri == ci)
-            ri, ci, vi = ri[keep], ci[keep], vi[keep]
-        A = sp.csc_matrix((vi, (ri, ci)), shape=(n, n))
+            if g > 0:
+                k12[0] = 0.0
+            ks[0] = 0.0
+        n = (g + 1) * ncol
         try:
-            x = splu(A, permc_spec="MMD_AT_PLUS_A").solve(rhs.ravel())
-        except RuntimeError as exc:  # singular factor
+            if coupled:  # sparse LU (fill-reducing ordering beats the band here)
+                idx = np.arange(n).reshape(g + 1, ncol)
+                up = np.zeros((g + 1, ncol))
+                rows = [idx.ravel(), idx[:, :-1].ravel(), idx[:, 1:].ravel()]
+                cols = [idx.ravel(), idx[:, 1:].ravel(), idx[:, :-1].ravel()]
+                vals = [diag.ravel(), -ks.ravel(), -ks.ravel()]
+                if g > 0:
+                    rows += [idx[:g].ravel(), idx[1:].ravel()]
+                    cols += [idx[1:].ravel(), idx[:g].ravel()]
+                    vals += [k12.ravel(), k12.ravel()]
+                A = sp.csc_matrix(
+                    (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                    shape=(n, n),
+                )
+                x = splu(A, permc_spec="MMD_AT_PLUS_A").solve(rhs.ravel())
+            else:  # independent columns: tridiagonal Cholesky
+                ab = np.zeros((2, n))
+                ab[1] = diag.T.ravel()
+                up = np.zeros((ncol, g + 1))
+                up[:, 1:] = k12.T
+                ab[0] = up.ravel()
+                x = solveh_banded(ab, rhs.T.ravel(), check_finite=False)
+        except (LinAlgError, RuntimeError) as exc:
             raise ConvergenceError(
                 f"winding increment {g + 1}: singular stiffness ({exc})"
             ) from None
         if not np.all(np.isfinite(x)):
             raise ConvergenceError(f"winding increment {g + 1}: non-finite displacements")
-        return x.reshape(g + 1, ncol)
+        return x.reshape(g + 1, ncol) if coupled else x.reshape(ncol, g + 1).T
 
     def stress_increment(g: int, E_r: FloatArray, du: FloatArray) -> tuple[FloatArray, FloatArray]:
         rn = geometry(g)
@@ -429,6 +449,7 @@ def wind_axisymmetric(
             rn[:-1], rn[1:], E_r[:g], E_t, nu, du[:g], du[1 : g + 1], 0.5 * (rn[:-1] + rn[1:])
         )
 
+    prev: tuple[FloatArray, FloatArray] | None = None
     for g in range(G):
         r_top = r_node[g] + u[g]
         T_g = m[g] * h
@@ -450,37 +471,60 @@ def wind_axisymmetric(
         p = sig * T_g / rho
         s_t[g] = sig  # initial hoop stress of the new group (sigma_r starts at 0)
         u[g + 1] = u[g]  # the group lands on the deformed stack (radius bookkeeping)
-        if np.any(sig > 0):
+        if np.any(sig > 0) and g == 0 and m[0] == 1:
+            # a single first layer on the core: only the core deforms
+            if not rigid:
+                u[0] -= sig * w * L[0] / k_core
+            u[1] = u[0]
+            s_r[0] = -0.5 * p
+        elif np.any(sig > 0):
             # the group's layers are wound in sequence, each pressing on the stack below it;
-            # midpoint rule: the whole group load sig w L (per radian) acts at the group's
-            # mid-radius, on the stack extended by half the group
-            f = np.zeros((g + 2, ncol))
-            f[g + 1] = -sig * w * L[g]
-            s_old = s_r[: g + 1].copy()
-            # predictor: E_r at the old pressure + half the pressure the group exerts
+            # midpoint rule: the whole group load sig w L (per radian) acts on the stack
+            # extended by (m - 1) / 2 layers of the group (see geometry())
+            g_now[0] = g
+            ne = g + 1 if m[g] > 1 else g
+            f = np.zeros((ne + 1, ncol))
+            f[ne] = -sig * w * L[g]
+            s_old = s_r[:ne].copy()
+            # predictor of the mid-increment stress: the previous increment's response scaled
+            # by the ratio of the loads (lagged), else half the pressure the group exerts
             pred = s_old - 0.5 * p[None, :]
-            pred[g] = -0.25 * p
-            E1 = modulus(pred)
-            du = solve(g + 1, E1, f)
-            dsr, _ = stress_increment(g + 1, E1, du)
-            # corrector: E_r at the mid-increment pressure
-            E2 = modulus(s_old + 0.5 * dsr)
-            du = solve(g + 1, E2, f)
-            dsr, dst = stress_increment(g + 1, E2, du)
+            if ne > g:
+                pred[g] = -0.25 * p
+            if prev is not None:
+                k = min(prev[0].shape[0], ne)
+                scale = np.divide(p, prev[1], out=np.ones_like(p), where=prev[1] > 0)
+                pred[:k] = s_old[:k] + 0.5 * prev[0][:k] * scale[None, :]
+            E2 = modulus(pred)
+            du = solve(ne, E2, f)
+            dsr, dst = stress_increment(ne, E2, du)
+            # corrector(s): E_r at the mid-increment pressure, fixed-point iteration
+            for _ in range(corrections):
+                E2 = modulus(s_old + 0.5 * dsr)
+                du = solve(ne, E2, f)
+                dsr_new, dst = stress_increment(ne, E2, du)
+                change = np.max(np.abs(dsr_new - dsr)) / max(np.max(np.abs(dsr_new)), 1e-300)
+                dsr = dsr_new
+                if change < 1e-6:
+                    break
+            prev = (dsr, p)
             s_r[:g] += dsr[:g]
             s_t[:g] += dst[:g]
-            # the group's own layers: each felt the load of the layers wound after it, on
-            # average half the group's load, so half the increments (sigma_r: 0 at the top,
-            # -p at the bottom)
+            # the group's own layers: sigma_r rises from 0 at the top to -p at the bottom
+            # (mean -p/2); a layer of the group felt on average (m - 1) / 2 of the m later
+            # layers' loads, so that fraction of the hoop increment
             s_r[g] = -0.5 * p
-            s_t[g] += 0.5 * dst[g]
-            u[: g + 2] += du
-            if shear_coupling and ncol > 1:
+            if ne > g:
+                s_t[g] += top_frac[g] * dst[g]
+            u[: ne + 1] += du
+            if ne == g:
+                u[g + 1] = u[g]
+            if shear_coupling and ncol > 1 and ne > 0:
                 Gm = web.shear_r_z(E2)
-                umid = 0.5 * (du[1 : g + 2] + du[: g + 1])
+                umid = 0.5 * (du[1 : ne + 1] + du[:ne])
                 t_if = 0.5 * (Gm[:, 1:] + Gm[:, :-1]) * np.diff(umid, axis=1) / dzc[None, :]
-                tau[: g + 1, :-1] += 0.5 * t_if
-                tau[: g + 1, 1:] += 0.5 * t_if
+                tau[:ne, :-1] += 0.5 * t_if
+                tau[:ne, 1:] += 0.5 * t_if
         if progress is not None:
             progress(g + 1, G)
 
