@@ -97,3 +97,18 @@ def test_impact_energy_result_consistent():
     assert res.peak_force == pytest.approx(
         3.7e8 * res.max_depth**2 + 5.4e5 * res.max_depth, rel=1e-14
     )
+
+
+@pytest.mark.parametrize("x_gap", [0.0024, 0.0, -0.004])
+def test_tabulated_law_energy_root_is_exact(x_gap):
+    # a straight line given as a table must give the closed-form root of the quadratic
+    # (rounding only: rel 1e-12), also when contact happens before equilibrium (x_gap < 0)
+    from woundroll.instruments import TabulatedLaw
+
+    inst = RM.with_overrides(contact_position=x_gap)
+    beta = 5.4e5
+    d_tab = np.linspace(0.0, 5e-3, 501)
+    law = TabulatedLaw(d_tab, beta * d_tab)
+    a, b, c = 0.5 * (beta + K), K * x_gap, 0.5 * K * (x_gap**2 - XI**2)
+    exact = (-b + math.sqrt(b * b - 4 * a * c)) / (2 * a)
+    assert impact_energy(inst, law).max_depth == pytest.approx(exact, rel=1e-12)

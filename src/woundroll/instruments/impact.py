@@ -196,8 +196,9 @@ def _energy_depth_law(instrument: Instrument, law: Any) -> float:
         D = law.depth
         G = 0.5 * k * (xg + D) ** 2 + law.energy(D) - E0
         if G[-1] >= 0:
-            i = int(np.searchsorted(G, 0.0, side="left")) - 1
-            i = max(i, 0)
+            # G is negative at 0 and convex (G'' = k + F' > 0): negative up to the root,
+            # positive beyond (not monotone when x_gap < 0); the first node with G >= 0
+            i = max(int(np.argmax(G >= 0.0)) - 1, 0)
             s_lin = law.force_table[i] + k * (xg + D[i])
             s_quad = 0.5 * (law._slope[i] + k)
             c0 = G[i]
