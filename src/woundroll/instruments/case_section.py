@@ -177,9 +177,7 @@ def tester_from_spec(spec: dict[str, Any], field: str = "tester") -> TesterSetup
                 raise InputError(f"must be positive, got {v:g}", fld)
             opts[key] = v
         elif key == "roll_spring":
-            roll_spring = _roll_spring(
-                value, fld, opts.get("restitution", spec.get("restitution", 1.0))
-            )
+            roll_spring = value  # built below, once the restitution is known
         else:
             known = sorted(
                 set(_INSTRUMENT_FIELDS)
@@ -187,6 +185,10 @@ def tester_from_spec(spec: dict[str, Any], field: str = "tester") -> TesterSetup
                 | {"instrument", "collision", "steps_per_contact", "roll_spring"}
             )
             raise InputError(f"unknown key (known: {', '.join(known)})", fld)
+    if roll_spring is not None:
+        roll_spring = _roll_spring(
+            roll_spring, f"{field}.roll_spring", opts.get("restitution", 1.0)
+        )
     if overrides:
         inst = inst.with_overrides(field_prefix=field, **overrides)
     return TesterSetup(instrument=inst, roll_spring=roll_spring, field=field, **opts)
@@ -195,7 +197,7 @@ def tester_from_spec(spec: dict[str, Any], field: str = "tester") -> TesterSetup
 tester_from_spec.__test__ = False  # type: ignore[attr-defined]  # not a pytest test
 
 
-def _roll_spring(value: Any, fld: str, restitution: Any) -> RollSpring:
+def _roll_spring(value: Any, fld: str, restitution: float) -> RollSpring:
     if not isinstance(value, dict):
         raise InputError("must be a table with alpha, beta and effective_mass", fld)
     for key in value:
@@ -207,7 +209,7 @@ def _roll_spring(value: Any, fld: str, restitution: Any) -> RollSpring:
         if key not in value:
             raise InputError("missing", f"{fld}.{key}")
     vals = {k: to_si(v, _ROLL_SPRING_KINDS[k], f"{fld}.{k}") for k, v in value.items()}
-    e = vals.get("restitution", to_si(restitution, "dimensionless", f"{fld}.restitution"))
+    e = vals.get("restitution", restitution)
     try:
         return RollSpring.quadratic(vals["alpha"], vals["beta"], vals.get("effective_mass", 0.0), e)
     except InputError as exc:
@@ -299,11 +301,17 @@ class HardnessResult:
         fd = self.fd
         t_ms = (fd.time - fd.contact_start) * 1e3
         fig, ax = plt.subplots(figsize=(6.4, 4.0))
-        ax.plot(t_ms, fd.contact_force, color="C0", label="contact force")
+        ax.plot(t_ms, fd.contact_force, color="C0", lw=2.5, label="contact force")
         ax.set_xlabel("time from contact [ms]")
         ax.set_ylabel("contact force [N]", color="C0")
         ax2 = ax.twinx()
-        ax2.plot(t_ms, fd.deceleration / self.instrument.rho_unit, color="C1", label="deceleration")
+        ax2.plot(
+            t_ms,
+            fd.deceleration / self.instrument.rho_unit,
+            color="C1",
+            ls="--",
+            label="deceleration",
+        )
         ax2.set_ylabel("striker deceleration [Rho = 3.76 g]", color="C1")
         ax.set_title(
             f"{self.instrument.title or self.instrument.name}: "
