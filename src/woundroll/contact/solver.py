@@ -86,7 +86,7 @@ class ContactOptions:
     radial_growth: float = 1.25
     tangential_size: float | None = None
     fine_halfwidth: float | None = None
-    tangential_growth: float = 1.25
+    tangential_growth: float = 1.1
     reduced_shear: bool = True
     min_modulus_ratio: float = 1e-6
     midpoint: bool = True

@@ -1,0 +1,368 @@
+"""Verification of the 2D plane-strain contact model (woundroll.contact).
+
+Every test compares a number with a closed form, a refined solution or an exact property,
+with the tolerance and its reason stated next to the assertion.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from woundroll.contact import ContactOptions, ContactResult, fit_spring, indent, plot_slip_factor
+from woundroll.contact.fem import plane_strain_moduli
+from woundroll.contact.mesh import build_mesh, graded_sizes
+from woundroll.contact.solver import _factorize, _Roll
+from woundroll.errors import InputError
+from woundroll.materials import Constant, Core, Pfeiffer, Web
+
+# PET1 of the reference paper (Table 2)
+R_CORE, R_OUT, H = 0.0445, 0.1334, 1e-4
+PET1 = Web(thickness=H, width=0.1524, E_theta=5681e6, radial_modulus=Pfeiffer(4.62e3, 123.88))
+RIGID = Core(outer_radius=R_CORE)
+HEAD = {"head_radius": 0.01, "head_length": 0.02}
+
+
+def pet_profile(n: int = 200) -> tuple[np.ndarray, np.ndarray]:
+    """Synthetic pre-impact profile: 30 kPa at the surface rising linearly to ~1 MPa at the core
+    (the order of magnitude of Hakiel results for PET1; the winding model is not needed here)."""
+    r = np.linspace(R_CORE, R_OUT, n)
+    return r, -(30e3 + 1e6 * (R_OUT - r) / (R_OUT - R_CORE))
+
+
+@pytest.fixture(scope="module")
+def pet_default() -> ContactResult:
+    r, s = pet_profile()
+    return indent(PET1, RIGID, r, s, depth_max=1e-3, **HEAD)
+
+
+# ---------------------------------------------------------------- constitutive law and mesh
+
+
+def test_plane_strain_moduli_isotropic_limit() -> None:
+    # isotropic plane strain: C11 = C22 = E (1-nu) / ((1+nu)(1-2nu)), C12 = E nu / ((1+nu)(1-2nu))
+    E, nu = 7.0e6, 0.3
+    web = Web(thickness=H, width=0.1, E_theta=E, E_z=E, radial_modulus=Constant(E),
+              nu_theta_r=nu, nu_z_r=nu, nu_theta_z=nu, G_r_theta=E / (2 * (1 + nu)))
+    C11, C12, C22, G = plane_strain_moduli(web, np.array([E]))
+    lam = E / ((1 + nu) * (1 - 2 * nu))
+    # exact algebra: only round-off allowed
+    assert C11[0] == pytest.approx(lam * (1 - nu), rel=1e-12)
+    assert C22[0] == pytest.approx(lam * (1 - nu), rel=1e-12)
+    assert C12[0] == pytest.approx(lam * nu, rel=1e-12)
+    assert G[0] == pytest.approx(E / (2 * (1 + nu)), rel=1e-12)
+
+
+def test_plane_strain_moduli_match_inverted_3d_compliance() -> None:
+    # general orthotropic data: compare with a direct inversion of the 3x3 compliance with
+    # eps_z = 0 imposed (round-off only)
+    web = Web(thickness=H, width=0.1, E_theta=5e9, E_z=3e9, radial_modulus=Constant(8e6),
+              nu_theta_r=0.01, nu_z_r=0.02, nu_theta_z=0.35)
+    Er, Et, Ez = 8e6, 5e9, 3e9
+    S = np.array([[1 / Er, -0.01 / Et, -0.02 / Ez],
+                  [-0.01 / Et, 1 / Et, -0.35 / Et],
+                  [-0.02 / Ez, -0.35 / Et, 1 / Ez]])
+    C3 = np.linalg.inv(S)  # plane strain: sigma = C3 eps with eps_z = 0 -> in-plane block
+    C11, C12, C22, G = plane_strain_moduli(web, np.array([Er]))
+    assert C11[0] == pytest.approx(C3[0, 0], rel=1e-9)
+    assert C12[0] == pytest.approx(C3[0, 1], rel=1e-9)
+    assert C22[0] == pytest.approx(C3[1, 1], rel=1e-9)
+    assert G[0] == pytest.approx(2 * Er, rel=1e-12)  # Table 2 default G_rt = 2 E_r
+
+
+def test_graded_sizes_fill_length_and_respect_growth() -> None:
+    sizes = graded_sizes(0.0889, 1e-4, 1.25, "x")
+    assert sizes.sum() == pytest.approx(0.0889, rel=1e-12)
+    assert sizes[0] == pytest.approx(1e-4, rel=1e-9)
+    assert np.all(sizes[1:] / sizes[:-1] <= 1.25 + 1e-9)
+
+
+def test_mesh_is_graded_toward_the_contact() -> None:
+    m = build_mesh(R_CORE, R_OUT, surface_size=1e-4, radial_growth=1.25, tangential_size=1e-4,
+                   fine_halfwidth=3e-3, tangential_growth=1.1)
+    assert m.r[-1] - m.r[-2] == pytest.approx(1e-4, rel=1e-9)     # one layer at the surface
+    assert m.r[0] == R_CORE and m.r[-1] == pytest.approx(R_OUT, rel=1e-15)
+    ds = np.diff(m.theta) * R_OUT
+    assert ds[0] == pytest.approx(1e-4, rel=1e-9)
+    assert m.theta[0] == 0.0 and m.theta[-1] == pytest.approx(math.pi, rel=1e-15)
+    assert np.all(ds[1:] / ds[:-1] <= 1.1 + 1e-9)
+
+
+# ---------------------------------------------------------------- FE against closed forms
+
+
+@pytest.mark.parametrize("ratio", [1.0, 100.0])
+def test_orthotropic_ring_under_external_pressure(ratio: float) -> None:
+    """Axisymmetric limit: annulus on a rigid core, uniform pressure p on the outside.
+
+    With C12 = 0 (nu = 0), equilibrium gives u = A r^k + B r^-k, k = sqrt(C22 / C11).
+    This checks the cylindrically orthotropic polar formulation (hoop term u_r / r)."""
+    E_r = 5e6
+    web = Web(thickness=H, width=0.1, E_theta=ratio * E_r, radial_modulus=Constant(E_r),
+              nu_theta_z=0.0, G_r_theta=E_r / 2)
+    # the error is dominated by the polygonal approximation of the hoop direction (with
+    # tangential growth 1.1 it is 1.1 % at E_t / E_r = 100, with 1.05 it is 0.3 %)
+    mesh = build_mesh(R_CORE, R_OUT, surface_size=2e-4, radial_growth=1.1,
+                      tangential_size=1e-3, fine_halfwidth=2e-3, tangential_growth=1.05)
+    roll = _Roll(web, RIGID, np.array([R_CORE, R_OUT]), np.zeros(2), mesh, ContactOptions())
+    C11, C12, C22, G = roll.moduli(roll.sigma_pre)
+    lu = _factorize(roll, roll.assembler.values(C11, C12, C22, G))
+    # consistent nodal loads of the pressure on the polygonal outer boundary
+    p = 1e4
+    surf = roll.surface
+    xy = roll.xy[surf]
+    f = np.zeros_like(xy)
+    for j in range(surf.size - 1):
+        seg = xy[j + 1] - xy[j]
+        normal = np.array([seg[1], -seg[0]])          # outward, length = segment length
+        f[j] -= 0.5 * p * normal
+        f[j + 1] -= 0.5 * p * normal
+    fr, ft = roll.polar(f, surf)
+    F = np.zeros(2 * mesh.n_nodes)
+    F[2 * surf], F[2 * surf + 1] = fr, ft
+    u = np.zeros_like(F)
+    u[roll.free] = lu.solve(F[roll.free])
+    k = math.sqrt(C22[0] / C11[0])
+    a, b = R_CORE, R_OUT
+    # u(a) = 0 -> u = A (r^k - a^2k r^-k); sigma_r(b) = C11 u'(b) = -p
+    du_b = k * (b ** (k - 1) + a ** (2 * k) * b ** (-k - 1))
+    A = -p / (C11[0] * du_b)
+    u_exact = A * (b**k - a ** (2 * k) * b**-k)
+    u_fe = u[2 * surf]
+    # 1 %: bilinear elements, polygonal boundary, graded mesh with 2e-4 m surface elements
+    assert np.max(np.abs(u_fe / u_exact - 1)) < 0.01
+    # axisymmetric solution: the tangential displacement is only discretisation noise of the
+    # graded polygon (unequal neighbouring segments), under 1 % of u_r
+    assert np.max(np.abs(u[2 * surf + 1])) < 0.01 * abs(u_exact)
+
+
+HERTZ_E, HERTZ_NU, HERTZ_R, HERTZ_ROLL = 10e6, 0.3, 0.01, 0.5
+
+
+@pytest.fixture(scope="module")
+def hertz() -> ContactResult:
+    E, nu = HERTZ_E, HERTZ_NU
+    web = Web(thickness=H, width=0.1, E_theta=E, E_z=E, radial_modulus=Constant(E),
+              nu_theta_r=nu, nu_z_r=nu, nu_theta_z=nu, G_r_theta=E / (2 * (1 + nu)))
+    opts = ContactOptions(n_steps=4, step_exponent=1.0, tangential_size=5e-5,
+                          surface_size=5e-5, fine_halfwidth=2e-3)
+    return indent(web, Core(outer_radius=0.2), np.array([0.2, HERTZ_ROLL]), np.zeros(2),
+                  head_radius=HERTZ_R, head_length=1.0, depth_max=2e-4, options=opts)
+
+
+def test_hertz_half_width(hertz: ContactResult) -> None:
+    """Linear isotropic limit: a = sqrt(4 P R_eff / (pi E*)), E* = E / (1 - nu^2), two
+    cylinders 1/R_eff = 1/R_head + 1/R_roll. a ~ 1 mm << roll radius 0.5 m and depth 0.3 m,
+    so the half-space idealisation holds."""
+    R_eff = 1 / (1 / HERTZ_R + 1 / HERTZ_ROLL)
+    E_star = HERTZ_E / (1 - HERTZ_NU**2)
+    P = hertz.force_per_length[1:]
+    a_hertz = np.sqrt(4 * P * R_eff / (math.pi * E_star))
+    assert 0.3e-3 < a_hertz[0] and a_hertz[-1] < 1.5e-3       # the load range tested
+    # 3 %: 7 to 20 surface elements per half-width, edge interpolated between nodes
+    assert np.max(np.abs(hertz.half_width[1:] / a_hertz - 1)) < 0.03
+
+
+def test_hertz_peak_pressure(hertz: ContactResult) -> None:
+    R_eff = 1 / (1 / HERTZ_R + 1 / HERTZ_ROLL)
+    E_star = HERTZ_E / (1 - HERTZ_NU**2)
+    P = hertz.force_per_length[1:]
+    a_hertz = np.sqrt(4 * P * R_eff / (math.pi * E_star))
+    p0 = 2 * P / (math.pi * a_hertz)
+    # 3 %: nodal force over tributary arc approximates the (smooth) pressure at the centre
+    assert np.max(np.abs(hertz.peak_pressure[1:] / p0 - 1)) < 0.03
+
+
+# ---------------------------------------------------------------- properties of the solution
+
+
+def test_symmetry_whole_annulus_matches_half_model() -> None:
+    """The whole-annulus model (no symmetry imposed) must be symmetric about the contact
+    axis and reproduce the half model."""
+    r, s = pet_profile()
+    opts = {"n_steps": 6, "tangential_growth": 1.25}
+    half = indent(PET1, RIGID, r, s, depth_max=5e-4, **HEAD, options=ContactOptions(**opts))
+    full = indent(PET1, RIGID, r, s, depth_max=5e-4, **HEAD,
+                  options=ContactOptions(half_model=False, **opts))
+    # same discretisation of the same symmetric problem: agreement to solver round-off
+    np.testing.assert_allclose(full.force, half.force, rtol=1e-7, atol=1e-9)
+    np.testing.assert_allclose(full.half_width, half.half_width, rtol=1e-6, atol=1e-12)
+    # mirror pairs of element centres: sigma_r even, tau odd in theta
+    key = np.round(full.element_r, 9), np.round(full.element_theta, 9)
+    index = {(a, b): i for i, (a, b) in enumerate(zip(*key, strict=True))}
+    pairs = np.array([(i, index[(a, -b)]) for i, (a, b) in enumerate(zip(*key, strict=True))
+                      if b > 0 and (a, -b) in index])
+    assert len(pairs) > 0.4 * full.n_elements
+    scale = np.max(np.abs(full.sigma_r - full.sigma_r_pre))
+    i, j = pairs.T
+    assert np.max(np.abs(full.sigma_r[i] - full.sigma_r[j])) < 1e-7 * scale
+    assert np.max(np.abs(full.tau_r_theta[i] + full.tau_r_theta[j])) < 1e-7 * scale
+
+
+def test_force_and_half_width_monotone(pet_default: ContactResult) -> None:
+    assert np.all(np.diff(pet_default.force) > 0)
+    assert np.all(np.diff(pet_default.half_width) >= 0)
+    assert pet_default.delta[0] == 0 and pet_default.force[0] == 0
+    assert pet_default.delta[-1] == pytest.approx(1e-3, rel=1e-15)
+
+
+def test_no_update_is_softer(pet_default: ContactResult) -> None:
+    r, s = pet_profile()
+    frozen = indent(PET1, RIGID, r, s, depth_max=1e-3, update_modulus=False, **HEAD)
+    # Pfeiffer stiffens with pressure, so freezing E_r at its pre-impact value must give a
+    # much softer roll (the paper's Figure 8): at least a factor 2 at 1 mm here
+    assert frozen.force[-1] < 0.5 * pet_default.force[-1]
+    assert np.all(frozen.force[1:] < pet_default.force[1:])
+
+
+def test_mesh_refinement_changes_force_less_than_2_percent(pet_default: ContactResult) -> None:
+    """Halve the surface and tangential element sizes and take the square root of both growth
+    ratios (about 4x the elements): F(d) must move by less than 2 % (project bar)."""
+    r, s = pet_profile()
+    R_eff = 1 / (1 / HEAD["head_radius"] + 1 / R_OUT)
+    t_size = max(H, math.sqrt(2 * R_eff * 1e-3) / 40)
+    default = ContactOptions()
+    fine = ContactOptions(surface_size=H / 2, tangential_size=t_size / 2,
+                          radial_growth=default.radial_growth**0.5,
+                          tangential_growth=default.tangential_growth**0.5)
+    refined = indent(PET1, RIGID, r, s, depth_max=1e-3, **HEAD, options=fine)
+    assert refined.n_elements > 3 * pet_default.n_elements
+    d = np.linspace(0.2e-3, 1e-3, 9)
+    change = np.interp(d, refined.delta, refined.force) / np.interp(
+        d, pet_default.delta, pet_default.force) - 1
+    assert np.max(np.abs(change)) < 0.02
+    # the semi-contact width resolves to a few elements: 10 % (one element is 14 % of a)
+    assert refined.semi_contact_width == pytest.approx(pet_default.semi_contact_width, rel=0.10)
+
+
+def test_load_step_refinement(pet_default: ContactResult) -> None:
+    """Doubling the depth increments changes F by less than 1 % (midpoint modulus update,
+    error falling by ~3x per doubling in a study from 6 to 96 steps)."""
+    r, s = pet_profile()
+    finer = indent(PET1, RIGID, r, s, depth_max=1e-3, **HEAD, options=ContactOptions(n_steps=48))
+    d = np.linspace(0.2e-3, 1e-3, 9)
+    change = np.interp(d, finer.delta, finer.force) / np.interp(
+        d, pet_default.delta, pet_default.force) - 1
+    assert np.max(np.abs(change)) < 0.01
+
+
+def test_forward_euler_converges_toward_midpoint() -> None:
+    """Plain forward Euler (the brief's tangent update) is first order: its error to the
+    converged force shrinks when the steps are doubled."""
+    r, s = pet_profile()
+    ref = indent(PET1, RIGID, r, s, depth_max=5e-4, **HEAD,
+                 options=ContactOptions(n_steps=48, tangential_growth=1.25))
+    errs = []
+    for n in (12, 24):
+        e = indent(PET1, RIGID, r, s, depth_max=5e-4, **HEAD,
+                   options=ContactOptions(n_steps=n, midpoint=False, tangential_growth=1.25))
+        errs.append(abs(e.force[-1] / ref.force[-1] - 1))
+    assert errs[1] < 0.75 * errs[0]
+
+
+def test_elastic_core_is_softer_and_stiff_core_tends_to_rigid() -> None:
+    r, s = pet_profile()
+    opts = ContactOptions(n_steps=6, tangential_growth=1.25)
+    rigid = indent(PET1, RIGID, r, s, depth_max=5e-4, **HEAD, options=opts)
+    soft = indent(PET1, Core(outer_radius=R_CORE, stiffness=1e6), r, s, depth_max=5e-4, **HEAD,
+                  options=opts)
+    stiff = indent(PET1, Core(outer_radius=R_CORE, stiffness=1e15), r, s, depth_max=5e-4,
+                   **HEAD, options=opts)
+    assert soft.force[-1] < rigid.force[-1]
+    # E_c = 1e15 Pa is 1e5 x stiffer than any E_r here: rigid to 1e-4
+    assert stiff.force[-1] == pytest.approx(rigid.force[-1], rel=1e-4)
+
+
+def test_slip_factor_vanishes_on_the_axis(pet_default: ContactResult) -> None:
+    """tau_r_theta is odd in theta, so the slip factor is smallest next to the contact axis;
+    away from it the shear under the head exceeds mu P (the paper's Figure 18 finding)."""
+    res = pet_default
+    near = (R_OUT - res.element_r < 5e-4)
+    on_axis = near & (res.element_theta == res.element_theta[near].min())
+    off_axis = near & (R_OUT * res.element_theta < 3 * res.semi_contact_width)
+    assert res.slip_factor[on_axis].max() < 0.1 * res.slip_factor[off_axis].max()
+    sf_half = indent(PET1, RIGID, *pet_profile(), depth_max=1e-3, friction=0.6, **HEAD)
+    # SF = |tau| / (mu P): doubling mu halves it (same stresses)
+    np.testing.assert_allclose(sf_half.slip_factor[near], 0.5 * res.slip_factor[near],
+                               rtol=1e-9)
+
+
+# ---------------------------------------------------------------- fit, output, plots
+
+
+def test_fit_spring_recovers_exact_quadratic() -> None:
+    d = np.linspace(0, 1e-3, 11)
+    alpha, beta, r2, res = fit_spring(d, 2e9 * d**2 + 3e4 * d)
+    assert alpha == pytest.approx(2e9, rel=1e-9)
+    assert beta == pytest.approx(3e4, rel=1e-9)
+    assert r2 == pytest.approx(1.0, abs=1e-12) and res < 1e-9
+
+
+def test_fit_quality_on_the_model(pet_default: ContactResult) -> None:
+    res = pet_default
+    assert res.fit_r2 > 0.999            # eq. 3 describes the computed F(d) well
+    assert res.fit_max_rel_residual < 0.02
+    fit = res.alpha * res.delta**2 + res.beta * res.delta
+    assert np.max(np.abs(fit - res.force)) == pytest.approx(
+        res.fit_max_rel_residual * res.force.max(), rel=1e-9)
+
+
+def test_result_dict_and_plots(pet_default: ContactResult, tmp_path) -> None:
+    d = pet_default.to_dict()
+    for key in ("delta_m", "force_N", "half_width_m", "alpha_N_per_m2", "beta_N_per_m",
+                "fit_r2", "semi_contact_width_m", "slip_region_depth_m"):
+        assert key in d
+    json.dumps(d)
+    assert d["semi_contact_width_m"] == pet_default.half_width[-1]
+    assert d["force_N"][-1] == pytest.approx(
+        pet_default.force_per_length[-1] * HEAD["head_length"], rel=1e-12)
+    with pytest.raises(ValueError):
+        pet_default.force[0] = 1.0                     # frozen result, read-only arrays
+    fig = pet_default.plot(tmp_path / "fd.png")
+    assert (tmp_path / "fd.png").stat().st_size > 1000 and len(fig.axes) == 2
+    plot_slip_factor(pet_default, tmp_path / "sf.png")
+    assert (tmp_path / "sf.png").stat().st_size > 1000
+
+
+# ---------------------------------------------------------------- bad input
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "field"),
+    [
+        ({"head_radius": 0.0}, "head_radius"),
+        ({"head_radius": -0.01}, "head_radius"),
+        ({"head_length": float("nan")}, "head_length"),
+        ({"depth_max": 0.0}, "depth_max"),
+        ({"depth_max": -1e-3}, "depth_max"),
+        ({"depth_max": 0.006}, "depth_max"),           # more than half the head radius
+        ({"friction": 0.0}, "friction"),
+        ({"sigma_r": np.zeros(5)}, "sigma_r"),
+        ({"sigma_r": np.full(200, np.nan)}, "sigma_r"),
+        ({"radius": np.linspace(R_OUT, R_CORE, 200)}, "radius"),
+        ({"radius": np.linspace(0.01, R_OUT, 200)}, "radius"),
+        ({"options": ContactOptions}, "options"),
+    ],
+)
+def test_bad_input_raises_input_error(kwargs: dict, field: str) -> None:
+    r, s = pet_profile()
+    args = {"radius": r, "sigma_r": s, "depth_max": 1e-3, **HEAD}
+    args.update(kwargs)
+    with pytest.raises(InputError) as info:
+        indent(PET1, RIGID, **args)
+    assert info.value.field == field
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "field"),
+    [({"n_steps": 0}, "options.n_steps"), ({"radial_growth": 0.9}, "options.radial_growth"),
+     ({"tangential_size": -1.0}, "options.tangential_size"),
+     ({"step_exponent": float("inf")}, "options.step_exponent")],
+)
+def test_bad_options(kwargs: dict, field: str) -> None:
+    with pytest.raises(InputError) as info:
+        ContactOptions(**kwargs)
+    assert info.value.field == field
