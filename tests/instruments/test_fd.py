@@ -134,3 +134,25 @@ def test_bad_options():
     with pytest.raises(InputError) as exc:
         impact_fd(RM, BLOCK_LIKE, time_step=-1e-6)
     assert exc.value.field == "tester.time_step"
+
+
+def test_any_force_law_object_works():
+    # a user-defined law with only force(d) and energy(d) (no fast scalar path) gives the
+    # same impact as the built-in quadratic law; its energy root comes from brentq (rtol 1e-13)
+    # and sets the time step, so the FD results agree to rounding of that: rel 1e-9
+    class Law:
+        def force(self, d):
+            d = np.asarray(d, dtype=float)
+            return 3.7e8 * d * d + 5.4e5 * d
+
+        def energy(self, d):
+            d = np.asarray(d, dtype=float)
+            return 3.7e8 * d**3 / 3 + 5.4e5 * d * d / 2
+
+    a = impact_fd(RM, Law())
+    b = impact_fd(RM, BLOCK_LIKE)
+    assert a.rho == pytest.approx(b.rho, rel=1e-9)
+    assert a.impulse == pytest.approx(b.impulse, rel=1e-9)
+    assert impact_energy(RM, Law()).rho == pytest.approx(
+        impact_energy(RM, BLOCK_LIKE).rho, rel=1e-9
+    )
