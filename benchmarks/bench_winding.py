@@ -57,23 +57,31 @@ def main() -> None:
 
     diff = np.max(np.abs(fast.sigma_r - ref.sigma_r)) / np.max(np.abs(ref.sigma_r))
     print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} CPUs")
-    print(f"problem: {fast.n_layers} layers, {fast.radius.size} nodes, "
-          f"{fast.stats['increments']} increments, options {opts.to_dict()}")
+    print(
+        f"problem: {fast.n_layers} layers, {fast.radius.size} nodes, "
+        f"{fast.stats['increments']} increments, options {opts.to_dict()}"
+    )
     print("timings exclude numba compilation (warm-up run first)")
-    print(f"wind (compiled, lazy deep part), best of 3: {t_fast:8.3f} s   "
-          f"(runs: {', '.join(f'{t:.3f}' for t in times)})")
+    print(
+        f"wind (compiled, lazy deep part), best of 3: {t_fast:8.3f} s   "
+        f"(runs: {', '.join(f'{t:.3f}' for t in times)})"
+    )
     print(f"wind_reference (NumPy + solve_banded):     {t_ref:8.3f} s")
     print(f"speed-up: {t_ref / t_fast:.1f}x")
-    print(f"core pressure: {fast.core_pressure:.1f} Pa (compiled), {ref.core_pressure:.1f} Pa "
-          f"(reference)")
+    print(
+        f"core pressure: {fast.core_pressure:.1f} Pa (compiled), {ref.core_pressure:.1f} Pa "
+        f"(reference)"
+    )
     print(f"max |sigma_r - sigma_r_ref| / max |sigma_r_ref| = {diff:.2e}")
     if args.exact:
         t0 = time.perf_counter()
         ex = wind(web, core, R, sched, options=WindingOptions(window_layers=None))
         t_ex = time.perf_counter() - t0
         d_ex = np.max(np.abs(ex.sigma_r - ref.sigma_r)) / np.max(np.abs(ref.sigma_r))
-        print(f"wind without lazy part (compiled, full sweep): {t_ex:.3f} s, "
-              f"max rel diff to reference {d_ex:.2e}")
+        print(
+            f"wind without lazy part (compiled, full sweep): {t_ex:.3f} s, "
+            f"max rel diff to reference {d_ex:.2e}"
+        )
 
 
 if __name__ == "__main__":

@@ -97,8 +97,13 @@ def test_single_layer_on_rigid_core() -> None:
 
 @pytest.mark.parametrize(
     ("kwargs", "field"),
-    [({"core_radius": 0.0}, "core_radius"), ({"thickness": -1e-6}, "thickness"),
-     ({"E_r": 0.0}, "E_r"), ({"wot": []}, "wot"), ({"core_stiffness": 0.0}, "core_stiffness")],
+    [
+        ({"core_radius": 0.0}, "core_radius"),
+        ({"thickness": -1e-6}, "thickness"),
+        ({"E_r": 0.0}, "E_r"),
+        ({"wot": []}, "wot"),
+        ({"core_stiffness": 0.0}, "core_stiffness"),
+    ],
 )
 def test_bad_input(kwargs: dict, field: str) -> None:
     args = {"core_radius": RC, "thickness": H, "wot": [T0], "E_r": E_R, "E_theta": E_T}

@@ -32,16 +32,22 @@ def pet1() -> Web:
 
 
 def table3() -> tuple[Web, Core, TensionSchedule]:
-    web = Web(thickness=76e-6, width=0.61, E_theta=4999e6, radial_modulus=Pfeiffer(0.0, 246.5),
-              nu_theta_r=0.01)
+    web = Web(
+        thickness=76e-6,
+        width=0.61,
+        E_theta=4999e6,
+        radial_modulus=Pfeiffer(0.0, 246.5),
+        nu_theta_r=0.01,
+    )
     core = Core.tube(0.1016, 0.095, 69e9, 0.33)
     return web, core, TensionSchedule(2.3e6)
 
 
 def rel_profile_diff(a: WindingResult, b: WindingResult) -> float:
     """max |sigma_r(a) - sigma_r(b)| over b's radii, relative to b's core pressure."""
-    return float(np.max(np.abs(np.interp(b.radius, a.radius, a.sigma_r) - b.sigma_r))
-                 / b.core_pressure)
+    return float(
+        np.max(np.abs(np.interp(b.radius, a.radius, a.sigma_r) - b.sigma_r)) / b.core_pressure
+    )
 
 
 @pytest.fixture(scope="module")
@@ -92,14 +98,24 @@ def test_defaults_converged_pet1(pet1_default: WindingResult) -> None:
     below the scatter of a Pfeiffer fit to stack tests. Refinement is monotone: errors of
     1, 2, 4 elements per layer fall (measured 0.27 %, 0.09 %, 0.03 % against 8).
     """
-    fine = wind(pet1(), STEEL, R_OUT, TensionSchedule(T_PET1),
-                options=WindingOptions(subdivisions=8, load_substeps=4, window_layers=None))
+    fine = wind(
+        pet1(),
+        STEEL,
+        R_OUT,
+        TensionSchedule(T_PET1),
+        options=WindingOptions(subdivisions=8, load_substeps=4, window_layers=None),
+    )
     assert pet1_default.core_pressure == pytest.approx(fine.core_pressure, rel=3e-3)
     assert rel_profile_diff(pet1_default, fine) < 3e-3
     errs = []
     for ns in (1, 2, 4):
-        r = wind(pet1(), STEEL, R_OUT, TensionSchedule(T_PET1),
-                 options=WindingOptions(subdivisions=ns, load_substeps=4, window_layers=None))
+        r = wind(
+            pet1(),
+            STEEL,
+            R_OUT,
+            TensionSchedule(T_PET1),
+            options=WindingOptions(subdivisions=ns, load_substeps=4, window_layers=None),
+        )
         errs.append(abs(r.core_pressure / fine.core_pressure - 1))
     assert errs[0] > errs[1] > errs[2]
     assert errs[2] < 1e-3
@@ -110,8 +126,13 @@ def test_defaults_converged_k1_zero() -> None:
     web, core, sched = table3()
     R = 0.1016 + 400 * 76e-6
     d = wind(web, core, R, sched)
-    fine = wind(web, core, R, sched,
-                options=WindingOptions(subdivisions=8, load_substeps=8, window_layers=None))
+    fine = wind(
+        web,
+        core,
+        R,
+        sched,
+        options=WindingOptions(subdivisions=8, load_substeps=8, window_layers=None),
+    )
     assert d.core_pressure == pytest.approx(fine.core_pressure, rel=3e-3)
     assert rel_profile_diff(d, fine) < 3e-3
 
@@ -125,9 +146,12 @@ def test_lumping_converges_to_layer_by_layer() -> None:
     web = Web(thickness=12e-6, width=1.0, E_theta=5e9, radial_modulus=Pfeiffer(10e3, 100.0))
     core, R, sched = Core(0.076), 0.076 + 1000 * 12e-6, TensionSchedule(1.5e6)
     base = wind(web, core, R, sched)
-    errs = [rel_profile_diff(wind(web, core, R, sched,
-                                  options=WindingOptions(layers_per_increment=L)), base)
-            for L in (2, 4, 8)]
+    errs = [
+        rel_profile_diff(
+            wind(web, core, R, sched, options=WindingOptions(layers_per_increment=L)), base
+        )
+        for L in (2, 4, 8)
+    ]
     assert errs[0] < errs[1] < errs[2]
     assert errs[0] < 1e-2
 
@@ -186,8 +210,10 @@ def test_pet1_physically_sensible(pet1_default: WindingResult) -> None:
 
 def test_more_tension_more_pressure() -> None:
     """Table 2 tensions 26.7 .. 46.7 N: core pressure rises with tension."""
-    p = [wind(pet1(), STEEL, RC + 200 * H, TensionSchedule(N / (WIDTH * H))).core_pressure
-         for N in (26.7, 33.4, 40.0, 46.7)]
+    p = [
+        wind(pet1(), STEEL, RC + 200 * H, TensionSchedule(N / (WIDTH * H))).core_pressure
+        for N in (26.7, 33.4, 40.0, 46.7)
+    ]
     assert np.all(np.diff(p) > 0)
 
 
@@ -222,15 +248,17 @@ def test_k1_zero_runs_finite_positive() -> None:
     assert res.core_pressure > 2.3e6 * 76e-6 / 0.1016
     assert np.all(res.E_r > 0)
     # explicit rule at a free surface with K1 = 0 hits the floor, still finite
-    ex = wind(web, core, 0.1016 + 300 * 76e-6, sched,
-              options=WindingOptions(modulus_update="explicit"))
+    ex = wind(
+        web, core, 0.1016 + 300 * 76e-6, sched, options=WindingOptions(modulus_update="explicit")
+    )
     assert math.isfinite(ex.core_pressure) and ex.core_pressure > 0
 
 
 def test_zero_tension_layers_use_floor() -> None:
     """A table taper dropping to zero tension: layers carry nothing, results stay finite."""
-    taper = Taper("table", radius=(RC, RC + 100 * H, RC + 101 * H, RC + 200 * H),
-                  factor=(1.0, 1.0, 0.0, 0.0))
+    taper = Taper(
+        "table", radius=(RC, RC + 100 * H, RC + 101 * H, RC + 200 * H), factor=(1.0, 1.0, 0.0, 0.0)
+    )
     web = Web(thickness=H, width=0.5, E_theta=5e9, radial_modulus=Pfeiffer(0.0, 200.0))
     res = wind(web, Core(RC), RC + 200 * H, TensionSchedule(2e6, taper=taper))
     assert np.all(np.isfinite(res.sigma_r)) and res.core_pressure > 0
@@ -257,11 +285,13 @@ def test_zero_thickness() -> None:
 
 @pytest.mark.parametrize(
     ("data", "field"),
-    [({"subdivisions": 0}, "winding.options.subdivisions"),
-     ({"modulus_update": "sideways"}, "winding.options.modulus_update"),
-     ({"window_layers": -3}, "winding.options.window_layers"),
-     ({"rtol": 0.5}, "winding.options.rtol"),
-     ({"typo": 1}, "winding.options")],
+    [
+        ({"subdivisions": 0}, "winding.options.subdivisions"),
+        ({"modulus_update": "sideways"}, "winding.options.modulus_update"),
+        ({"window_layers": -3}, "winding.options.window_layers"),
+        ({"rtol": 0.5}, "winding.options.rtol"),
+        ({"typo": 1}, "winding.options"),
+    ],
 )
 def test_bad_options(data: dict, field: str) -> None:
     with pytest.raises(InputError) as err:
@@ -284,8 +314,7 @@ def test_result_outputs(tmp_path, pet1_default: WindingResult) -> None:
     assert d["n_layers"] == 889
     assert d["options"]["modulus_update"] == "midpoint"
     table = res.to_table().splitlines()
-    assert table[0] == ("radius [m],sigma_r [Pa],sigma_theta [Pa],E_r [Pa],"
-                        "wound-on tension [Pa]")
+    assert table[0] == ("radius [m],sigma_r [Pa],sigma_theta [Pa],E_r [Pa],wound-on tension [Pa]")
     assert len(table) == res.radius.size + 1
     assert float(table[1].split(",")[0]) == pytest.approx(RC)
     fig = res.plot(tmp_path / "w.png")

@@ -128,9 +128,41 @@ def flush(J, S, r, F, st, alpha, beta, c):
 
 
 @njit(cache=True)
-def run_groups(g0, g1, gnode, r, invr, dlog, invd, F, st, Fself, stself, alpha, beta, Pflush,
-               dF, dFold, pw, qw, kp, ke, Et, c, floor, w, iterate, w_deep, rtol, maxit, wnodes,
-               flush_every, nsub, state_i, state_f):
+def run_groups(
+    g0,
+    g1,
+    gnode,
+    r,
+    invr,
+    dlog,
+    invd,
+    F,
+    st,
+    Fself,
+    stself,
+    alpha,
+    beta,
+    Pflush,
+    dF,
+    dFold,
+    pw,
+    qw,
+    kp,
+    ke,
+    Et,
+    c,
+    floor,
+    w,
+    iterate,
+    w_deep,
+    rtol,
+    maxit,
+    wnodes,
+    flush_every,
+    nsub,
+    state_i,
+    state_f,
+):
     """Wind groups g0..g1-1 (one increment each). Returns -1, or the group that failed.
 
     ``state_i = [J, increments since flush, max iterations used]``, ``state_f = [S]``
@@ -149,8 +181,22 @@ def run_groups(g0, g1, gnode, r, invr, dlog, invd, F, st, Fself, stself, alpha, 
             dsub = dtop / nsub
             for _sub in range(nsub):
                 for it in range(maxit + 1):
-                    _coefficients(J, m, invr, dlog, invd, F, dF, w if it > 0 else 0.0, kp, ke, Et,
-                                  floor, pw, qw)
+                    _coefficients(
+                        J,
+                        m,
+                        invr,
+                        dlog,
+                        invd,
+                        F,
+                        dF,
+                        w if it > 0 else 0.0,
+                        kp,
+                        ke,
+                        Et,
+                        floor,
+                        pw,
+                        qw,
+                    )
                     _riccati(J, m, beta[J - 1] if J > 0 else c, pw, qw, alpha, beta)
                     dF[m] = dsub
                     for e in range(m - 1, J - 1, -1):

@@ -27,9 +27,15 @@ from woundroll.errors import InputError
 FloatArray = NDArray[np.float64]
 
 
-def linear_orthotropic(core_radius: float, thickness: float, wot: ArrayLike, E_r: float,
-                       E_theta: float, core_stiffness: float = math.inf,
-                       nu_theta_r: float = 0.0) -> tuple[FloatArray, FloatArray, FloatArray]:
+def linear_orthotropic(
+    core_radius: float,
+    thickness: float,
+    wot: ArrayLike,
+    E_r: float,
+    E_theta: float,
+    core_stiffness: float = math.inf,
+    nu_theta_r: float = 0.0,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Stresses of a roll of constant moduli wound layer by layer, in closed form.
 
     Parameters
@@ -52,8 +58,12 @@ def linear_orthotropic(core_radius: float, thickness: float, wot: ArrayLike, E_r
         stress at an interface is that of the layer above it (the last: of the last layer).
     """
     T = np.asarray(wot, dtype=float)
-    for name, v in (("core_radius", core_radius), ("thickness", thickness), ("E_r", E_r),
-                    ("E_theta", E_theta)):
+    for name, v in (
+        ("core_radius", core_radius),
+        ("thickness", thickness),
+        ("E_r", E_r),
+        ("E_theta", E_theta),
+    ):
         if not (math.isfinite(v) and v > 0):
             raise InputError(f"must be positive and finite, got {v}", name)
     if not (core_stiffness > 0) or math.isnan(core_stiffness):

@@ -116,25 +116,34 @@ class WindingOptions:
 
     def __post_init__(self) -> None:
         f = "options"
-        for name in ("subdivisions", "layers_per_increment", "max_iterations", "flush_interval",
-                     "load_substeps"):
+        for name in (
+            "subdivisions",
+            "layers_per_increment",
+            "max_iterations",
+            "flush_interval",
+            "load_substeps",
+        ):
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int | np.integer) or v < 1:
                 raise InputError(f"must be a whole number >= 1, got {v!r}", f"{f}.{name}")
         if self.subdivisions > 1000:
             raise InputError(f"must be <= 1000, got {self.subdivisions}", f"{f}.subdivisions")
         if self.modulus_update not in _MODES:
-            raise InputError(f"choose one of {', '.join(_MODES)}, got {self.modulus_update!r}",
-                             f"{f}.modulus_update")
+            raise InputError(
+                f"choose one of {', '.join(_MODES)}, got {self.modulus_update!r}",
+                f"{f}.modulus_update",
+            )
         if not (isinstance(self.rtol, float | int) and 0 < self.rtol < 1e-2):
             raise InputError(f"must lie in (0, 0.01), got {self.rtol!r}", f"{f}.rtol")
         if not (isinstance(self.modulus_floor, float | int) and 0 < self.modulus_floor < 1):
-            raise InputError(f"must lie in (0, 1), got {self.modulus_floor!r}",
-                             f"{f}.modulus_floor")
+            raise InputError(
+                f"must lie in (0, 1), got {self.modulus_floor!r}", f"{f}.modulus_floor"
+            )
         w = self.window_layers
         if w is not None and (isinstance(w, bool) or not isinstance(w, int | np.integer) or w < 1):
-            raise InputError(f"must be a whole number >= 1 or None, got {w!r}",
-                             f"{f}.window_layers")
+            raise InputError(
+                f"must be a whole number >= 1 or None, got {w!r}", f"{f}.window_layers"
+            )
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any] | None, field: str = "options") -> WindingOptions:
@@ -143,8 +152,9 @@ class WindingOptions:
         known = set(cls.__dataclass_fields__)
         unknown = sorted(set(data) - known)
         if unknown:
-            raise InputError(f"unknown option(s) {', '.join(unknown)}; known: "
-                             f"{', '.join(sorted(known))}", field)
+            raise InputError(
+                f"unknown option(s) {', '.join(unknown)}; known: {', '.join(sorted(known))}", field
+            )
         try:
             return cls(**data)
         except InputError as exc:
@@ -195,8 +205,9 @@ def _check_inputs(web: Web, core: Core, outer_radius: float, tension: TensionSch
         )
 
 
-def build_problem(web: Web, core: Core, outer_radius: float, tension: TensionSchedule,
-                  options: WindingOptions) -> _Problem:
+def build_problem(
+    web: Web, core: Core, outer_radius: float, tension: TensionSchedule, options: WindingOptions
+) -> _Problem:
     """Grid, wound-on tensions and law knots for :func:`wind` (vectorised, no solve)."""
     _check_inputs(web, core, outer_radius, tension)
     h = web.thickness
@@ -204,8 +215,10 @@ def build_problem(web: Web, core: Core, outer_radius: float, tension: TensionSch
     n = int(round((outer_radius - rc) / h))
     ns = options.subdivisions
     if n * ns + 1 > _MAX_NODES:
-        raise InputError(f"{n} layers x {ns} subdivisions is more than {_MAX_NODES} nodes",
-                         "winding.outer_radius")
+        raise InputError(
+            f"{n} layers x {ns} subdivisions is more than {_MAX_NODES} nodes",
+            "winding.outer_radius",
+        )
     R = rc + n * h
     s = rc + h * np.arange(n)  # inner radius of each layer = roll radius when it is wound
     T = np.asarray(tension.wound_on_tension(s, rc, R, h), dtype=float)
@@ -236,14 +249,33 @@ def build_problem(web: Web, core: Core, outer_radius: float, tension: TensionSch
     if kp.size < 2:
         raise InputError("radial modulus law needs at least two knots", "web.radial_modulus")
     c = (0.0 if core.rigid else web.E_theta / core.stiffness) + web.nu_theta_r
-    return _Problem(r=r, dlog=np.log(r[1:] / r[:-1]), gnode=gnode, Fself=Fself, stself=stself,
-                    wot_layer=T, layer_of_node=lay, kp=kp, ke=ke, E_theta=web.E_theta, c=c,
-                    floor=options.modulus_floor * web.E_theta, n_layers=n)
+    return _Problem(
+        r=r,
+        dlog=np.log(r[1:] / r[:-1]),
+        gnode=gnode,
+        Fself=Fself,
+        stself=stself,
+        wot_layer=T,
+        layer_of_node=lay,
+        kp=kp,
+        ke=ke,
+        E_theta=web.E_theta,
+        c=c,
+        floor=options.modulus_floor * web.E_theta,
+        n_layers=n,
+    )
 
 
-def _result(prob: _Problem, F: FloatArray, st: FloatArray, web: Web, core: Core,
-            tension: TensionSchedule, options: WindingOptions, stats: dict[str, Any]
-            ) -> WindingResult:
+def _result(
+    prob: _Problem,
+    F: FloatArray,
+    st: FloatArray,
+    web: Web,
+    core: Core,
+    tension: TensionSchedule,
+    options: WindingOptions,
+    stats: dict[str, Any],
+) -> WindingResult:
     r = prob.r
     sr = F / r
     sr[-1] = 0.0
@@ -255,24 +287,49 @@ def _result(prob: _Problem, F: FloatArray, st: FloatArray, web: Web, core: Core,
     if not (np.all(np.isfinite(sr)) and np.all(np.isfinite(st))):
         raise ConvergenceError("the winding solve produced non-finite stresses")
     inputs = {
-        "web": {"thickness_m": web.thickness, "width_m": web.width, "E_theta_Pa": web.E_theta,
-                "nu_theta_r": web.nu_theta_r, "radial_modulus": web.radial_modulus.to_dict()},
-        "core": {"radius_m": core.outer_radius,
-                 "stiffness_Pa": None if core.rigid else core.stiffness},
-        "tension": {"web_stress_Pa": tension.web_stress, "taper": tension.taper.kind,
-                    "taper_fraction": tension.taper.fraction, "nip_load_N_per_m": tension.nip_load,
-                    "friction": tension.friction},
+        "web": {
+            "thickness_m": web.thickness,
+            "width_m": web.width,
+            "E_theta_Pa": web.E_theta,
+            "nu_theta_r": web.nu_theta_r,
+            "radial_modulus": web.radial_modulus.to_dict(),
+        },
+        "core": {
+            "radius_m": core.outer_radius,
+            "stiffness_Pa": None if core.rigid else core.stiffness,
+        },
+        "tension": {
+            "web_stress_Pa": tension.web_stress,
+            "taper": tension.taper.kind,
+            "taper_fraction": tension.taper.fraction,
+            "nip_load_N_per_m": tension.nip_load,
+            "friction": tension.friction,
+        },
         "outer_radius_m": float(r[-1]),
     }
-    return WindingResult(radius=r.copy(), sigma_r=sr, sigma_theta=st.copy(), E_r=E,
-                         wot=prob.wot_layer[prob.layer_of_node], core_pressure=float(-sr[0]),
-                         n_layers=prob.n_layers, inputs=inputs, options=options.to_dict(),
-                         stats=stats)
+    return WindingResult(
+        radius=r.copy(),
+        sigma_r=sr,
+        sigma_theta=st.copy(),
+        E_r=E,
+        wot=prob.wot_layer[prob.layer_of_node],
+        core_pressure=float(-sr[0]),
+        n_layers=prob.n_layers,
+        inputs=inputs,
+        options=options.to_dict(),
+        stats=stats,
+    )
 
 
-def wind(web: Web, core: Core, outer_radius: float, tension: TensionSchedule, *,
-         options: WindingOptions | None = None,
-         progress: Callable[[float], None] | None = None) -> WindingResult:
+def wind(
+    web: Web,
+    core: Core,
+    outer_radius: float,
+    tension: TensionSchedule,
+    *,
+    options: WindingOptions | None = None,
+    progress: Callable[[float], None] | None = None,
+) -> WindingResult:
     """Wind a roll from ``core`` to ``outer_radius`` and return the stresses in it.
 
     Parameters
@@ -333,28 +390,63 @@ def wind(web: Web, core: Core, outer_radius: float, tension: TensionSchedule, *,
     n_chunks = 1 if progress is None else min(n_groups, 50)
     bounds = np.linspace(0, n_groups, n_chunks + 1).round().astype(np.int64)
     for g0, g1 in zip(bounds[:-1], bounds[1:], strict=True):
-        failed = K.run_groups(int(g0), int(g1), prob.gnode, prob.r, invr, prob.dlog, invd, F, st,
-                              prob.Fself,
-                              prob.stself, alpha, beta, Pflush, dF, dFold, pw, qw, prob.kp, prob.ke,
-                              prob.E_theta, prob.c, prob.floor, w, iterate, w,
-                              options.rtol, options.max_iterations, wnodes,
-                              options.flush_interval, options.load_substeps, state_i, state_f)
+        failed = K.run_groups(
+            int(g0),
+            int(g1),
+            prob.gnode,
+            prob.r,
+            invr,
+            prob.dlog,
+            invd,
+            F,
+            st,
+            prob.Fself,
+            prob.stself,
+            alpha,
+            beta,
+            Pflush,
+            dF,
+            dFold,
+            pw,
+            qw,
+            prob.kp,
+            prob.ke,
+            prob.E_theta,
+            prob.c,
+            prob.floor,
+            w,
+            iterate,
+            w,
+            options.rtol,
+            options.max_iterations,
+            wnodes,
+            options.flush_interval,
+            options.load_substeps,
+            state_i,
+            state_f,
+        )
         if failed >= 0:
             raise ConvergenceError(
                 f"E_r fixed-point iteration did not reach rtol={options.rtol:g} in "
                 f"{options.max_iterations} iterations at layer "
-                f"{failed * options.layers_per_increment} of {prob.n_layers}")
+                f"{failed * options.layers_per_increment} of {prob.n_layers}"
+            )
         if progress is not None:
             progress(float(g1) / n_groups)
     if state_i[0] > 0:
         K.flush(int(state_i[0]), float(state_f[0]), prob.r, F, st, alpha, beta, prob.c)
-    stats = {"increments": int(n_groups), "max_iterations_used": int(state_i[2]),
-             "nodes": int(nn)}
+    stats = {"increments": int(n_groups), "max_iterations_used": int(state_i[2]), "nodes": int(nn)}
     return _result(prob, F, st, web, core, tension, options, stats)
 
 
-def wind_reference(web: Web, core: Core, outer_radius: float, tension: TensionSchedule, *,
-                   options: WindingOptions | None = None) -> WindingResult:
+def wind_reference(
+    web: Web,
+    core: Core,
+    outer_radius: float,
+    tension: TensionSchedule,
+    *,
+    options: WindingOptions | None = None,
+) -> WindingResult:
     """Straightforward per-increment banded solve (NumPy + ``scipy.linalg.solve_banded``).
 
     Same discretisation and E_r rule as :func:`wind` but no lazy deep part (every element's
@@ -385,10 +477,12 @@ def wind_reference(web: Web, core: Core, outer_radius: float, tension: TensionSc
         x2 = x * x
         em = np.exp(-np.where(small, 1.0, x))
         e2 = em * em
-        p = np.where(small, (1 + x2 * (1 / 3 + x2 * (-1 / 45 + x2 * 2 / 945))) / d,
-                     k * (1 + e2) / (1 - e2))
-        q = np.where(small, (1 + x2 * (-1 / 6 + x2 * (7 / 360 - x2 * 31 / 15120))) / d,
-                     2 * k * em / (1 - e2))
+        p = np.where(
+            small, (1 + x2 * (1 / 3 + x2 * (-1 / 45 + x2 * 2 / 945))) / d, k * (1 + e2) / (1 - e2)
+        )
+        q = np.where(
+            small, (1 + x2 * (-1 / 6 + x2 * (7 / 360 - x2 * 31 / 15120))) / d, 2 * k * em / (1 - e2)
+        )
         return p, q
 
     for g in range(prob.gnode.size - 1):
@@ -431,8 +525,11 @@ def wind_reference(web: Web, core: Core, outer_radius: float, tension: TensionSc
             F[:m] += d_full[:m]
             st[:m] += flux / r[:m]
             F[m] += dsub
-        F[m: top + 1] = prob.Fself[m: top + 1]
-        st[m: top + 1] = prob.stself[m: top + 1]
-    stats = {"increments": int(prob.gnode.size - 1), "max_iterations_used": max_it,
-             "nodes": int(nn)}
+        F[m : top + 1] = prob.Fself[m : top + 1]
+        st[m : top + 1] = prob.stself[m : top + 1]
+    stats = {
+        "increments": int(prob.gnode.size - 1),
+        "max_iterations_used": max_it,
+        "nodes": int(nn),
+    }
     return _result(prob, F, st, web, core, tension, options, stats)

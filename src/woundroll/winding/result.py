@@ -102,8 +102,14 @@ class WindingResult:
         """CSV text, one row per node, units in the header."""
         buf = io.StringIO()
         data = np.column_stack([getattr(self, attr) for attr, _, _ in _COLUMNS])
-        np.savetxt(buf, data, delimiter=",", fmt="%.9g",
-                   header=",".join(h for _, _, h in _COLUMNS), comments="")
+        np.savetxt(
+            buf,
+            data,
+            delimiter=",",
+            fmt="%.9g",
+            header=",".join(h for _, _, h in _COLUMNS),
+            comments="",
+        )
         return buf.getvalue()
 
     def plot(self, path: str | Path | None = None) -> Any:
@@ -125,8 +131,14 @@ class WindingResult:
         rc = self.radius * 100.0
         rm, st_mean = self.layer_mean_hoop_stress()
         ax1.plot(rc, self.sigma_r / 1e3, label=r"$\sigma_r$")
-        ax1.plot(rc, self.sigma_theta / 1e3, color="C1", lw=0.4, alpha=0.4,
-                 label=r"$\sigma_\theta$ (nodes)")
+        ax1.plot(
+            rc,
+            self.sigma_theta / 1e3,
+            color="C1",
+            lw=0.4,
+            alpha=0.4,
+            label=r"$\sigma_\theta$ (nodes)",
+        )
         ax1.plot(rm * 100.0, st_mean / 1e3, color="C1", label=r"$\sigma_\theta$ (layer mean)")
         ax1.axhline(0.0, color="0.6", lw=0.5)
         ax1.set_ylabel("stress [kPa]")
