@@ -93,6 +93,8 @@ class AxisymmetricResult:
     relaxation_radius : ndarray [m]  ``R0`` of each group (``inf`` when no web tension).
     outer_radius : ndarray [m]  final deformed outer radius of each sector.
     layers_per_group : ndarray  layers wound in each group.
+    build_radius : ndarray [m]  undeformed outer radius of each sector (``r_c + n h_j``).
+    core_radius : float [m]
     """
 
     z: FloatArray
@@ -109,6 +111,8 @@ class AxisymmetricResult:
     relaxation_radius: FloatArray
     outer_radius: FloatArray
     layers_per_group: NDArray[np.int64]
+    build_radius: FloatArray
+    core_radius: float
     info: dict[str, Any] = field(default_factory=dict)
 
     @property
@@ -130,6 +134,14 @@ class AxisymmetricResult:
         """Layer-weighted mean wound-on tension [Pa] per sector."""
         w = self.layers_per_group[:, None].astype(float)
         return (self.wot * w).sum(axis=0) / w.sum()
+
+    def sector_profile(self, j: int) -> tuple[FloatArray, FloatArray]:
+        """Radial stress profile of sector ``j`` for a contact model: radii [m] from the
+        core surface (stress of the first group) through the group centres to the sector's
+        undeformed outer radius (free surface, ``sigma_r = 0``), and sigma_r [Pa]."""
+        r = np.concatenate([[self.core_radius], self.radius[:, j], [self.build_radius[j]]])
+        s = np.concatenate([[self.sigma_r[0, j]], self.sigma_r[:, j], [0.0]])
+        return r, s
 
     def column(self, j: int) -> dict[str, FloatArray]:
         """Radial profiles of sector ``j``: radius, sigma_r, sigma_theta, E_r."""
@@ -546,6 +558,8 @@ def wind_axisymmetric(
         relaxation_radius=R0,
         outer_radius=r_node[-1] + u[-1],
         layers_per_group=m,
+        build_radius=r_node[-1].copy(),
+        core_radius=r_c,
         info={
             "n_layers": n_layers,
             "n_groups": G,
