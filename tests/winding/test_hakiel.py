@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from woundroll.errors import ConvergenceError, InputError
-from woundroll.materials import Constant, Core, Pfeiffer, Web
+from woundroll.materials import Constant, Core, Pfeiffer, Polynomial, Tabulated, Web
 from woundroll.winding.hakiel import WindingOptions, wind, wind_reference
 from woundroll.winding.result import WindingResult
 from woundroll.winding.tension import Taper, TensionSchedule
@@ -328,3 +328,44 @@ def test_progress_reports_fractions() -> None:
     assert seen[-1] == 1.0
     assert all(b > a for a, b in zip(seen, seen[1:], strict=False))
     assert len(seen) > 10
+
+
+def test_progress_does_not_change_result() -> None:
+    """Running in chunks (for the progress callback) carries the solver state exactly."""
+    web = Web(thickness=12e-6, width=1.0, E_theta=5e9, radial_modulus=Pfeiffer(10e3, 100.0))
+    args = (web, Core(0.076), 0.076 + 600 * 12e-6, TensionSchedule(1.5e6))
+    a = wind(*args)
+    b = wind(*args, progress=lambda f: None)
+    assert np.array_equal(a.sigma_r, b.sigma_r)
+    assert np.array_equal(a.sigma_theta, b.sigma_theta)
+
+
+def test_single_layer_loads_core_directly() -> None:
+    """One layer: its whole pressure T h / r_c reaches the core (exact)."""
+    res = wind(pet1(), STEEL, RC + H, TensionSchedule(T_PET1))
+    assert res.n_layers == 1
+    assert res.core_pressure == pytest.approx(T_PET1 * H / RC, rel=1e-12)
+
+
+def test_tabulated_law_reproduces_pfeiffer() -> None:
+    """A stack curve P = K1 (exp(K2 eps) - 1) given as a table (PCHIP, 60 points) gives the
+    Pfeiffer result: exercises the general piecewise-linear modulus path of the kernel.
+    Tolerance 1e-4 (measured 3.5e-7): the table's derivative is not exactly K2 (K1 + P)."""
+    K1, K2 = 4620.0, 123.88
+    eps = np.linspace(0.0, 0.03, 61)[1:]
+    tab = Tabulated(strain=tuple(eps), stack_pressure=tuple(K1 * np.expm1(K2 * eps)))
+    web_tab = Web(thickness=H, width=WIDTH, E_theta=5681e6, radial_modulus=tab)
+    a = wind(web_tab, STEEL, RC + 300 * H, TensionSchedule(T_PET1))
+    b = wind(pet1(), STEEL, RC + 300 * H, TensionSchedule(T_PET1))
+    assert a.core_pressure == pytest.approx(b.core_pressure, rel=1e-4)
+    assert rel_profile_diff(a, b) < 1e-4
+
+
+def test_polynomial_law_compiled_equals_reference() -> None:
+    """Hakiel's stack polynomial: compiled solver and banded reference agree (rounding)."""
+    law = Polynomial(C1=5e5, C2=2e7, C3=1e9, strain_max=0.2)
+    web = Web(thickness=H, width=WIDTH, E_theta=5681e6, radial_modulus=law)
+    opts = WindingOptions(window_layers=None)
+    a = wind(web, STEEL, RC + 100 * H, TensionSchedule(T_PET1), options=opts)
+    b = wind_reference(web, STEEL, RC + 100 * H, TensionSchedule(T_PET1), options=opts)
+    assert np.max(np.abs(a.sigma_r - b.sigma_r)) <= 1e-9 * b.core_pressure
