@@ -1,0 +1,523 @@
+"""The integrated model: CMD thickness profile -> stresses over (r, z) -> Rho across the roll.
+
+Following the last section of the reference paper ("Integrated wound roll model with
+hardness simulation"):
+
+1. the axisymmetric winding model (:func:`woundroll.winding.axisymmetric.wind_axisymmetric`)
+   gives sigma_r(r) in every CMD sector, with the web tension allocated across the CMD by
+   the relaxation-radius rule (and, with a nip, the nip-induced tension by the local nip
+   load from :mod:`woundroll.profile.nip`);
+2. each sector is taken as a plane-strain roll and a contact callable turns its radial
+   stress profile into the roll spring ``F = alpha d^2 + beta d`` {3} (default:
+   :func:`woundroll.contact.indent` with the instrument's head);
+3. a readout callable turns (alpha, beta) into the reading (default: the energy model
+   {19}-{22}, :func:`woundroll.instruments.rho_energy`).
+
+Both callables are injected, so any contact model or instrument model can be used; they run
+for the sectors in parallel (``workers`` processes when the callables can be pickled,
+threads otherwise).
+
+With a nip (:class:`NipSpec`) the foundation law of each sector for the nip roller (force
+per unit CMD length, ``q = alpha d^2 + beta d``) is evaluated once, on a preliminary roll
+wound with the uniform nip-induced tension, at every ``foundation_stride``-th sector
+(linear interpolation in between), then held fixed while the roll is wound with the nip
+distribution recomputed for every winding increment from the current outer-radius profile.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import multiprocessing
+import pickle
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from woundroll.errors import InputError
+from woundroll.materials.web import Core, Web
+from woundroll.profile.nip import NipRoller, nip_hook, solve_nip
+from woundroll.profile.stats import ProfileStats, profile_stats
+from woundroll.profile.thickness import ThicknessProfile
+from woundroll.winding.axisymmetric import AxisymmetricResult, wind_axisymmetric
+from woundroll.winding.tension import TensionSchedule
+
+FloatArray = NDArray[np.float64]
+
+#: ``contact(radius [m], sigma_r [Pa]) -> (alpha [N/m^2], beta [N/m])`` for one sector.
+ContactFn = Callable[[FloatArray, FloatArray], tuple[float, float]]
+#: ``readout(alpha, beta) -> reading`` (vectorised over sectors).
+ReadoutFn = Callable[[FloatArray, FloatArray], ArrayLike]
+#: ``progress(stage, done, total)`` with stage in {"winding", "foundation", "contact"}.
+ProgressFn = Callable[[str, int, int], None]
+
+
+def fit_spring_nonneg(delta: FloatArray, force: FloatArray) -> tuple[float, float]:
+    """Least-squares ``F = alpha d^2 + beta d`` with ``alpha, beta >= 0`` (NNLS), [N/m^2], [N/m].
+
+    The energy model {21} needs a spring that stiffens from zero; an unconstrained fit of a
+    strongly stiffening F(d) (hard sectors) can return beta < 0.
+    """
+    from scipy.optimize import nnls
+
+    d = np.asarray(delta, dtype=float)
+    f = np.asarray(force, dtype=float)
+    dm = max(float(d.max()), 1e-300)
+    A = np.stack([(d / dm) ** 2, d / dm], axis=1)
+    coef, _ = nnls(A, f)
+    return float(coef[0] / dm**2), float(coef[1] / dm)
+
+
+@dataclass(frozen=True)
+class ContactModel:
+    """The default contact callable: :func:`woundroll.contact.indent` on one sector.
+
+    The roll spring {3} is fitted to the computed F(d) with ``alpha, beta >= 0``
+    (:func:`fit_spring_nonneg`). With ``instrument`` set, the fit range is then narrowed to
+    the depths the instrument reaches: the energy model's ``d_max`` is computed with the fit
+    and the fit repeated on the points with ``d <= 1.25 d_max`` (at least 4 points), three
+    times. This reuses the same F(d) points (no new contact solution); a ``d_max`` beyond
+    ``depth_max`` means extrapolation (raise ``depth_max``).
+
+    Attributes
+    ----------
+    web, core : Web, Core
+    head_radius, head_length : float [m]
+        Cylindrical head (``head_length = 1`` gives the force per unit CMD length).
+    depth_max : float [m]
+        Largest depth of the indentation.
+    instrument : Instrument, optional
+        Striker used to narrow the fit range.
+    options : ContactOptions, optional
+    """
+
+    web: Web
+    core: Core
+    head_radius: float
+    head_length: float
+    depth_max: float = 1e-3
+    instrument: Any = None
+    options: Any = None
+
+    def __call__(self, radius: FloatArray, sigma_r: FloatArray) -> tuple[float, float]:
+        from woundroll.contact import indent
+
+        res = indent(
+            self.web,
+            self.core,
+            radius,
+            sigma_r,
+            head_radius=self.head_radius,
+            head_length=self.head_length,
+            depth_max=self.depth_max,
+            options=self.options,
+        )
+        d, f = np.asarray(res.delta), np.asarray(res.force)
+        alpha, beta = fit_spring_nonneg(d, f)
+        if self.instrument is not None:
+            from woundroll.instruments.impact import energy_max_depth
+
+            ins = self.instrument
+            for _ in range(3):
+                dmax = float(
+                    energy_max_depth(
+                        alpha,
+                        beta,
+                        ins.spring_stiffness,
+                        ins.release_position,
+                        ins.contact_position,
+                    )
+                )
+                sel = d <= 1.25 * dmax
+                if np.count_nonzero(sel) < 4:
+                    sel = np.zeros(d.size, dtype=bool)
+                    sel[: min(4, d.size)] = True
+                alpha, beta = fit_spring_nonneg(d[sel], f[sel])
+        return alpha, beta
+
+
+@dataclass(frozen=True)
+class EnergyReadout:
+    """The default readout: the energy model {19}-{22} of an instrument (Rho for a Rho-meter)."""
+
+    instrument: Any
+
+    def __call__(self, alpha: FloatArray, beta: FloatArray) -> FloatArray:
+        from woundroll.instruments import rho_energy
+
+        return np.asarray(rho_energy(alpha, beta, self.instrument), dtype=float)
+
+
+@dataclass(frozen=True)
+class NipSpec:
+    """A nip on the roll during winding.
+
+    Attributes
+    ----------
+    roller : NipRoller
+        Bending stiffness, mean load per width [N/m], friction mu, radius [m].
+    foundation : callable, optional
+        ``(radius, sigma_r) -> (alpha, beta)`` per unit CMD length for the roller on one
+        sector; default :class:`ContactModel` with the roller's radius and unit length.
+    foundation_stride : int
+        Evaluate the foundation at every k-th sector (and the last), interpolate between.
+    """
+
+    roller: NipRoller
+    foundation: Callable[[FloatArray, FloatArray], tuple[float, float]] | None = None
+    foundation_stride: int = 4
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.roller, NipRoller):
+            raise InputError("must be a NipRoller", "winding.nip.roller")
+        s = self.foundation_stride
+        if isinstance(s, bool) or not isinstance(s, int) or s < 1:
+            raise InputError(
+                f"must be a whole number >= 1, got {s!r}", "winding.nip.foundation_stride"
+            )
+
+
+@dataclass(frozen=True)
+class ProfileResult:
+    """Predicted CMD hardness profile, SI, one value per sector.
+
+    Attributes
+    ----------
+    z : ndarray [m]               sector centres.
+    thickness : ndarray [m]       sector-average web thickness.
+    rho : ndarray [-]             reading (Rho for the Rho-meter).
+    alpha, beta : ndarray         roll spring {3} per sector [N/m^2], [N/m].
+    wot : ndarray [Pa]            layer-weighted mean wound-on tension per sector.
+    sigma_r_outer : ndarray [Pa]  radial stress of the outermost layer group.
+    sigma_r_core : ndarray [Pa]   radial stress of the group on the core.
+    nip_load : ndarray or None [N/m]  nip load per width of the last increment.
+    winding : AxisymmetricResult
+    rho_stats, thickness_stats : ProfileStats
+    timings : dict            seconds per stage.
+    """
+
+    z: FloatArray
+    thickness: FloatArray
+    rho: FloatArray
+    alpha: FloatArray
+    beta: FloatArray
+    wot: FloatArray
+    sigma_r_outer: FloatArray
+    sigma_r_core: FloatArray
+    nip_load: FloatArray | None
+    winding: AxisymmetricResult
+    rho_stats: ProfileStats
+    thickness_stats: ProfileStats
+    timings: dict[str, float] = field(default_factory=dict)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary: lists over CMD positions (SI, unit in the key) and stats."""
+
+        def lst(a: FloatArray) -> list[float]:
+            return [float(x) for x in a]
+
+        out: dict[str, Any] = {
+            "z_m": lst(self.z),
+            "rho": lst(self.rho),
+            "thickness_m": lst(self.thickness),
+            "wot_Pa": lst(self.wot),
+            "sigma_r_outer_Pa": lst(self.sigma_r_outer),
+            "sigma_r_core_Pa": lst(self.sigma_r_core),
+            "alpha_N_per_m2": lst(self.alpha),
+            "beta_N_per_m": lst(self.beta),
+            "stats": {"rho": self.rho_stats.to_dict(), "thickness": self.thickness_stats.to_dict()},
+            "n_layers": self.winding.n_layers,
+            "n_groups": int(self.winding.layers_per_group.size),
+            "timings_s": dict(self.timings),
+        }
+        if self.nip_load is not None:
+            out["nip_load_N_per_m"] = lst(self.nip_load)
+        return out
+
+    def plot(self, path_prefix: str | Path | None = None) -> list[Any]:
+        """Figures: thickness and Rho along the CMD (twin axes, Figures 20-21 of the paper)
+        and the radial-stress map sigma_r(r, z). Saves ``<prefix>_cmd.png`` and
+        ``<prefix>_sigma_r.png`` when ``path_prefix`` is given."""
+        from matplotlib.figure import Figure
+
+        zc = self.z * 100.0
+        f1 = Figure(figsize=(8, 4.2), layout="constrained")
+        ax = f1.subplots()
+        ax.plot(zc, self.thickness * 1e6, color="tab:blue", marker=".", label="thickness")
+        ax.set_xlabel("CMD position [cm]")
+        ax.set_ylabel("thickness (MD average) [um]", color="tab:blue")
+        ax2 = ax.twinx()
+        ax2.plot(zc, self.rho, color="tab:red", marker="o", ms=3, label="Rho (model)")
+        ax2.set_ylabel("Rho", color="tab:red")
+        st = self.rho_stats
+        ax.set_title(f"Rho mean {st.mean:.1f}, CoV {100 * st.cov:.1f} % ({st.band})")
+        w = self.winding
+        f2 = Figure(figsize=(8, 4.2), layout="constrained")
+        bx = f2.subplots()
+        zz = np.broadcast_to(zc[None, :], w.radius.shape)
+        pcm = bx.pcolormesh(
+            zz, w.radius * 100.0, -w.sigma_r / 1e3, shading="nearest", cmap="viridis"
+        )
+        f2.colorbar(pcm, ax=bx, label="interlayer pressure -sigma_r [kPa]")
+        bx.set_xlabel("CMD position [cm]")
+        bx.set_ylabel("radius [cm]")
+        bx.set_title("radial stress over (r, z)")
+        if path_prefix is not None:
+            p = str(path_prefix)
+            f1.savefig(f"{p}_cmd.png", dpi=120)
+            f2.savefig(f"{p}_sigma_r.png", dpi=120)
+        return [f1, f2]
+
+
+def _call(fn: ContactFn, radius: FloatArray, sigma_r: FloatArray) -> tuple[float, float]:
+    a, b = fn(radius, sigma_r)
+    return float(a), float(b)
+
+
+def _picklable(obj: Any) -> bool:
+    try:
+        pickle.dumps(obj)
+    except (pickle.PicklingError, AttributeError, TypeError):
+        return False
+    return True
+
+
+def map_sectors(
+    fn: ContactFn,
+    profiles: Sequence[tuple[FloatArray, FloatArray]],
+    *,
+    workers: int = 2,
+    progress: Callable[[int, int], None] | None = None,
+) -> tuple[FloatArray, FloatArray]:
+    """Evaluate ``fn(radius, sigma_r)`` for every sector, in parallel.
+
+    Processes (``spawn``) when ``fn`` can be pickled and ``workers > 1``, threads when it
+    cannot, in-line when ``workers == 1``. Returns ``(alpha, beta)`` arrays in sector order.
+    """
+    n = len(profiles)
+    out = np.empty((n, 2))
+    done = 0
+    if workers <= 1 or n <= 1:
+        for j, (r, s) in enumerate(profiles):
+            out[j] = _call(fn, r, s)
+            done += 1
+            if progress is not None:
+                progress(done, n)
+        return out[:, 0], out[:, 1]
+    if _picklable(fn):
+        ex: cf.Executor = cf.ProcessPoolExecutor(
+            max_workers=workers, mp_context=multiprocessing.get_context("spawn")
+        )
+    else:
+        ex = cf.ThreadPoolExecutor(max_workers=workers)
+    with ex:
+        futs = {ex.submit(_call, fn, r, s): j for j, (r, s) in enumerate(profiles)}
+        for fut in cf.as_completed(futs):
+            out[futs[fut]] = fut.result()
+            done += 1
+            if progress is not None:
+                progress(done, n)
+    return out[:, 0], out[:, 1]
+
+
+def _check_workers(workers: Any) -> int:
+    if isinstance(workers, bool) or not isinstance(workers, int | np.integer) or workers < 1:
+        raise InputError(f"must be a whole number >= 1, got {workers!r}", "profile.workers")
+    return int(workers)
+
+
+def predict_profile(
+    web: Web,
+    core: Core,
+    tension: TensionSchedule,
+    thickness_profile: ThicknessProfile | None = None,
+    *,
+    outer_radius: float,
+    contact: ContactFn | None = None,
+    instrument: Any = None,
+    n_sectors: int = 61,
+    n_groups: int | None = None,
+    nip: NipSpec | None = None,
+    depth_max: float = 1e-3,
+    workers: int = 2,
+    progress: ProgressFn | None = None,
+) -> ProfileResult:
+    """Predict the CMD hardness profile of a center-wound roll.
+
+    Parameters
+    ----------
+    web, core : Web, Core
+        Material and core (SI). ``web.thickness`` [m] is the nominal thickness that, with
+        ``tension.web_stress`` [Pa] and the profile's CMD extent [m], sets the line tension.
+    tension : TensionSchedule
+        Web stress [Pa], taper; without ``nip`` its ``nip_load`` [N/m] and ``friction`` add a
+        uniform nip-induced tension (1D rule).
+    thickness_profile : ThicknessProfile, optional
+        CMD profile (default uniform ``web.thickness`` over ``web.width``).
+    outer_radius : float [m]
+        Final roll radius.
+    contact : callable, optional
+        ``(radius, sigma_r) -> (alpha, beta)``; default :class:`ContactModel` with the
+        instrument's head and ``depth_max``.
+    instrument : Instrument or callable, optional
+        An :class:`~woundroll.instruments.Instrument` (energy-model readout) or a callable
+        ``(alpha, beta) -> reading``; default the ``rho-meter`` preset.
+    n_sectors, n_groups : int
+        CMD sectors; winding increments (see :func:`wind_axisymmetric`).
+    nip : NipSpec, optional
+        Nip roller whose CMD load distribution allocates the nip-induced tension.
+    depth_max : float [m]
+        Indentation depth of the default contact model.
+    workers : int
+        Parallel workers for the per-sector contact solutions.
+    progress : callable, optional
+        ``progress(stage, done, total)``.
+
+    Raises
+    ------
+    InputError
+        Bad input (dotted field names). ConvergenceError: a solver did not converge.
+    """
+    workers = _check_workers(workers)
+    t0 = time.perf_counter()
+    timings: dict[str, float] = {}
+    readout: ReadoutFn
+    inst = None
+    if instrument is None:
+        from woundroll.instruments import get_instrument
+
+        inst = get_instrument("rho-meter")
+        readout = EnergyReadout(inst)
+    elif hasattr(instrument, "spring_stiffness") and hasattr(instrument, "head_radius"):
+        inst = instrument
+        readout = EnergyReadout(inst)
+    elif callable(instrument):
+        readout = instrument
+    else:
+        raise InputError(
+            "must be an Instrument or a callable (alpha, beta) -> reading", "tester.instrument"
+        )
+    if contact is None:
+        if inst is None or inst.head_length is None:
+            raise InputError(
+                "a readout callable without an Instrument needs a contact callable "
+                "(or an instrument with a cylindrical head)",
+                "tester.contact",
+            )
+        contact = ContactModel(
+            web, core, inst.head_radius, inst.head_length, depth_max, instrument=inst
+        )
+    elif not callable(contact):
+        raise InputError("must be a callable (radius, sigma_r) -> (alpha, beta)", "tester.contact")
+
+    def wind_progress(stage: str) -> Callable[[int, int], None] | None:
+        if progress is None:
+            return None
+        return lambda d, n: progress(stage, d, n)
+
+    hook = None
+    if nip is not None:
+        if tension.nip_load > 0:
+            raise InputError(
+                "set the nip load in the NipSpec's roller, not in the tension "
+                "schedule, when a nip distribution is computed",
+                "winding.nip_load",
+            )
+        roller = nip.roller
+        # preliminary roll: uniform nip-induced tension mu N / h
+        pre_tension = TensionSchedule(
+            web_stress=tension.web_stress,
+            taper=tension.taper,
+            nip_load=roller.line_load,
+            friction=roller.friction,
+        )
+        pre = wind_axisymmetric(
+            web,
+            core,
+            outer_radius,
+            pre_tension,
+            thickness_profile,
+            n_sectors=n_sectors,
+            n_groups=n_groups,
+        )
+        found = nip.foundation or ContactModel(web, core, roller.radius, 1.0, depth_max)
+        ns = pre.z.size
+        picks = sorted(set(range(0, ns, nip.foundation_stride)) | {ns - 1})
+        fa, fb = map_sectors(
+            found,
+            [pre.sector_profile(j) for j in picks],
+            workers=workers,
+            progress=wind_progress("foundation"),
+        )
+        alpha_n = np.interp(pre.z, pre.z[picks], fa)
+        beta_n = np.interp(pre.z, pre.z[picks], fb)
+        edges = np.concatenate(
+            [[pre.z[0] - 0.5 * pre.dz[0]], pre.z[0] - 0.5 * pre.dz[0] + np.cumsum(pre.dz)]
+        )
+        base = nip_hook(edges, alpha_n, beta_n, roller)
+
+        def hook(g: int, r_out: FloatArray, s_top: FloatArray) -> FloatArray:
+            return base(g, r_out, s_top)
+
+        tension = TensionSchedule(
+            web_stress=tension.web_stress,
+            taper=tension.taper,
+            nip_load=0.0,
+            friction=roller.friction,
+        )
+        timings["nip_foundation"] = time.perf_counter() - t0
+    t1 = time.perf_counter()
+    w = wind_axisymmetric(
+        web,
+        core,
+        outer_radius,
+        tension,
+        thickness_profile,
+        n_sectors=n_sectors,
+        n_groups=n_groups,
+        nip=hook,
+        progress=wind_progress("winding"),
+    )
+    timings["winding"] = time.perf_counter() - t1
+    t2 = time.perf_counter()
+    profiles = [w.sector_profile(j) for j in range(w.z.size)]
+    alpha, beta = map_sectors(contact, profiles, workers=workers, progress=wind_progress("contact"))
+    timings["contact"] = time.perf_counter() - t2
+    rho = np.asarray(readout(alpha, beta), dtype=float).reshape(-1)
+    if rho.shape != alpha.shape or not np.all(np.isfinite(rho)):
+        raise InputError(
+            "the readout must return one finite reading per sector", "tester.instrument"
+        )
+    timings["total"] = time.perf_counter() - t0
+    nip_load = w.nip_load[-1].copy() if nip is not None else None
+    return ProfileResult(
+        z=w.z,
+        thickness=w.thickness,
+        rho=rho,
+        alpha=alpha,
+        beta=beta,
+        wot=w.wot_mean,
+        sigma_r_outer=w.sigma_r_outer.copy(),
+        sigma_r_core=w.sigma_r_core.copy(),
+        nip_load=nip_load,
+        winding=w,
+        rho_stats=profile_stats(rho, "profile.rho"),
+        thickness_stats=profile_stats(w.thickness, "profile.thickness"),
+        timings=timings,
+    )
+
+
+__all__ = [
+    "ContactModel",
+    "EnergyReadout",
+    "NipSpec",
+    "ProfileResult",
+    "fit_spring_nonneg",
+    "map_sectors",
+    "predict_profile",
+    "solve_nip",
+]
