@@ -264,6 +264,19 @@ def test_forward_euler_converges_toward_midpoint() -> None:
     assert errs[1] < 0.75 * errs[0]
 
 
+def test_modulus_cap_softens_and_is_inactive_when_high() -> None:
+    r, s = pet_profile()
+    opts = {"n_steps": 6, "tangential_growth": 1.25}
+    free = indent(PET1, RIGID, r, s, depth_max=5e-4, **HEAD, options=ContactOptions(**opts))
+    capped = indent(PET1, RIGID, r, s, depth_max=5e-4, **HEAD,
+                    options=ContactOptions(max_modulus_ratio=0.01, **opts))
+    loose = indent(PET1, RIGID, r, s, depth_max=5e-4, **HEAD,
+                   options=ContactOptions(max_modulus_ratio=10.0, **opts))
+    assert capped.force[-1] < free.force[-1]
+    # a cap of 10 E_theta is never reached (E_r < 3 E_theta here): identical results
+    assert loose.force[-1] == free.force[-1]
+
+
 def test_elastic_core_is_softer_and_stiff_core_tends_to_rigid() -> None:
     r, s = pet_profile()
     opts = ContactOptions(n_steps=6, tangential_growth=1.25)
@@ -361,7 +374,8 @@ def test_bad_input_raises_input_error(kwargs: dict, field: str) -> None:
     ("kwargs", "field"),
     [({"n_steps": 0}, "options.n_steps"), ({"radial_growth": 0.9}, "options.radial_growth"),
      ({"tangential_size": -1.0}, "options.tangential_size"),
-     ({"step_exponent": float("inf")}, "options.step_exponent")],
+     ({"step_exponent": float("inf")}, "options.step_exponent"),
+     ({"max_modulus_ratio": 0.0}, "options.max_modulus_ratio")],
 )
 def test_bad_options(kwargs: dict, field: str) -> None:
     with pytest.raises(InputError) as info:
