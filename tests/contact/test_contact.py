@@ -15,8 +15,8 @@ import pytest
 from woundroll.contact import ContactOptions, ContactResult, fit_spring, indent, plot_slip_factor
 from woundroll.contact.fem import plane_strain_moduli
 from woundroll.contact.mesh import build_mesh, graded_sizes
-from woundroll.contact.solver import _factorize, _Roll
-from woundroll.errors import InputError
+from woundroll.contact.solver import _factorize, _Roll, _solve_lcp
+from woundroll.errors import ConvergenceError, InputError
 from woundroll.materials import Constant, Core, Pfeiffer, Web
 
 # PET1 of the reference paper (Table 2)
@@ -359,6 +359,8 @@ def test_result_dict_and_plots(pet_default: ContactResult, tmp_path) -> None:
         ({"radius": np.linspace(R_OUT, R_CORE, 200)}, "radius"),
         ({"radius": np.linspace(0.01, R_OUT, 200)}, "radius"),
         ({"options": ContactOptions}, "options"),
+        ({"head_radius": "10 kPa"}, "head_radius"),
+        ({"radius": ["a", "b"]}, "radius"),
     ],
 )
 def test_bad_input_raises_input_error(kwargs: dict, field: str) -> None:
@@ -381,3 +383,45 @@ def test_bad_options(kwargs: dict, field: str) -> None:
     with pytest.raises(InputError) as info:
         ContactOptions(**kwargs)
     assert info.value.field == field
+
+
+def test_units_strings_accepted() -> None:
+    r, s = pet_profile()
+    opts = ContactOptions(n_steps=3, tangential_growth=1.25)
+    a = indent(PET1, RIGID, r, s, head_radius="10 mm", head_length="2 cm", depth_max="0.3 mm",
+               options=opts)
+    b = indent(PET1, RIGID, r, s, head_radius=0.01, head_length=0.02, depth_max=3e-4,
+               options=opts)
+    assert a.force[-1] == pytest.approx(b.force[-1], rel=1e-12)
+
+
+def test_lcp_solver_exact_and_rejects_indefinite_flexibility() -> None:
+    # 2x2 LCP with one contact open: lam = (-q0 / W00, 0) when q1 + W10 lam0 >= 0
+    W = np.array([[2.0, 0.5], [0.5, 1.0]])
+    lam = _solve_lcp(W, np.array([-1.0, 1.0]))
+    np.testing.assert_allclose(lam, [0.5, 0.0], atol=1e-12)
+    g = np.array([-1.0, 1.0]) + W @ lam
+    assert np.all(g >= -1e-12) and abs(lam @ g) < 1e-12
+    with pytest.raises(ConvergenceError):
+        _solve_lcp(np.array([[1.0, 2.0], [2.0, 1.0]]), np.array([-1.0, -1.0]))
+
+
+def test_coupled_with_the_winding_model() -> None:
+    """PET1 wound at 26.7 N by woundroll.winding (Hakiel): the contact solve takes its
+    profile as is, and a 10x thinner sampling of the same profile changes F by < 1 %
+    (linear interpolation of sigma_r at element centres; the profile is smooth)."""
+    from woundroll.winding.hakiel import wind
+    from woundroll.winding.tension import TensionSchedule
+
+    core = Core.tube(R_CORE, 0.0381, 200e9, 0.3)
+    w = wind(PET1, core, R_OUT, TensionSchedule(web_stress=26.7 / (0.1524 * H)))
+    opts = ContactOptions(n_steps=8, tangential_growth=1.25)
+    full = indent(PET1, core, w.radius, w.sigma_r, depth_max=5e-4, **HEAD, options=opts)
+    idx = np.unique(np.r_[np.arange(0, w.radius.size, 10), w.radius.size - 1])
+    thin = indent(PET1, core, w.radius[idx], w.sigma_r[idx], depth_max=5e-4, **HEAD,
+                  options=opts)
+    assert np.all(np.isfinite(full.force)) and np.all(np.diff(full.force) > 0)
+    assert thin.force[-1] == pytest.approx(full.force[-1], rel=0.01)
+    frozen = indent(PET1, core, w.radius, w.sigma_r, depth_max=5e-4, update_modulus=False,
+                    **HEAD, options=opts)
+    assert frozen.force[-1] < full.force[-1]

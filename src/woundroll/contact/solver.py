@@ -36,6 +36,7 @@ from woundroll.contact.mesh import RollMesh, build_mesh
 from woundroll.contact.result import ContactResult, fit_spring
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.materials.web import Core, Web
+from woundroll.units import to_si
 
 FloatArray = NDArray[np.float64]
 
@@ -123,11 +124,15 @@ class ContactOptions:
                              "options.min_modulus_ratio")
 
 
-def _check_scalar(value: float, field: str) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"must be a number, got {value!r}", field) from None
+def _check_scalar(value: float | str, field: str, kind: str = "length") -> float:
+    """A positive finite SI value; strings with units (``"10 mm"``) are converted."""
+    if isinstance(value, str):
+        v = to_si(value, kind, field)
+    else:
+        try:
+            v = float(value)
+        except (TypeError, ValueError):
+            raise InputError(f"must be a number, got {value!r}", field) from None
     if not math.isfinite(v) or v <= 0:
         raise InputError(f"must be a positive finite number, got {value!r}", field)
     return v
@@ -366,7 +371,7 @@ def _half_width(s: FloatArray, lam: FloatArray, gap: FloatArray, j0: int,
 
 
 def indent(web: Web, core: Core, radius: FloatArray, sigma_r: FloatArray, *,
-           head_radius: float, head_length: float, depth_max: float = 1e-3,
+           head_radius: float | str, head_length: float | str, depth_max: float | str = 1e-3,
            friction: float = 0.3, update_modulus: bool = True,
            options: ContactOptions | None = None) -> ContactResult:
     """Press a rigid cylindrical head into the wound roll and return F(d), a(d) and the fields.
@@ -383,8 +388,9 @@ def indent(web: Web, core: Core, radius: FloatArray, sigma_r: FloatArray, *,
     sigma_r : ndarray
         Pre-impact radial stress [Pa] at ``radius`` (compression negative), e.g. from
         :mod:`woundroll.winding`.
-    head_radius : float
-        Radius of the instrument's cylindrical head [m] (axis along the CMD).
+    head_radius : float or str
+        Radius of the instrument's cylindrical head [m] (axis along the CMD). Here and for
+        ``head_length`` and ``depth_max`` a string with a unit (``"10 mm"``) is accepted.
     head_length : float
         Length of the head along the CMD [m]; it multiplies the plane-strain force per unit
         length.
@@ -417,7 +423,7 @@ def indent(web: Web, core: Core, radius: FloatArray, sigma_r: FloatArray, *,
     head_radius = _check_scalar(head_radius, "head_radius")
     head_length = _check_scalar(head_length, "head_length")
     depth_max = _check_scalar(depth_max, "depth_max")
-    friction = _check_scalar(friction, "friction")
+    friction = _check_scalar(friction, "friction", "dimensionless")
     r, s = _check_profile(web, core, radius, sigma_r)
     opts = options if options is not None else ContactOptions()
     if not isinstance(opts, ContactOptions):
