@@ -229,6 +229,21 @@ def solve_nip(
 
     K = banded(ke)
     K_abs = np.abs(K)
+    zc = nodes - nodes.mean()
+
+    def bending(u: FloatArray) -> FloatArray:
+        """u minus its rigid-body part (w = a + b z, theta = b), which K maps to zero exactly:
+        K u is then computed without the round-off of the large rigid displacements."""
+        w = u[0::2]
+        b = float(np.dot(zc, w - w.mean()) / np.dot(zc, zc))
+        out = u.copy()
+        out[0::2] -= w.mean() + b * zc
+        out[1::2] -= b
+        return out
+
+    def beam_force(u: FloatArray) -> FloatArray:
+        return matvec(K, bending(u))
+
     F = np.zeros(ndof)
     F[0] = F[-2] = 0.5 * total
     # foundation at Gauss points of the elements that lie on the web
@@ -271,28 +286,37 @@ def solve_nip(
     u = np.zeros(ndof)
     u[0::2] = hi
     fint, kq, q = foundation(u)
-    R = matvec(K, u) + fint - F
+    R = beam_force(u) + fint - F
     tol = 1e-10 * total
     it = 0
+    hist: list[float] = []
     for it in range(1, 61):  # noqa: B007
         Kt = K + banded(np.einsum("eq,eqk,eql->ekl", wq * kq, Nq, Nq))
         # tiny spring on every dof, relative to the foundation, against lift-off modes
         Kt[3] += 1e-9 * max(float(np.max(wq * kq)), 1e-300)
         du = solve_banded((3, 3), Kt, -R, check_finite=False)
         r0 = np.linalg.norm(R)
-        # round-off floor of the residual: the beam terms K u cancel to ~1e-13 |K| |u|
-        floor = 1e-13 * float(np.linalg.norm(matvec(K_abs, np.abs(u))))
-        if r0 < max(tol, floor) or np.linalg.norm(du) <= 1e-12 * np.linalg.norm(u):
+        # round-off floor of the residual: the beam terms K u cancel to ~eps |K| |u|
+        floor = 1e-13 * float(np.linalg.norm(matvec(K_abs, np.abs(bending(u)))))
+        # the foundation must carry the bearing forces (to the beam's round-off floor)
+        balanced = abs(float(np.sum(fint[0::2])) - total) <= max(1e-8 * total, floor)
+        hist.append(r0)
+        # stagnation at a small residual: a very stiff roller (EI / L^3 >> foundation) makes
+        # the Newton system ill-conditioned; accept once the foundation carries the load
+        stalled = it > 5 and r0 < 1e-4 * total and r0 > 0.5 * hist[-6]
+        if balanced and (
+            r0 < max(tol, floor) or np.linalg.norm(du) <= 1e-12 * np.linalg.norm(u) or stalled
+        ):
             break
         step = 1.0
         for _ in range(30):
             u_try = u + step * du
             f_try, kq_try, q_try = foundation(u_try)
-            R_try = matvec(K, u_try) + f_try - F
+            R_try = beam_force(u_try) + f_try - F
             if np.linalg.norm(R_try) < r0 or step < 1e-6:
                 break
             step *= 0.5
-        u, R, kq, q = u_try, R_try, kq_try, q_try
+        u, R, kq, q, fint = u_try, R_try, kq_try, q_try, f_try
     else:
         raise ConvergenceError(
             f"nip beam: Newton did not converge (residual "
