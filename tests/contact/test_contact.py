@@ -353,7 +353,8 @@ def test_result_dict_and_plots(pet_default: ContactResult, tmp_path) -> None:
         ({"depth_max": 0.0}, "depth_max"),
         ({"depth_max": -1e-3}, "depth_max"),
         ({"depth_max": 0.006}, "depth_max"),           # more than half the head radius
-        ({"friction": 0.0}, "friction"),
+        ({"friction": -0.1}, "friction"),
+        ({"friction": "0.3 m"}, "friction"),
         ({"sigma_r": np.zeros(5)}, "sigma_r"),
         ({"sigma_r": np.full(200, np.nan)}, "sigma_r"),
         ({"radius": np.linspace(R_OUT, R_CORE, 200)}, "radius"),

@@ -397,7 +397,8 @@ def indent(web: Web, core: Core, radius: FloatArray, sigma_r: FloatArray, *,
     depth_max : float
         Largest depth [m] the head is pressed to (displacement control).
     friction : float
-        Interlayer friction coefficient mu [-] for the slip factor {23}.
+        Interlayer friction coefficient mu >= 0 [-] for the slip factor {23} (0: every
+        sheared element slips, SF = inf).
     update_modulus : bool
         True: hypoelastic E_r at the current stress. False: E_r frozen at its pre-impact
         value (the paper's "no update").
@@ -423,7 +424,9 @@ def indent(web: Web, core: Core, radius: FloatArray, sigma_r: FloatArray, *,
     head_radius = _check_scalar(head_radius, "head_radius")
     head_length = _check_scalar(head_length, "head_length")
     depth_max = _check_scalar(depth_max, "depth_max")
-    friction = _check_scalar(friction, "friction", "dimensionless")
+    friction = to_si(friction, "dimensionless", "friction")
+    if friction < 0:
+        raise InputError(f"must be zero or positive, got {friction:g}", "friction")
     r, s = _check_profile(web, core, radius, sigma_r)
     opts = options if options is not None else ContactOptions()
     if not isinstance(opts, ContactOptions):
@@ -492,9 +495,9 @@ def indent(web: Web, core: Core, radius: FloatArray, sigma_r: FloatArray, *,
     sigma_r_total = roll.sigma_pre + sig[:, 0]
     pressure = np.maximum(-sigma_r_total, 0.0)
     tau = np.abs(sig[:, 2])
+    capacity = friction * pressure           # Coulomb shear capacity of the interface [Pa]
     with np.errstate(divide="ignore", invalid="ignore"):
-        sf = np.where(pressure > 0, tau / (friction * pressure),
-                      np.where(tau > 0, np.inf, 0.0))
+        sf = np.where(capacity > 0, tau / capacity, np.where(tau > 0, np.inf, 0.0))
     alpha, beta, r2, max_res = fit_spring(delta, force * head_length)
     xy = roll.basis.centre_xy
     return ContactResult(
