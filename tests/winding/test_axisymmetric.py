@@ -1,0 +1,255 @@
+"""Axisymmetric (r, z) winding with a CMD thickness profile: closed forms, the 1D limit,
+convergence, tension allocation, input errors."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from woundroll.errors import InputError
+from woundroll.materials.radial_modulus import Constant, Pfeiffer
+from woundroll.materials.web import Core, Web
+from woundroll.profile.thickness import ThicknessProfile, bundled_profile
+from woundroll.winding.axisymmetric import allocate_tension, wind_axisymmetric
+from woundroll.winding.tension import TensionSchedule
+
+R_CORE, R_OUT, H = 0.1016, 0.2032, 76e-6  # Table 3
+CORE = Core.tube(R_CORE, 0.095, 69e9, 0.33)
+
+
+def table3_web(law=None) -> Web:
+    return Web(
+        thickness=H,
+        width=0.61,
+        E_theta=4999e6,
+        radial_modulus=law or Pfeiffer(0.0, 246.5),
+        nu_theta_r=0.01,
+        nu_z_r=0.01,
+        nu_theta_z=0.3,
+    )
+
+
+def altmann(E_r: float, E_t: float, nu: float, E_c: float, T: float, R: float, r: float):
+    """Continuous closed form for constant moduli: the increment of a layer at s is
+    A r^(g-1) + B r^(-g-1), g = sqrt(E_t / E_r), with sigma_r(s) = -1 and the core condition
+    u(r_c) = r_c sigma_r / E_c; integrated over the layers above r with dp = T ds / s."""
+    g = math.sqrt(E_t / E_r)
+    m1, m2 = g - 1.0, -g - 1.0
+    c1 = ((m1 + 1 - nu) / E_t - 1 / E_c) * R_CORE**m1
+    c2 = ((m2 + 1 - nu) / E_t - 1 / E_c) * R_CORE**m2
+
+    def incr(s: float) -> tuple[float, float]:
+        B = -1.0 / (s**m2 - c2 / c1 * s**m1)
+        A = -B * c2 / c1
+        return A * r**m1 + B * r**m2, A * (m1 + 1) * r**m1 + B * (m2 + 1) * r**m2
+
+    sr = quad(lambda s: incr(s)[0] * T / s, r, R, limit=200)[0]
+    st = T + quad(lambda s: incr(s)[1] * T / s, r, R, limit=200)[0]
+    return sr, st
+
+
+@pytest.mark.parametrize("E_r", [1.25e9, 50e6])
+def test_constant_modulus_matches_altmann_closed_form(E_r: float) -> None:
+    # linear orthotropic limit: the model uses exact ring elements, so only the layering
+    # (200 groups of ~7 layers) and the discrete-vs-continuous build differ from the closed
+    # form; measured max 0.3 % (sigma_r) and 0.2 % of T (sigma_theta). Tolerance 1 %.
+    web = table3_web(Constant(E_r))
+    T = 2.3e6
+    res = wind_axisymmetric(
+        web, CORE, R_OUT, TensionSchedule(web_stress=T), n_sectors=3, n_groups=200
+    )
+    R = R_CORE + res.n_layers * H
+    idx = np.arange(0, 190, 17)
+    ref = np.array(
+        [altmann(E_r, web.E_theta, 0.01, CORE.stiffness, T, R, res.radius[i, 1]) for i in idx]
+    )
+    err_r = np.abs(res.sigma_r[idx, 1] / ref[:, 0] - 1)
+    err_t = np.abs(res.sigma_theta[idx, 1] - ref[:, 1]) / T
+    assert err_r.max() < 0.01
+    assert err_t.max() < 0.01
+
+
+def test_constant_modulus_converges_under_layer_grouping() -> None:
+    # the error of the grouped layering falls with the group size (midpoint rule): halving
+    # the group size must cut the deviation from the closed form by more than 1.5x
+    E_r = 5e6
+    web = table3_web(Constant(E_r))
+    errs = []
+    for G in (50, 100):
+        res = wind_axisymmetric(
+            web, CORE, R_OUT, TensionSchedule(web_stress=2.3e6), n_sectors=1, n_groups=G
+        )
+        i = G // 2
+        R = R_CORE + res.n_layers * H
+        ref = altmann(E_r, web.E_theta, 0.01, CORE.stiffness, 2.3e6, R, res.radius[i, 0])[0]
+        errs.append(abs(res.sigma_r[i, 0] / ref - 1))
+    assert errs[1] < errs[0] / 1.5
+
+
+def test_uniform_thickness_all_sectors_equal_and_equal_to_one_sector() -> None:
+    # a uniform web gives identical sectors (no shear between them): the 61-sector roll is the
+    # 1-sector roll, to round-off
+    web = table3_web()
+    ten = TensionSchedule(web_stress=2.3e6)
+    many = wind_axisymmetric(web, CORE, R_OUT, ten, n_sectors=61, n_groups=60)
+    one = wind_axisymmetric(web, CORE, R_OUT, ten, n_sectors=1, n_groups=60)
+    np.testing.assert_allclose(many.sigma_r, np.repeat(one.sigma_r, 61, axis=1), rtol=1e-9)
+    # WOT = E_theta (rho / R0 - 1): the subtraction loses ~E_theta / WOT ~ 2000 x eps
+    np.testing.assert_allclose(many.wot, 2.3e6, rtol=1e-9)
+    assert np.max(np.abs(many.tau_rz)) < 1e-6 * np.max(np.abs(many.sigma_r))
+
+
+@pytest.mark.parametrize("T", [2.3e6, 3.45e6])
+def test_uniform_thickness_reproduces_the_1d_hakiel_model(T: float) -> None:
+    # the brief's check: uniform thickness within 2 % of the 1D model (woundroll.winding.hakiel,
+    # layer by layer). Measured: 0.3 % of the core pressure at the default 200 groups.
+    hakiel = pytest.importorskip("woundroll.winding.hakiel")
+    web = table3_web()
+    ten = TensionSchedule(web_stress=T)
+    ref = hakiel.wind(web, CORE, R_OUT, ten)
+    res = wind_axisymmetric(web, CORE, R_OUT, ten, n_sectors=5)
+    r = res.radius[:, 2]
+    inner = r < R_OUT - 0.005  # the outermost 5 mm: group centres vs layer nodes
+    dev = np.abs(res.sigma_r[inner, 2] - np.interp(r[inner], ref.radius, ref.sigma_r))
+    assert dev.max() < 0.02 * ref.core_pressure
+    dev_t = np.abs(res.sigma_theta[inner, 2] - np.interp(r[inner], ref.radius, ref.sigma_theta))
+    assert dev_t.max() < 0.02 * T
+
+
+def test_k1_zero_layer_by_layer_limit_converges() -> None:
+    # K1 = 0 (Table 3): E_r = 0 at zero pressure. Refining the groups must converge: the core
+    # pressure at 100 and 400 groups differ by less than 2 %, and 200 -> 400 by less than 1 %
+    web = table3_web()
+    ten = TensionSchedule(web_stress=2.3e6)
+    p = [
+        -wind_axisymmetric(web, CORE, 0.15, ten, n_sectors=1, n_groups=G).sigma_r[0, 0]
+        for G in (100, 200, 400)
+    ]
+    assert abs(p[0] / p[2] - 1) < 0.02
+    assert abs(p[1] / p[2] - 1) < 0.01
+    assert all(v > 0 for v in p)
+
+
+def test_allocation_closed_forms() -> None:
+    w = np.full(4, 1e-3 * 0.1)  # h w [m^2]
+    # equal radii: equal stress F / sum(h w)
+    s, R0 = allocate_tension(np.full(4, 0.15), w, 100.0, 5e9)
+    np.testing.assert_allclose(s, 100.0 / w.sum(), rtol=1e-10)
+    assert R0 == pytest.approx(0.15 / (1 + s[0] / 5e9), rel=1e-12)
+    # one sector far out: it alone is taut and carries the whole force
+    rho = np.array([0.15, 0.15, 0.16, 0.15])
+    s, R0 = allocate_tension(rho, w, 100.0, 5e9)
+    assert s[2] == pytest.approx(100.0 / w[2], rel=1e-12)
+    assert np.all(s[[0, 1, 3]] == 0)
+    # general: total force exact, stress linear in radius where taut
+    rng = np.random.default_rng(3)
+    rho = 0.15 + 2e-6 * rng.random(50)
+    ww = 1e-6 * (1 + rng.random(50))
+    s, R0 = allocate_tension(rho, ww, 5.0, 5e9)
+    assert np.sum(s * ww) == pytest.approx(5.0, rel=1e-12)
+    taut = s > 0
+    np.testing.assert_allclose(s[taut], 5e9 * (rho[taut] / R0 - 1), rtol=1e-9)
+    assert np.all(rho[~taut] <= R0 * (1 + 1e-15))
+    assert allocate_tension(rho, ww, 0.0, 5e9)[1] == math.inf
+
+
+def test_thick_bands_wind_harder() -> None:
+    # a thick band builds a larger radius, takes more of the web tension and more pressure;
+    # tension allocation conserves the line force in every increment
+    z = np.linspace(0, 0.61, 123)
+    h = H * (1 + 0.01 * np.exp(-(((z - 0.3) / 0.05) ** 2)))
+    prof = ThicknessProfile(z, h)
+    web = table3_web()
+    res = wind_axisymmetric(
+        web, CORE, 0.13, TensionSchedule(web_stress=2.3e6), prof, n_sectors=21, n_groups=80
+    )
+    mid, edge = 10, 0
+    assert res.wot_mean[mid] > 1.5 * res.wot_mean[edge]
+    assert res.sigma_r_core[mid] < 1.5 * res.sigma_r_core[edge]  # more compressive
+    force = (res.wot * (res.thickness * res.dz)[None, :]).sum(axis=1)
+    np.testing.assert_allclose(force, res.info["line_force_N"], rtol=1e-10)
+
+
+def test_shear_coupling_spreads_the_band() -> None:
+    # coupling the sectors through G_rz must reduce the core-pressure contrast of a band
+    z = np.linspace(0, 0.61, 123)
+    prof = ThicknessProfile(z, H * (1 + 0.01 * np.exp(-(((z - 0.3) / 0.05) ** 2))))
+    web = table3_web()
+    kw = dict(n_sectors=21, n_groups=60)
+    on = wind_axisymmetric(web, CORE, 0.13, TensionSchedule(web_stress=2.3e6), prof, **kw)
+    off = wind_axisymmetric(
+        web, CORE, 0.13, TensionSchedule(web_stress=2.3e6), prof, shear_coupling=False, **kw
+    )
+    contrast = [np.ptp(r.sigma_r_core) / np.mean(np.abs(r.sigma_r_core)) for r in (on, off)]
+    assert contrast[0] < contrast[1]
+
+
+def test_uniform_nip_adds_mu_n_over_h() -> None:
+    web = table3_web()
+    ten = TensionSchedule(web_stress=2.3e6, nip_load=1000.0, friction=0.2)
+    res = wind_axisymmetric(web, CORE, 0.12, ten, n_sectors=3, n_groups=20)
+    np.testing.assert_allclose(res.wot, 2.3e6 + 0.2 * 1000.0 / H, rtol=1e-12)
+
+
+def test_nip_callable_is_validated() -> None:
+    web = table3_web()
+    with pytest.raises(InputError) as exc:
+        wind_axisymmetric(
+            web,
+            CORE,
+            0.12,
+            TensionSchedule(web_stress=2.3e6, friction=0.1),
+            n_sectors=3,
+            n_groups=5,
+            nip=lambda g, r, s: np.full(3, -1.0),
+        )
+    assert exc.value.field == "winding.nip"
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "fld"),
+    [
+        ({"outer_radius": 0.1}, "roll.outer_radius"),
+        ({"n_groups": 10**7}, "winding.n_groups"),
+        ({"n_sectors": 0}, "profile.n_sectors"),
+        ({"E_r_floor": -1.0}, "winding.E_r_floor"),
+    ],
+)
+def test_bad_input(kwargs: dict, fld: str) -> None:
+    args = {"outer_radius": 0.12} | kwargs
+    with pytest.raises(InputError) as exc:
+        wind_axisymmetric(table3_web(), CORE, tension=TensionSchedule(web_stress=1e6), **args)
+    assert exc.value.field == fld
+
+
+def test_rigid_core_and_progress() -> None:
+    calls = []
+    res = wind_axisymmetric(
+        table3_web(),
+        Core(R_CORE),
+        0.12,
+        TensionSchedule(web_stress=2e6),
+        n_sectors=2,
+        n_groups=10,
+        progress=lambda d, n: calls.append((d, n)),
+    )
+    assert calls[-1] == (10, 10) and len(calls) == 10
+    assert np.all(res.sigma_r < 0)
+
+
+def test_table3_profile_result_is_finite_and_banded() -> None:
+    # the bundled synthetic profile: every stress finite, thickest sector hardest at the core
+    res = wind_axisymmetric(
+        table3_web(),
+        CORE,
+        R_OUT,
+        TensionSchedule(web_stress=2.3e6),
+        bundled_profile(),
+        n_sectors=61,
+        n_groups=60,
+    )
+    assert np.all(np.isfinite(res.sigma_r)) and np.all(np.isfinite(res.sigma_theta))
+    assert int(np.argmin(res.sigma_r_core)) == int(np.argmax(res.thickness))
