@@ -378,7 +378,8 @@ def test_bad_input_raises_input_error(kwargs: dict, field: str) -> None:
     [({"n_steps": 0}, "options.n_steps"), ({"radial_growth": 0.9}, "options.radial_growth"),
      ({"tangential_size": -1.0}, "options.tangential_size"),
      ({"step_exponent": float("inf")}, "options.step_exponent"),
-     ({"max_modulus_ratio": 0.0}, "options.max_modulus_ratio")],
+     ({"max_modulus_ratio": 0.0}, "options.max_modulus_ratio"),
+     ({"midpoint": "yes"}, "options.midpoint")],
 )
 def test_bad_options(kwargs: dict, field: str) -> None:
     with pytest.raises(InputError) as info:
@@ -426,3 +427,16 @@ def test_coupled_with_the_winding_model() -> None:
     frozen = indent(PET1, core, w.radius, w.sigma_r, depth_max=5e-4, update_modulus=False,
                     **HEAD, options=opts)
     assert frozen.force[-1] < full.force[-1]
+
+
+def test_k1_zero_law_with_a_free_surface() -> None:
+    """Table 3's K1 = 0: E_r = K2 P vanishes where the pre-impact pressure does (the free
+    surface); the floor min_modulus_ratio * E_theta keeps the solve regular, and the result
+    stays finite and monotone."""
+    web = Web(thickness=H, width=0.1524, E_theta=4950e6, radial_modulus=Pfeiffer(0.0, 26.24))
+    r = np.linspace(R_CORE, R_OUT, 300)
+    s = -2e5 * (R_OUT - r) / (R_OUT - R_CORE)          # sigma_r = 0 at the surface
+    res = indent(web, RIGID, r, s, depth_max=5e-4, **HEAD,
+                 options=ContactOptions(n_steps=8, tangential_growth=1.25))
+    assert np.all(np.isfinite(res.force)) and np.all(np.diff(res.force) > 0)
+    assert np.all(np.isfinite(res.sigma_r)) and res.semi_contact_width > 0

@@ -100,6 +100,10 @@ class ContactOptions:
     step_exponent: float = 1.5
 
     def __post_init__(self) -> None:
+        for name in ("reduced_shear", "midpoint", "half_model"):
+            if not isinstance(getattr(self, name), bool | np.bool_):
+                raise InputError(f"must be true or false, got {getattr(self, name)!r}",
+                                 f"options.{name}")
         if not (math.isfinite(self.step_exponent) and 1.0 <= self.step_exponent <= 3.0):
             raise InputError(f"must lie in [1, 3], got {self.step_exponent!r}",
                              "options.step_exponent")
