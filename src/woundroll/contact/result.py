@@ -59,7 +59,7 @@ def _readonly(a: Any) -> Any:
     return a
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class ContactResult:
     """Indentation of a roll by a rigid cylindrical head (see :func:`woundroll.contact.indent`).
 
@@ -186,11 +186,11 @@ class ContactResult:
         }
 
     def plot(self, path: str | Path | None = None) -> Figure:
-        """F(d) with the eq. {3} fit, and a(d); saved as PNG if ``path`` is given."""
-        import matplotlib
+        """F(d) with the eq. {3} fit, and a(d); saved as PNG if ``path`` is given.
 
-        if path is not None:
-            matplotlib.use("Agg", force=False)
+        The figure is a bare :class:`matplotlib.figure.Figure` (no pyplot, the backend is
+        left alone); show it in a notebook by displaying the returned object.
+        """
         from matplotlib.figure import Figure
 
         fig = Figure(figsize=(9, 3.8), layout="constrained")
@@ -224,10 +224,6 @@ def plot_slip_factor(result: ContactResult, path: str | Path | None = None, *,
     window, depth : float, optional
         Arc half-width and depth of the plotted zone [m]; default 4 a and 4 a.
     """
-    import matplotlib
-
-    if path is not None:
-        matplotlib.use("Agg", force=False)
     from matplotlib.colors import LogNorm
     from matplotlib.figure import Figure
 
