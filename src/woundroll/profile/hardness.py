@@ -31,6 +31,7 @@ import multiprocessing
 import pickle
 import time
 from collections.abc import Callable, Sequence
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -309,11 +310,32 @@ def map_sectors(
                 progress(done, n)
         return out[:, 0], out[:, 1]
     if _picklable(fn):
-        ex: cf.Executor = cf.ProcessPoolExecutor(
-            max_workers=workers, mp_context=multiprocessing.get_context("spawn")
-        )
-    else:
-        ex = cf.ThreadPoolExecutor(max_workers=workers)
+        try:
+            return _run_pool(
+                fn,
+                profiles,
+                out,
+                progress,
+                cf.ProcessPoolExecutor(
+                    max_workers=workers, mp_context=multiprocessing.get_context("spawn")
+                ),
+            )
+        except (ImportError, AttributeError, pickle.PicklingError, BrokenProcessPool):
+            # the callable pickles here but cannot be rebuilt in a fresh process (defined in
+            # a script or a test module): fall back to threads
+            pass
+    return _run_pool(fn, profiles, out, progress, cf.ThreadPoolExecutor(max_workers=workers))
+
+
+def _run_pool(
+    fn: ContactFn,
+    profiles: Sequence[tuple[FloatArray, FloatArray]],
+    out: FloatArray,
+    progress: Callable[[int, int], None] | None,
+    ex: cf.Executor,
+) -> tuple[FloatArray, FloatArray]:
+    n = len(profiles)
+    done = 0
     with ex:
         futs = {ex.submit(_call, fn, r, s): j for j, (r, s) in enumerate(profiles)}
         for fut in cf.as_completed(futs):

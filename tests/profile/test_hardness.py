@@ -1,0 +1,225 @@
+"""The integrated hardness profile: injected contact and readout stand-ins, the real chain."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from woundroll.errors import InputError
+from woundroll.materials.radial_modulus import Pfeiffer
+from woundroll.materials.web import Core, Web
+from woundroll.profile.hardness import NipSpec, fit_spring_nonneg, predict_profile
+from woundroll.profile.nip import NipRoller
+from woundroll.profile.thickness import ThicknessProfile, bundled_profile
+from woundroll.winding.tension import TensionSchedule
+
+WEB = Web(
+    thickness=76e-6,
+    width=0.61,
+    E_theta=4999e6,
+    radial_modulus=Pfeiffer(0.0, 246.5),
+    nu_theta_r=0.01,
+)
+CORE = Core.tube(0.1016, 0.095, 69e9, 0.33)
+
+
+def standin_contact(radius: np.ndarray, sigma_r: np.ndarray) -> tuple[float, float]:
+    """A roll spring stiffening with the pressure of the outer layers (stand-in)."""
+    p = float(-np.mean(sigma_r[-6:-1]))
+    return 1e9 * (1 + p / 1e4), 1e4 + 10.0 * p
+
+
+def standin_readout(alpha: np.ndarray, beta: np.ndarray) -> np.ndarray:
+    return np.asarray(beta) / 1e3
+
+
+def test_uniform_profile_gives_a_flat_reading() -> None:
+    res = predict_profile(
+        WEB,
+        CORE,
+        TensionSchedule(web_stress=2.3e6),
+        outer_radius=0.13,
+        contact=standin_contact,
+        instrument=standin_readout,
+        n_sectors=9,
+        n_groups=40,
+        workers=1,
+    )
+    np.testing.assert_allclose(res.rho, res.rho[0], rtol=1e-9)
+    assert res.rho_stats.cov < 1e-9 and res.rho_stats.band == "very good"
+    # the stand-in readout of the stand-in spring: rho = (1e4 + 10 P) / 1e3 with P the mean
+    # pressure of the outer groups: checks the plumbing from sigma_r to the reading
+    p = -np.mean(res.winding.sigma_r[-5:, 0])
+    assert res.rho[0] == pytest.approx((1e4 + 10 * p) / 1e3, rel=1e-12)
+
+
+def test_thick_band_reads_harder_and_threads_match_serial() -> None:
+    z = np.linspace(0, 0.61, 123)
+    prof = ThicknessProfile(z, 76e-6 * (1 + 0.01 * np.exp(-(((z - 0.3) / 0.05) ** 2))))
+    kw = dict(
+        outer_radius=0.13,
+        contact=standin_contact,
+        instrument=standin_readout,
+        n_sectors=15,
+        n_groups=40,
+    )
+    calls: list[tuple[str, int, int]] = []
+    par = predict_profile(
+        WEB,
+        CORE,
+        TensionSchedule(web_stress=2.3e6),
+        prof,
+        workers=2,
+        progress=lambda s, d, n: calls.append((s, d, n)),
+        **kw,
+    )
+    ser = predict_profile(WEB, CORE, TensionSchedule(web_stress=2.3e6), prof, workers=1, **kw)
+    np.testing.assert_array_equal(par.rho, ser.rho)  # the lambda runs in threads: same numbers
+    assert int(np.argmax(par.rho)) == 7  # the band centre
+    assert ("winding", 40, 40) in calls and ("contact", 15, 15) in calls
+
+
+def test_to_dict_and_plot(tmp_path: Path) -> None:
+    res = predict_profile(
+        WEB,
+        CORE,
+        TensionSchedule(web_stress=2.3e6),
+        bundled_profile(),
+        outer_radius=0.12,
+        contact=standin_contact,
+        instrument=standin_readout,
+        n_sectors=11,
+        n_groups=20,
+        workers=1,
+    )
+    d = res.to_dict()
+    for key in ("z_m", "rho", "thickness_m", "wot_Pa", "sigma_r_outer_Pa", "sigma_r_core_Pa"):
+        assert len(d[key]) == 11 and all(np.isfinite(d[key]))
+    assert set(d["stats"]["rho"]) >= {"mean", "sd", "cov", "min", "max", "peak_to_peak", "band"}
+    figs = res.plot(tmp_path / "case")
+    assert len(figs) == 2
+    assert (tmp_path / "case_cmd.png").stat().st_size > 1000
+    assert (tmp_path / "case_sigma_r.png").stat().st_size > 1000
+
+
+def test_nip_with_injected_foundation() -> None:
+    # nip load follows the radius profile: the thick band carries more of it and so winds
+    # with more nip-induced tension; the nip load per increment balances the bearing forces
+    z = np.linspace(0, 0.61, 123)
+    prof = ThicknessProfile(z, 76e-6 * (1 + 0.01 * np.exp(-(((z - 0.3) / 0.05) ** 2))))
+    roller = NipRoller.tube(200e9, 0.05, 0.04, line_load=1000.0, friction=0.3)
+    nip = NipSpec(roller, foundation=lambda r, s: (1e13, 1e7), foundation_stride=3)
+    res = predict_profile(
+        WEB,
+        CORE,
+        TensionSchedule(web_stress=2.3e6),
+        prof,
+        outer_radius=0.125,
+        contact=standin_contact,
+        instrument=standin_readout,
+        n_sectors=15,
+        n_groups=30,
+        nip=nip,
+        workers=1,
+    )
+    w = res.winding
+    np.testing.assert_allclose((w.nip_load * w.dz[None, :]).sum(axis=1), 1000.0 * 0.61, rtol=1e-6)
+    assert res.nip_load is not None and int(np.argmax(res.nip_load)) == 7
+    assert res.to_dict()["nip_load_N_per_m"][7] == pytest.approx(res.nip_load[7])
+
+
+def test_bad_inputs() -> None:
+    ten = TensionSchedule(web_stress=2e6)
+    with pytest.raises(InputError) as exc:
+        predict_profile(WEB, CORE, ten, outer_radius=0.12, instrument=42, workers=1)
+    assert exc.value.field == "tester.instrument"
+    with pytest.raises(InputError) as exc:
+        predict_profile(WEB, CORE, ten, outer_radius=0.12, instrument=standin_readout)
+    assert exc.value.field == "tester.contact"
+    with pytest.raises(InputError) as exc:
+        predict_profile(
+            WEB,
+            CORE,
+            ten,
+            outer_radius=0.12,
+            contact=standin_contact,
+            instrument=standin_readout,
+            workers=0,
+        )
+    assert exc.value.field == "profile.workers"
+    roller = NipRoller(EI=1e6, line_load=100.0)
+    with pytest.raises(InputError) as exc:
+        predict_profile(
+            WEB,
+            CORE,
+            TensionSchedule(web_stress=2e6, nip_load=5.0),
+            outer_radius=0.12,
+            contact=standin_contact,
+            instrument=standin_readout,
+            nip=NipSpec(roller),
+        )
+    assert exc.value.field == "winding.nip_load"
+    with pytest.raises(InputError) as exc:
+        predict_profile(
+            WEB,
+            CORE,
+            ten,
+            outer_radius=0.12,
+            contact=standin_contact,
+            instrument=lambda a, b: np.full(3, np.nan),
+            n_sectors=3,
+            n_groups=5,
+            workers=1,
+        )
+    assert exc.value.field == "tester.instrument"
+
+
+def test_nonnegative_spring_fit() -> None:
+    d = np.linspace(0, 1e-3, 25)
+    # exact quadratic data are recovered (round-off)
+    a, b = fit_spring_nonneg(d, 3e9 * d**2 + 2e4 * d)
+    assert a == pytest.approx(3e9, rel=1e-9) and b == pytest.approx(2e4, rel=1e-9)
+    # strongly stiffening data (F ~ d^3) would give beta < 0 unconstrained: here beta >= 0
+    a, b = fit_spring_nonneg(d, 1e13 * d**3)
+    assert a > 0 and b >= 0
+
+
+def test_real_contact_chain_uniform_roll() -> None:
+    # the default chain (woundroll.contact + Rho-meter energy model) on a uniform roll: every
+    # sector reads the same, and a plausible Rho (between 10 and 300)
+    pytest.importorskip("woundroll.contact")
+    res = predict_profile(
+        WEB,
+        CORE,
+        TensionSchedule(web_stress=2.3e6),
+        outer_radius=0.2032,
+        n_sectors=2,
+        n_groups=100,
+        workers=1,
+    )
+    assert res.rho[0] == pytest.approx(res.rho[1], rel=1e-9)
+    assert 10 < res.rho[0] < 300
+    assert np.all(res.beta >= 0)
+
+
+@pytest.mark.slow
+def test_table3_profile_in_time_and_following_thickness() -> None:
+    # the bundled Table 3 case: 61 sectors, ~1,340 layers, two workers, under 60 s; the
+    # reading correlates with the thickness (Figure 21: Rho follows the MD-average thickness)
+    import time
+
+    pytest.importorskip("woundroll.contact")
+    t0 = time.perf_counter()
+    res = predict_profile(
+        WEB,
+        CORE,
+        TensionSchedule(web_stress=2.3e6),
+        bundled_profile(),
+        outer_radius=0.2032,
+        workers=2,
+    )
+    assert time.perf_counter() - t0 < 60
+    assert res.winding.n_layers == 1337
+    assert np.corrcoef(res.rho, res.thickness)[0, 1] > 0.5
