@@ -46,7 +46,7 @@ def best_of(fn, repeat: int = 3) -> tuple[float, object]:
 def refined_options(factor: float) -> ContactOptions:
     d = ContactOptions()
     R_eff = 1 / (1 / HEAD["head_radius"] + 1 / R_OUT)
-    t_size = max(H, math.sqrt(2 * R_eff * HEAD["depth_max"]) / 40)
+    t_size = max(H / 4, math.sqrt(2 * R_eff * HEAD["depth_max"]) / 40)
     return ContactOptions(surface_size=H / factor, tangential_size=t_size / factor,
                           radial_growth=d.radial_growth ** (1 / factor),
                           tangential_growth=d.tangential_growth ** (1 / factor))
@@ -114,7 +114,7 @@ def main() -> None:
     print("\nstiffness assembly, default mesh:")
     R_eff = 1 / (1 / HEAD["head_radius"] + 1 / R_OUT)
     mesh = build_mesh(R_CORE, R_OUT, surface_size=H, radial_growth=1.25,
-                      tangential_size=max(H, math.sqrt(2 * R_eff * 1e-3) / 40),
+                      tangential_size=max(H / 4, math.sqrt(2 * R_eff * 1e-3) / 40),
                       fine_halfwidth=math.sqrt(2 * R_eff * 1e-3), tangential_growth=1.1)
     t_setup, roll = best_of(lambda: _Roll(WEB, CORE, RADIUS, SIGMA_R, mesh, ContactOptions()))
     E_r = WEB.E_r(roll.sigma_pre)

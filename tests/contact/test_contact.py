@@ -223,7 +223,7 @@ def test_mesh_refinement_changes_force_less_than_2_percent(pet_default: ContactR
     ratios (about 4x the elements): F(d) must move by less than 2 % (project bar)."""
     r, s = pet_profile()
     R_eff = 1 / (1 / HEAD["head_radius"] + 1 / R_OUT)
-    t_size = max(H, math.sqrt(2 * R_eff * 1e-3) / 40)
+    t_size = max(H / 4, math.sqrt(2 * R_eff * 1e-3) / 40)
     default = ContactOptions(n_steps=12)   # same steps on both meshes: only the mesh changes
     fine = ContactOptions(n_steps=12, surface_size=H / 2, tangential_size=t_size / 2,
                           radial_growth=default.radial_growth**0.5,

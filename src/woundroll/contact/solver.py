@@ -58,7 +58,7 @@ class ContactOptions:
         Ratio of neighbouring radial element sizes toward the core [-].
     tangential_size : float or None
         Arc length of the surface elements near the contact [m]; None -> the larger of
-        ``surface_size`` and ``a_geo / 40``, with ``a_geo = sqrt(2 R_eff depth_max)`` the
+        ``surface_size / 4`` and ``a_geo / 40``, with ``a_geo = sqrt(2 R_eff depth_max)`` the
         half-chord of the head's geometric intersection with the undeformed roll at
         ``depth_max`` (1/R_eff = 1/head_radius + 1/R_out).
     fine_halfwidth : float or None
@@ -446,7 +446,7 @@ def indent(web: Web, core: Core, radius: FloatArray, sigma_r: FloatArray, *,
     a_geo = math.sqrt(2.0 * R_eff * depth_max)
     surface_size = opts.surface_size if opts.surface_size is not None else web.thickness
     t_size = (opts.tangential_size if opts.tangential_size is not None
-              else max(surface_size, a_geo / 40.0))
+              else max(0.25 * surface_size, a_geo / 40.0))
     fine = opts.fine_halfwidth if opts.fine_halfwidth is not None else a_geo
     if surface_size >= 0.5 * (r_out - r_in):
         raise InputError("is too large for the wound thickness", "options.surface_size")
