@@ -150,3 +150,15 @@ def test_bad_roller() -> None:
     assert exc.value.field == "winding.nip.EI"
     with pytest.raises(InputError):
         NipRoller(EI=1.0, line_load=1.0, friction=3.0)
+
+
+def test_roller_from_induced_tension() -> None:
+    # Table 3 reading: mu N / h = 2.3 MPa with h = 76 um and mu = 0.3 -> N = 582.67 N/m
+    from woundroll.profile.nip import roller_from_induced_tension
+
+    r = roller_from_induced_tension(2.3e6, 76e-6, 0.3, EI=5e5)
+    assert r.line_load == pytest.approx(2.3e6 * 76e-6 / 0.3, rel=1e-15)
+    assert r.friction * r.line_load / 76e-6 == pytest.approx(2.3e6, rel=1e-14)
+    with pytest.raises(InputError) as exc:
+        roller_from_induced_tension(2.3e6, 76e-6, 0.0, EI=5e5)
+    assert exc.value.field == "winding.nip.friction"

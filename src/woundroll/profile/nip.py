@@ -99,6 +99,47 @@ class NipRoller:
         return cls(EI=E * I, line_load=line_load, radius=outer_radius, **kw)
 
 
+def roller_from_induced_tension(
+    induced_stress: float,
+    thickness: float,
+    friction: float,
+    *,
+    EI: float,
+    radius: float = 0.05,
+    overhang: float = 0.0,
+) -> NipRoller:
+    """A roller whose mean nip load gives the nip-induced tension ``mu N / h = induced_stress``.
+
+    The interpretation of Table 3's "P_nip 2.3 MPa" used for the bundled case (docs/profile.md):
+    a stress in the same units and row as T_w, i.e. the nip's share of the wound-on tension,
+    so ``N = induced_stress h / mu``.
+
+    Parameters
+    ----------
+    induced_stress : float [Pa]
+    thickness : float [m]
+        Web thickness h.
+    friction : float [-]
+        mu > 0.
+    EI : float [N m^2]
+    radius, overhang : float [m]
+    """
+    for name, v in (
+        ("induced_stress", induced_stress),
+        ("thickness", thickness),
+        ("friction", friction),
+    ):
+        if not (math.isfinite(v) and v > 0):
+            raise InputError(f"must be positive, got {v!r}", f"winding.nip.{name}")
+    return NipRoller(
+        EI=EI,
+        line_load=induced_stress * thickness / friction,
+        overhang=overhang,
+        radius=radius,
+        friction=friction,
+    )
+
+
 @dataclass(frozen=True)
 class NipSolution:
     """Nip-load distribution.

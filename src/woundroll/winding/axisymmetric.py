@@ -10,8 +10,10 @@ the new group exerts, with the radial modulus taken at the current pressure.
 Discretisation ("generalised plane stress per column + axial shear coupling")
 ----------------------------------------------------------------------------
 * Unknowns: the radial displacement ``u(k, j)`` of node ``k`` (group boundary; node 0 on the
-  core) of column ``j``. One linear 1-D axisymmetric element per group and column,
-  2-point Gauss in r, strains ``eps_r = du/dr``, ``eps_theta = u/r``.
+  core) of column ``j``. One ring element per group and column whose stiffness is the
+  exact solution for uniform moduli (``sigma_r = A r^(g-1) + B r^(-g-1)``,
+  ``g = sqrt(E_theta/E_r)``), so a constant-modulus roll has no radial discretisation
+  error; only the variation of E_r between groups is discretised.
 * In each column the web is in plane stress in z (``sigma_z = 0``): the film is free to
   contract across the web, so ``sigma_z`` is reported as zero. Constitutive law
   ``eps_r = sigma_r/E_r - nu_theta_r sigma_theta/E_theta``,
@@ -27,13 +29,24 @@ Discretisation ("generalised plane stress per column + axial shear coupling")
   edges are free (no shear beyond them).
 * Core: Hakiel's condition ``u(r_c) = r_c sigma_r(r_c) / E_c`` (a spring on node 0);
   a rigid core fixes node 0.
-* Radial modulus per element at the mid-increment pressure (midpoint rule): a predictor
-  with ``E_r`` at the old pressure plus half the applied increment, a corrector with
-  ``E_r`` at the old pressure plus half the predicted increment. With ``K1 = 0``
-  (Table 3) ``E_r = K2 P`` vanishes at zero pressure; the mid-increment pressure is
-  positive wherever load arrives, and ``E_r`` is floored at ``E_r_floor``
-  (default ``1e-6 E_theta``) so that an unloaded (slack) column stays solvable
+* Layer groups (midpoint rule): the ``m`` layers of a group are wound one after the other,
+  each pressing on the stack below it. The increment applies the whole group's load
+  ``sigma_j w L`` (per radian) to a stack that includes ``(m - 1) / 2`` layers of the group
+  itself (the average layer's situation); with ``m = 1`` the new layer is not in the stack,
+  which is Hakiel's scheme. The group's own stresses are the averages over its layers:
+  ``sigma_r = -p_j / 2`` (0 at its top, ``-p_j`` at its bottom) and the hoop stress
+  ``sigma_j`` plus ``(m - 1)/(2 m)`` of the hoop increment. This makes the grouped model
+  second-order in the group size (constant moduli) and converge to the layer-by-layer 1D
+  model (docs/profile.md).
+* Radial modulus per element at the mid-increment pressure (midpoint rule): the increment
+  of each element is predicted from the previous increment scaled by the ratio of the
+  loads (``corrections`` extra fixed-point solves optional). With ``K1 = 0`` (Table 3)
+  ``E_r = K2 P`` vanishes at zero pressure; the mid-increment pressure is positive
+  wherever load arrives, and ``E_r`` is floored at ``E_r_floor`` (default
+  ``1e-6 E_theta``, 5 kPa for Table 3) so that an unloaded (slack) column stays solvable
   with zero stress.
+* Linear solve per increment: sparse LU (nodes numbered layer by layer) with coupling, a
+  tridiagonal Cholesky per column without.
 
 Tension allocation (relaxation radius)
 --------------------------------------
@@ -46,9 +59,11 @@ at a radius ``R0``. At the deformed radius ``rho_j`` where the group lands on co
 piecewise linear in ``1/R0``) so that ``sum_j sigma_j h_j w_j = F``. A nip adds
 ``mu N_j / h_j`` with ``N_j`` the local nip load per width (uniform ``tension.nip_load``
 unless a ``nip`` callable gives the CMD distribution). The group's layers carry their
-wound-on tension as initial hoop stress and press on the stack below with
-``p_j = sigma_j m h_j / rho_j`` (``m`` layers in the group); the group's own radial stress
-starts at ``-p_j / 2`` (the mean of the linear rise across the group).
+wound-on tension as initial hoop stress; their pressure on the stack below is
+``p_j = sigma_j m h_j / rho_j`` (``m`` layers in the group).
+
+Outputs at the group centres; ``sigma_z = 0`` by the plane-stress assumption; ``tau_rz`` is
+the shear of the coupling springs, averaged from the two sides of each sector.
 """
 
 from __future__ import annotations
@@ -299,6 +314,9 @@ def wind_axisymmetric(
         group ``g``; default uniform ``tension.nip_load``.
     E_r_floor : float, optional [Pa]
         Lower bound of the radial modulus (default ``1e-6 E_theta``).
+    corrections : int
+        Extra fixed-point solves per increment for the mid-increment modulus (0: the
+        lagged predictor alone, which matches 1 or 10 corrections within 0.1 %).
     progress : callable, optional
         ``progress(done, total)`` after each group.
 
@@ -334,6 +352,8 @@ def wind_axisymmetric(
             "winding.n_groups",
         )
     G = int(n_groups)
+    if isinstance(corrections, bool) or not isinstance(corrections, int) or corrections < 0:
+        raise InputError(f"must be a whole number >= 0, got {corrections!r}", "winding.corrections")
     m = _split_layers(n_layers, G)
     E_t = web.E_theta
     nu = web.nu_theta_r
