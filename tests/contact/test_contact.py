@@ -73,6 +73,25 @@ def test_plane_strain_moduli_match_inverted_3d_compliance() -> None:
     assert G[0] == pytest.approx(2 * Er, rel=1e-12)  # Table 2 default G_rt = 2 E_r
 
 
+def test_banded_assembly_matches_sparse_assembly() -> None:
+    """The lower-triangle banded path and the full CSC path assemble the same K."""
+    mesh = build_mesh(R_CORE, R_OUT, surface_size=4e-4, radial_growth=1.3,
+                      tangential_size=1e-3, fine_halfwidth=3e-3, tangential_growth=1.3)
+    roll = _Roll(PET1, Core(outer_radius=R_CORE, stiffness=1e9), *pet_profile(), mesh,
+                 ContactOptions())
+    asm = roll.assembler
+    mod = roll.moduli(roll.sigma_pre)
+    K = asm.csc(asm.values(*mod)).toarray()
+    ab = asm.banded(asm.values_lower(*mod), lower_only=True)
+    n, bw = asm.n_free, asm.bandwidth
+    B = np.zeros((n, n))
+    for k in range(bw + 1):
+        B[np.arange(k, n), np.arange(n - k)] = ab[k, : n - k]
+    B = np.tril(B) + np.tril(B, -1).T
+    assert np.max(np.abs(K - B)) <= 1e-12 * np.max(np.abs(K))     # round-off only
+    assert np.max(np.abs(K - K.T)) <= 1e-12 * np.max(np.abs(K))   # symmetric stiffness
+
+
 def test_graded_sizes_fill_length_and_respect_growth() -> None:
     sizes = graded_sizes(0.0889, 1e-4, 1.25, "x")
     assert sizes.sum() == pytest.approx(0.0889, rel=1e-12)
@@ -109,7 +128,7 @@ def test_orthotropic_ring_under_external_pressure(ratio: float) -> None:
                       tangential_size=1e-3, fine_halfwidth=2e-3, tangential_growth=1.05)
     roll = _Roll(web, RIGID, np.array([R_CORE, R_OUT]), np.zeros(2), mesh, ContactOptions())
     C11, C12, C22, G = roll.moduli(roll.sigma_pre)
-    lu = _factorize(roll, roll.assembler.values(C11, C12, C22, G))
+    lu = _factorize(roll, (C11, C12, C22, G))
     # consistent nodal loads of the pressure on the polygonal outer boundary
     p = 1e4
     surf = roll.surface

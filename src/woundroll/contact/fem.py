@@ -222,23 +222,40 @@ class Assembler:
         self._lower = np.flatnonzero(lower)
         self._band_index = (rows[lower] - cols[lower]) * n + cols[lower]
         self._csc = None
+        # geometric matrices gathered per kept entry (all, and the lower triangle only)
+        n_el_entries = self._keep.size
+        self._elem = self._keep // 64
+        self._A = basis.A.reshape(4, -1)[:, self._keep]
+        low_el = self._lower[self._lower < n_el_entries]
+        self._elem_low = self._elem[low_el]
+        self._A_low = self._A[:, low_el]
+        self._diag_low = self._diag_vals        # spring entries are diagonal: all lower
 
     def values(self, C11: FloatArray, C12: FloatArray, C22: FloatArray,
                G: FloatArray) -> FloatArray:
         """All element (and spring) contributions, in the order of the scatter map."""
-        A = self.basis.A
-        ke = (C11[:, None, None] * A[0] + C12[:, None, None] * A[1]
-              + C22[:, None, None] * A[2] + G[:, None, None] * A[3])
-        return np.concatenate([ke.ravel()[self._keep], self._diag_vals])
+        e, A = self._elem, self._A
+        ke = C11[e] * A[0] + C12[e] * A[1] + C22[e] * A[2] + G[e] * A[3]
+        return np.concatenate([ke, self._diag_vals])
 
-    def banded(self, vals: FloatArray) -> FloatArray:
+    def values_lower(self, C11: FloatArray, C12: FloatArray, C22: FloatArray,
+                     G: FloatArray) -> FloatArray:
+        """The lower-triangle part of :meth:`values` (what :meth:`banded` needs), half the work."""
+        e, A = self._elem_low, self._A_low
+        ke = C11[e] * A[0] + C12[e] * A[1] + C22[e] * A[2] + G[e] * A[3]
+        return np.concatenate([ke, self._diag_low])
+
+    def banded(self, vals: FloatArray, *, lower_only: bool = False) -> FloatArray:
         """Lower banded storage ``ab[i - j, j] = K[i, j]``, i >= j (LAPACK ``dpbtrf``, 'L').
+
+        ``vals`` from :meth:`values`, or from :meth:`values_lower` with ``lower_only=True``.
 
         (The lower form: OpenBLAS's threaded upper-form factorisation was found 10-100x
         slower on a loaded 2-core machine.)
         """
         n, bw = self.n_free, self.bandwidth
-        ab = np.bincount(self._band_index, weights=vals[self._lower], minlength=(bw + 1) * n)
+        w = vals if lower_only else vals[self._lower]
+        ab = np.bincount(self._band_index, weights=w, minlength=(bw + 1) * n)
         return ab.reshape(bw + 1, n)
 
     def csc(self, vals: FloatArray) -> sp.csc_matrix:

@@ -279,16 +279,18 @@ class _Factor:
         return self._lu.solve(b)
 
 
-def _factorize(roll: _Roll, vals: FloatArray) -> _Factor:
+def _factorize(roll: _Roll, moduli: tuple[FloatArray, ...]) -> _Factor:
+    """Assemble K for per-element ``(C11, C12, C22, G)`` [Pa] and factorise it."""
     asm = roll.assembler
     if not roll.mesh.periodic:
+        ab = asm.banded(asm.values_lower(*moduli), lower_only=True)
         try:
-            cb = la.cholesky_banded(asm.banded(vals), lower=True, check_finite=False)
+            cb = la.cholesky_banded(ab, lower=True, check_finite=False)
         except la.LinAlgError:
             raise ConvergenceError("stiffness matrix is not positive definite") from None
         return _Factor(banded=cb)
     try:
-        lu = spla.splu(asm.csc(vals), permc_spec="MMD_AT_PLUS_A")
+        lu = spla.splu(asm.csc(asm.values(*moduli)), permc_spec="MMD_AT_PLUS_A")
     except RuntimeError as exc:
         raise ConvergenceError(f"stiffness matrix is singular ({exc})") from None
     return _Factor(lu=lu)
@@ -298,7 +300,7 @@ def _step(roll: _Roll, moduli: tuple[FloatArray, ...], u: FloatArray, f_contact:
           lam_old: FloatArray, centre: FloatArray, head_radius: float, tol_gap: float) -> _Step:
     """One depth increment at fixed moduli: sparse LU, candidate flexibility, exact LCP."""
     C11, C12, C22, G = moduli
-    lu = _factorize(roll, roll.assembler.values(C11, C12, C22, G))
+    lu = _factorize(roll, moduli)
     fi = roll.assembler.free_index
     surf = roll.surface
     pos = roll.xy[surf] + roll.cartesian(u, surf)
