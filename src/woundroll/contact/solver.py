@@ -296,11 +296,12 @@ def _factorize(roll: _Roll, moduli: tuple[FloatArray, ...]) -> _Factor:
     return _Factor(lu=lu)
 
 
-def _step(roll: _Roll, moduli: tuple[FloatArray, ...], u: FloatArray, f_contact: FloatArray,
-          lam_old: FloatArray, centre: FloatArray, head_radius: float, tol_gap: float) -> _Step:
-    """One depth increment at fixed moduli: sparse LU, candidate flexibility, exact LCP."""
+def _step(roll: _Roll, moduli: tuple[FloatArray, ...], lu: _Factor, u: FloatArray,
+          f_contact: FloatArray, lam_old: FloatArray, centre: FloatArray, head_radius: float,
+          tol_gap: float) -> _Step:
+    """One depth increment at fixed moduli (``lu`` their factorised stiffness): candidate
+    flexibility and exact LCP."""
     C11, C12, C22, G = moduli
-    lu = _factorize(roll, moduli)
     fi = roll.assembler.free_index
     surf = roll.surface
     pos = roll.xy[surf] + roll.cartesian(u, surf)
@@ -477,16 +478,20 @@ def indent(web: Web, core: Core, radius: FloatArray, sigma_r: FloatArray, *,
     frozen = roll.moduli(roll.sigma_pre) if not update_modulus else None
     tol_gap = 1e-3 * delta[1]
     step = None
+    lu_frozen = _factorize(roll, frozen) if frozen is not None else None
     for k in range(1, n + 1):
         centre = np.array([r_out + head_radius - delta[k], 0.0])
-        if frozen is not None:
-            mod = frozen
+        if frozen is not None and lu_frozen is not None:
+            mod, lu = frozen, lu_frozen            # one factorisation for all increments
         else:
             mod = roll.moduli(roll.sigma_pre + sig[:, 0])
             if opts.midpoint:
-                trial = _step(roll, mod, u, f_contact, lam, centre, head_radius, tol_gap)
+                # trial increment with the start-of-step modulus -> mid-step stress
+                trial = _step(roll, mod, _factorize(roll, mod), u, f_contact, lam, centre,
+                              head_radius, tol_gap)
                 mod = roll.moduli(roll.sigma_pre + sig[:, 0] + 0.5 * trial.dsig[:, 0])
-        step = _step(roll, mod, u, f_contact, lam, centre, head_radius, tol_gap)
+            lu = _factorize(roll, mod)
+        step = _step(roll, mod, lu, u, f_contact, lam, centre, head_radius, tol_gap)
         u += step.du
         sig += step.dsig
         lam = step.lam
