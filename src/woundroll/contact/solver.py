@@ -5,16 +5,17 @@ the roll spring F(x_r) = alpha x_r^2 + beta x_r, {3}, and the semi-contact width
 its effective-mass formula {14}-{18}. Ref. [9] is described only in outline; the model
 here is built from mechanics (docs/contact.md lists every choice):
 
-* the whole annulus between the core and the outer surface, plane strain in the CMD
+* the whole annulus between the core and the outer surface (meshed as the half
+  0 <= theta <= pi with symmetry conditions), plane strain in the CMD
   (:mod:`woundroll.contact.fem` for the reduced orthotropic compliance);
 * hypoelastic radial modulus: each depth increment uses the tangent E_r of the radial-modulus
   law at the element's current total radial stress (pre-impact stress from the winding model
-  plus the contact increments so far; explicit forward-Euler in the increments);
-  ``update_modulus=False`` freezes E_r at its pre-impact value (the paper's Figure 8
-  "no update" comparison);
+  plus the contact increments so far), taken at the mid-step stress of a trial increment
+  (or at the start of the step: forward Euler); ``update_modulus=False`` freezes E_r at its
+  pre-impact value (the paper's Figure 8 "no update" comparison);
 * frictionless contact with a rigid cylinder (head radius ``head_radius``, axis along the
   CMD), displacement controlled, by an exact linear complementarity solve per increment on
-  the surface nodes (flexibility matrix of the candidate nodes from one sparse LU);
+  the surface nodes (flexibility of the candidate nodes from the banded Cholesky factor);
 * core: rigid (u = 0) or a radial Winkler spring of stiffness E_c / r_c per unit area with
   zero tangential displacement (Hakiel's axisymmetric core condition applied pointwise).
 """
@@ -130,6 +131,8 @@ class ContactOptions:
 
 def _check_scalar(value: float | str, field: str, kind: str = "length") -> float:
     """A positive finite SI value; strings with units (``"10 mm"``) are converted."""
+    if isinstance(value, bool):
+        raise InputError(f"must be a number, got {value!r}", field)
     if isinstance(value, str):
         v = to_si(value, kind, field)
     else:
@@ -193,7 +196,10 @@ def _solve_lcp(W: FloatArray, q: FloatArray) -> FloatArray:
         raise ConvergenceError("contact flexibility matrix is not positive definite "
                                "(mesh too coarse or roll not supported)") from None
     b = -la.solve_triangular(L, q / scale, lower=True)
-    lam, _ = nnls(L.T, b, maxiter=50 * max(q.size, 10))
+    try:
+        lam, _ = nnls(L.T, b, maxiter=50 * max(q.size, 10))
+    except RuntimeError as exc:
+        raise ConvergenceError(f"contact active set did not settle ({exc})") from None
     return lam
 
 
