@@ -30,8 +30,16 @@ from woundroll.winding.axisymmetric import wind_axisymmetric
 from woundroll.winding.tension import TensionSchedule
 
 # Table 3 of the reference paper
-WEB = Web(thickness=76e-6, width=0.61, E_theta=4999e6, E_z=4999e6,
-          radial_modulus=Pfeiffer(0.0, 246.5), nu_theta_r=0.01, nu_z_r=0.01, nu_theta_z=0.3)
+WEB = Web(
+    thickness=76e-6,
+    width=0.61,
+    E_theta=4999e6,
+    E_z=4999e6,
+    radial_modulus=Pfeiffer(0.0, 246.5),
+    nu_theta_r=0.01,
+    nu_z_r=0.01,
+    nu_theta_z=0.3,
+)
 CORE = Core.tube(0.1016, 0.095, 69e9, 0.33)
 R_OUT = 0.2032
 
@@ -52,12 +60,15 @@ def main() -> None:
     print("1. axisymmetric winding alone, Table 3, 61 sectors, bundled synthetic profile")
     print(f"{'groups':>7} {'time [s]':>9} {'P_core thickest [kPa]':>22} {'P_core thinnest':>16}")
     for G in (100, 200, 400):
-        t, w = timed(lambda G=G: wind_axisymmetric(WEB, CORE, R_OUT,
-                                                   TensionSchedule(web_stress=2.3e6), prof,
-                                                   n_groups=G))
+        t, w = timed(
+            lambda G=G: wind_axisymmetric(
+                WEB, CORE, R_OUT, TensionSchedule(web_stress=2.3e6), prof, n_groups=G
+            )
+        )
         jt, jn = int(np.argmax(w.thickness)), int(np.argmin(w.thickness))
-        print(f"{G:7d} {t:9.2f} {-w.sigma_r_core[jt] / 1e3:22.1f} "
-              f"{-w.sigma_r_core[jn] / 1e3:16.1f}")
+        print(
+            f"{G:7d} {t:9.2f} {-w.sigma_r_core[jt] / 1e3:22.1f} {-w.sigma_r_core[jn] / 1e3:16.1f}"
+        )
 
     print("\n2. uniform thickness vs the 1D Hakiel model (layer by layer)")
     try:
@@ -69,15 +80,21 @@ def main() -> None:
             ten = TensionSchedule(web_stress=T)
             t1, ref = timed(lambda ten=ten: wind(WEB, CORE, R_OUT, ten))
             for G in (100, 200, 400):
-                t2, a = timed(lambda ten=ten, G=G: wind_axisymmetric(
-                    WEB, CORE, R_OUT, ten, n_sectors=1, n_groups=G))
+                t2, a = timed(
+                    lambda ten=ten, G=G: wind_axisymmetric(
+                        WEB, CORE, R_OUT, ten, n_sectors=1, n_groups=G
+                    )
+                )
                 r = a.radius[:, 0]
                 inner = r < R_OUT - 0.005
-                dev = np.max(np.abs(a.sigma_r[inner, 0]
-                                    - np.interp(r[inner], ref.radius, ref.sigma_r)))
-                print(f"   T_w {T / 1e6:4.2f} MPa, {G:3d} groups: max |d sigma_r| = "
-                      f"{100 * dev / ref.core_pressure:5.2f} % of P_core "
-                      f"({ref.core_pressure / 1e3:.1f} kPa); 1D {t1:.2f} s, axisym {t2:.2f} s")
+                dev = np.max(
+                    np.abs(a.sigma_r[inner, 0] - np.interp(r[inner], ref.radius, ref.sigma_r))
+                )
+                print(
+                    f"   T_w {T / 1e6:4.2f} MPa, {G:3d} groups: max |d sigma_r| = "
+                    f"{100 * dev / ref.core_pressure:5.2f} % of P_core "
+                    f"({ref.core_pressure / 1e3:.1f} kPa); 1D {t1:.2f} s, axisym {t2:.2f} s"
+                )
 
     print("\n3. whole Rho profile (winding + 61 contact solutions + energy model)")
     cases = [("2.3 MPa", 2.3e6, 2, None), ("3.45 MPa", 3.45e6, 2, None)]
@@ -88,15 +105,25 @@ def main() -> None:
         roller = NipRoller.tube(200e9, 0.05, 0.04, line_load=2.3e6 * 76e-6 / 0.3, friction=0.3)
         cases.append(("2.3 MPa + nip", 2.3e6, 2, NipSpec(roller)))
     for name, T, workers, nip in cases:
-        t, res = timed(lambda T=T, workers=workers, nip=nip: predict_profile(
-            WEB, CORE, TensionSchedule(web_stress=T), prof, outer_radius=R_OUT,
-            workers=workers, nip=nip))
+        t, res = timed(
+            lambda T=T, workers=workers, nip=nip: predict_profile(
+                WEB,
+                CORE,
+                TensionSchedule(web_stress=T),
+                prof,
+                outer_radius=R_OUT,
+                workers=workers,
+                nip=nip,
+            )
+        )
         st = res.rho_stats
         parts = ", ".join(f"{k} {v:.1f}" for k, v in res.timings.items())
         print(f"   {name:20s} total {t:6.1f} s ({parts})")
-        print(f"   {'':20s} Rho mean {st.mean:6.1f}, SD {st.sd:6.1f}, CoV {100 * st.cov:5.1f} %"
-              f" ({st.band}), min {st.min:6.1f}, max {st.max:6.1f}; corr(Rho, h) "
-              f"{np.corrcoef(res.rho, res.thickness)[0, 1]:.2f}")
+        print(
+            f"   {'':20s} Rho mean {st.mean:6.1f}, SD {st.sd:6.1f}, CoV {100 * st.cov:5.1f} %"
+            f" ({st.band}), min {st.min:6.1f}, max {st.max:6.1f}; corr(Rho, h) "
+            f"{np.corrcoef(res.rho, res.thickness)[0, 1]:.2f}"
+        )
         if args.plots is not None:
             args.plots.mkdir(parents=True, exist_ok=True)
             tag = name.replace(" ", "_").replace(",", "").replace("+", "nip")
