@@ -258,6 +258,21 @@ def test_mesh_refinement_changes_force_less_than_2_percent(pet_default: ContactR
     assert refined.semi_contact_width == pytest.approx(base.semi_contact_width, rel=0.10)
 
 
+def test_fine_zone_width_converged() -> None:
+    """Doubling the arc of the uniformly fine surface zone (default a_geo, about 6 contact
+    half-widths here) changes F(d) by < 1 %: the contact is inside it with margin."""
+    r, s = pet_profile()
+    R_eff = 1 / (1 / HEAD["head_radius"] + 1 / R_OUT)
+    a_geo = math.sqrt(2 * R_eff * 1e-3)
+    base = indent(PET1, RIGID, r, s, depth_max=1e-3, **HEAD, options=ContactOptions(n_steps=12))
+    wide = indent(PET1, RIGID, r, s, depth_max=1e-3, **HEAD,
+                  options=ContactOptions(n_steps=12, fine_halfwidth=2 * a_geo))
+    assert wide.n_elements > base.n_elements
+    d = np.linspace(0.2e-3, 1e-3, 9)
+    change = np.interp(d, wide.delta, wide.force) / np.interp(d, base.delta, base.force) - 1
+    assert np.max(np.abs(change)) < 0.01
+
+
 def test_load_step_refinement(pet_default: ContactResult) -> None:
     """Doubling the depth increments changes F by less than 1 % (midpoint modulus update,
     error falling by ~3x per doubling in a study from 6 to 96 steps)."""
