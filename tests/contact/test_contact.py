@@ -363,7 +363,7 @@ def test_result_dict_and_plots(pet_default: ContactResult, tmp_path) -> None:
     for key in ("delta_m", "force_N", "half_width_m", "alpha_N_per_m2", "beta_N_per_m",
                 "fit_r2", "semi_contact_width_m", "slip_region_depth_m"):
         assert key in d
-    json.dumps(d)
+    json.dumps(d, allow_nan=False)                      # strict JSON: no inf / NaN
     assert d["semi_contact_width_m"] == pet_default.half_width[-1]
     assert d["force_N"][-1] == pytest.approx(
         pet_default.force_per_length[-1] * HEAD["head_length"], rel=1e-12)

@@ -156,8 +156,14 @@ class ContactResult:
         return float(depth.max()), float(s[m].max())
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary, SI with the unit in each key."""
+        """JSON-ready summary, SI with the unit in each key.
+
+        Slip-factor entries cover the elements within 3 a of the contact axis; the maximum is
+        over finite values, and elements sheared without any pressure (SF = inf) are counted.
+        """
         depth, width = self.slip_extent()
+        near = self.outer_radius * np.abs(self.element_theta) <= 3.0 * self.semi_contact_width
+        sf_near = self.slip_factor[near]
         return {
             "delta_m": self.delta.tolist(),
             "force_N": self.force.tolist(),
@@ -173,9 +179,9 @@ class ContactResult:
             "friction": self.friction,
             "slip_region_depth_m": depth,
             "slip_region_halfwidth_m": width,
-            "max_slip_factor_near_contact": float(
-                np.max(self.slip_factor[self.outer_radius * np.abs(self.element_theta)
-                                        <= 3.0 * self.semi_contact_width], initial=0.0)),
+            "max_slip_factor_near_contact": float(np.max(sf_near[np.isfinite(sf_near)],
+                                                         initial=0.0)),
+            "unbounded_slip_elements_near_contact": int(np.sum(np.isinf(sf_near))),
             "head_radius_m": self.head_radius,
             "head_length_m": self.head_length,
             "outer_radius_m": self.outer_radius,
