@@ -296,3 +296,26 @@ def test_group_convergence_helper() -> None:
     assert out["n_groups_fine"] == 200
     assert 0 < out["core_stress_change"] < 0.01
     assert 0 <= out["wot_change"] < 0.01
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "fld"),
+    [
+        ({"web": "PET"}, "web"),
+        ({"core": 0.1}, "core"),
+        ({"tension": 2e6}, "winding.tension"),
+        ({"outer_radius": "20 cm"}, "roll.outer_radius"),
+        ({"thickness": [1, 2]}, "winding.thickness_profile"),
+        ({"outer_radius": float("nan")}, "roll.outer_radius"),
+    ],
+)
+def test_wrong_types_are_input_errors(kwargs: dict, fld: str) -> None:
+    args = {
+        "web": table3_web(),
+        "core": CORE,
+        "outer_radius": 0.12,
+        "tension": TensionSchedule(web_stress=1e6),
+    } | kwargs
+    with pytest.raises(InputError) as exc:
+        wind_axisymmetric(**args)
+    assert exc.value.field == fld

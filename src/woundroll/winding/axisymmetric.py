@@ -325,8 +325,21 @@ def wind_axisymmetric(
     InputError
         Inconsistent geometry or counts. ConvergenceError: a singular or non-finite solve.
     """
+    if not isinstance(web, Web):
+        raise InputError("must be a woundroll.materials.Web", "web")
+    if not isinstance(core, Core):
+        raise InputError("must be a woundroll.materials.Core", "core")
+    if not isinstance(tension, TensionSchedule):
+        raise InputError("must be a woundroll.winding.tension.TensionSchedule", "winding.tension")
+    if isinstance(outer_radius, bool) or not isinstance(outer_radius, int | float | np.floating):
+        raise InputError(f"must be a length in metres, got {outer_radius!r}", "roll.outer_radius")
     if thickness is None:
         thickness = ThicknessProfile.uniform(web.thickness, web.width)
+    elif not isinstance(thickness, ThicknessProfile):
+        raise InputError(
+            "must be a ThicknessProfile (see woundroll.profile.thickness)",
+            "winding.thickness_profile",
+        )
     if not (isinstance(n_sectors, int | np.integer) and n_sectors >= 1):
         raise InputError(f"must be a whole number >= 1, got {n_sectors!r}", "profile.n_sectors")
     if not (math.isfinite(outer_radius) and outer_radius > core.outer_radius):
