@@ -176,6 +176,20 @@ def test_bad_inputs() -> None:
     assert exc.value.field == "tester.instrument"
 
 
+def test_nip_must_be_a_nipspec() -> None:
+    with pytest.raises(InputError) as exc:
+        predict_profile(
+            WEB,
+            CORE,
+            TensionSchedule(web_stress=2e6),
+            outer_radius=0.12,
+            contact=standin_contact,
+            instrument=standin_readout,
+            nip=1000.0,
+        )
+    assert exc.value.field == "winding.nip"
+
+
 def test_nonnegative_spring_fit() -> None:
     d = np.linspace(0, 1e-3, 25)
     # exact quadratic data are recovered (round-off)

@@ -442,6 +442,8 @@ def predict_profile(
         return lambda d, n: progress(stage, d, n)
 
     hook = None
+    if nip is not None and not isinstance(nip, NipSpec):
+        raise InputError("must be a NipSpec (roller, foundation) or None", "winding.nip")
     if nip is not None:
         if tension.nip_load > 0:
             raise InputError(
