@@ -209,6 +209,38 @@ class WindingSpec(_Section):
         )
 
 
+class ContactSpec(_Section):
+    """``[contact]``: the 2D contact model that gives the roll spring under the striker.
+
+    ``depth_max``: largest indentation [length]; by default it follows the impact (the
+    contact is solved to 1.25 x the impact's maximum depth, see
+    :func:`woundroll.pipeline.roll_stiffness`). ``friction``: interlayer mu of the slip
+    factor {23}. ``no_update``: also solve with E_r frozen at its pre-impact value (the
+    paper's Figure 8 comparison). ``options``: :class:`woundroll.contact.ContactOptions`.
+    """
+
+    depth_max: Q("length") | None = None
+    friction: Q("dimensionless", "nonnegative") = 0.3
+    no_update: bool = True
+    options: dict[str, Any] = Field(default_factory=dict)
+
+    def contact_options(self) -> Any:
+        """The :class:`~woundroll.contact.ContactOptions` of this section (validated)."""
+        from woundroll.contact import ContactOptions
+
+        known = set(ContactOptions.__dataclass_fields__)
+        unknown = sorted(set(self.options) - known)
+        if unknown:
+            raise InputError(
+                f"unknown option(s) {', '.join(unknown)}; known: {', '.join(sorted(known))}",
+                f"contact.options.{unknown[0]}",
+            )
+        try:
+            return ContactOptions(**self.options)
+        except InputError as exc:
+            raise exc.at("contact") from None
+
+
 class Case(_Section):
     """A whole case: ``title``, ``[web]``, ``[core]``, ``[winding]``, optional ``[tester]``,
     ``[contact]``, ``[profile]`` (their tables are passed to the models that own them)."""
@@ -218,12 +250,17 @@ class Case(_Section):
     core: CoreSpec
     winding: WindingSpec
     tester: dict[str, Any] | None = None
-    contact: dict[str, Any] = Field(default_factory=dict)
+    contact: ContactSpec = ContactSpec()
     profile: dict[str, Any] = Field(default_factory=dict)
     base_dir: Path | None = Field(default=None, exclude=True)
 
-    def web_(self) -> Web:
-        return self.web.build()
+    def tester_setup(self) -> Any:
+        """The :class:`~woundroll.instruments.TesterSetup` of ``[tester]``, or None."""
+        if self.tester is None:
+            return None
+        from woundroll.instruments import tester_from_spec
+
+        return tester_from_spec(self.tester, "tester")
 
 
 class _BaseDir:
@@ -264,11 +301,22 @@ def case_from_dict(data: dict[str, Any], base_dir: Path | None = None) -> Case:
         core = case.core.build()
         case.winding.final_radius(web, core)
         case.winding.schedule(web)
+        _check_options(case)
     except ValidationError as exc:
         raise _error_from_validation(exc) from None
     finally:
         _BASE_DIR.value = None
     return case
+
+
+def _check_options(case: Case) -> None:
+    """Validate the tables owned by the models now, before any long computation."""
+    from woundroll.winding.hakiel import WindingOptions
+
+    WindingOptions.from_dict(case.winding.options, "winding.options")
+    case.tester_setup()
+    if case.tester is not None:
+        case.contact.contact_options()
 
 
 def bundled_cases() -> dict[str, str]:

@@ -111,9 +111,9 @@ def result_summary(result) -> list[tuple[str, str]]:  # type: ignore[no-untyped-
     w = result.winding
     if w is not None:
         rows += [
-            ("layers", f"{len(w.radius) - 1}"),
+            ("layers", f"{w.n_layers}"),
             ("outer radius", f"{w.radius[-1] * 100:.3f} cm"),
-            ("core pressure", f"{-w.sigma_r[0] / 1e3:.1f} kPa"),
+            ("core pressure", f"{w.core_pressure / 1e3:.1f} kPa"),
             ("max pressure", f"{-w.sigma_r.min() / 1e3:.1f} kPa"),
         ]
     h = result.hardness
@@ -128,6 +128,17 @@ def result_summary(result) -> list[tuple[str, str]]:  # type: ignore[no-untyped-
             if key in d and d[key] is not None:
                 v = d[key] * (1e3 if key == "delta_max_m" else 1)
                 rows.append((label, fmt.format(v)))
+    c = result.contact
+    if c is not None:
+        rows += [
+            ("roll spring alpha (N/m^2)", f"{c.alpha:.4g}"),
+            ("roll spring beta (N/m)", f"{c.beta:.4g}"),
+            ("semi-contact width at max depth (mm)", f"{c.half_width[-1] * 1e3:.3f}"),
+        ]
+    nu = result.no_update
+    if nu is not None:
+        d = nu.to_dict()
+        rows += [("Rho, no E_r update (FD / energy)", f"{d['rho_fd']:.1f} / {d['rho_energy']:.1f}")]
     return rows
 
 
