@@ -14,7 +14,16 @@ Example::
     [tester.roll_spring]              # optional: bypasses the contact model
     alpha = "3.7e8 N/m^2"
     beta = "5.4e5 N/m"
-    effective_mass = "0 kg"
+    effective_mass = "0 kg"           # optional; omitted: the tapered-column mass {14}-{18}
+
+Active roll mass
+    ``[tester.roll_spring] effective_mass`` replaces the tapered-column mass (0 means a massless
+    roll). Without it -- and always with the contact model -- the active mass is the tapered
+    column's ``m_r = kappa rho (2a + H) H L`` {14}-{18}: pile height H and density rho from
+    ``[tester] pile_height`` / ``density`` if given, else from the caller (the pipeline passes
+    H = outer minus core radius and the web's density), a = ``semi_contact_width``
+    (default 0.6 cm), L the head length. :meth:`TesterSetup.effective_mass` and
+    :func:`hardness_from_spring` implement that rule.
 
 The pipeline passes the JSON of :meth:`HardnessResult.to_dict` under the key ``hardness``.
 """
@@ -83,6 +92,9 @@ class TesterSetup:
         Energetic coefficient of restitution of the roll (1 = elastic, the paper).
     roll_spring : RollSpring or None
         Explicit roll spring from ``[tester.roll_spring]`` (bypasses the contact model).
+    roll_mass_from_column : bool
+        True when ``[tester.roll_spring]`` omits ``effective_mass``: the active mass is then
+        the tapered column's {14}-{18}, not ``roll_spring.effective_mass`` (which is 0).
     field : str
         Dotted name of the table (for messages).
     """
@@ -96,27 +108,46 @@ class TesterSetup:
     density: float | None = None
     restitution: float = 1.0
     roll_spring: RollSpring | None = None
+    roll_mass_from_column: bool = False
     field: str = field(default="tester", compare=False)
 
     def effective_mass(
         self, pile_height: float | None = None, density: float | None = None
     ) -> float:
-        """Active roll mass ``kappa rho (2a + H) H L_head`` [kg] {17}, {18}.
+        """Active roll mass [kg]: the explicit one, else ``kappa rho (2a + H) H L`` {14}-{18}.
 
-        Uses the explicit ``[tester.roll_spring] effective_mass`` if given; otherwise needs a
-        pile height and a density (arguments override the setup's); the CMD length is the
+        Parameters
+        ----------
+        pile_height : float, optional [m]
+            H of {17} when ``[tester] pile_height`` is not given (the pipeline passes the outer
+            minus the core radius).
+        density : float, optional [kg/m^3]
+            Roll density when ``[tester] density`` is not given (the pipeline passes the web's).
+
+        The explicit ``[tester.roll_spring] effective_mass`` (0 allowed) is returned as is.
+        Otherwise the tapered column {14}-{18} with a = ``semi_contact_width``; the setup's own
+        ``pile_height`` / ``density`` take precedence over the arguments; the CMD length is the
         head length, or ``2 a`` for a head without one (spherical tip).
+
+        Raises
+        ------
+        InputError
+            No pile height or no density for the tapered column (field ``<table>.pile_height``
+            or ``<table>.density``).
         """
-        if self.roll_spring is not None:
+        if self.roll_spring is not None and not self.roll_mass_from_column:
             return self.roll_spring.effective_mass
-        H = pile_height if pile_height is not None else self.pile_height
-        rho = density if density is not None else self.density
-        if H is None or rho is None:
-            raise InputError(
-                "the roll's active mass needs pile_height and density "
-                "(or give [tester.roll_spring] effective_mass)",
-                f"{self.field}.pile_height",
-            )
+        H = self.pile_height if self.pile_height is not None else pile_height
+        rho = self.density if self.density is not None else density
+        hint = (
+            " (or give [tester.roll_spring] effective_mass)" if self.roll_spring is not None else ""
+        )
+        for value, name in ((H, "pile_height"), (rho, "density")):
+            if value is None:
+                raise InputError(
+                    f"the roll's active mass (tapered column {{14}}-{{18}}) needs {name}{hint}",
+                    f"{self.field}.{name}",
+                )
         L = self.instrument.head_length or 2.0 * self.semi_contact_width
         return roll_effective_mass(self.semi_contact_width, H, rho, L)
 
@@ -185,13 +216,21 @@ def tester_from_spec(spec: dict[str, Any], field: str = "tester") -> TesterSetup
                 | {"instrument", "collision", "steps_per_contact", "roll_spring"}
             )
             raise InputError(f"unknown key (known: {', '.join(known)})", fld)
+    from_column = False
     if roll_spring is not None:
+        from_column = isinstance(roll_spring, dict) and "effective_mass" not in roll_spring
         roll_spring = _roll_spring(
             roll_spring, f"{field}.roll_spring", opts.get("restitution", 1.0)
         )
     if overrides:
         inst = inst.with_overrides(field_prefix=field, **overrides)
-    return TesterSetup(instrument=inst, roll_spring=roll_spring, field=field, **opts)
+    return TesterSetup(
+        instrument=inst,
+        roll_spring=roll_spring,
+        roll_mass_from_column=from_column,
+        field=field,
+        **opts,
+    )
 
 
 tester_from_spec.__test__ = False  # type: ignore[attr-defined]  # not a pytest test
@@ -199,7 +238,7 @@ tester_from_spec.__test__ = False  # type: ignore[attr-defined]  # not a pytest 
 
 def _roll_spring(value: Any, fld: str, restitution: float) -> RollSpring:
     if not isinstance(value, dict):
-        raise InputError("must be a table with alpha, beta and effective_mass", fld)
+        raise InputError("must be a table with alpha, beta and (optional) effective_mass", fld)
     for key in value:
         if key not in _ROLL_SPRING_KINDS:
             raise InputError(
@@ -330,6 +369,9 @@ def hardness_from_spring(
     alpha: float | None = None,
     beta: float | None = None,
     effective_mass: float | None = None,
+    *,
+    pile_height: float | None = None,
+    density: float | None = None,
 ) -> HardnessResult:
     """Run the FD model {4}-{13} and the energy model {19}-{22} for one roll spring.
 
@@ -339,7 +381,18 @@ def hardness_from_spring(
     alpha, beta : float, optional [N/m^2], [N/m]
         Roll spring {3}; default: the setup's ``[tester.roll_spring]``.
     effective_mass : float, optional [kg]
-        Active roll mass; default: the explicit roll spring's, else 0.
+        Active roll mass m_r (0 allowed). Default: ``setup.effective_mass(pile_height,
+        density)``, i.e. the explicit ``[tester.roll_spring] effective_mass`` if the case gives
+        one, else the tapered-column mass {14}-{18}.
+    pile_height, density : float, optional [m], [kg/m^3]
+        H and rho for the tapered column when ``[tester]`` does not give them (the pipeline
+        passes outer minus core radius and the web's density). Unused when the mass is known.
+
+    Raises
+    ------
+    InputError
+        No roll spring; or the tapered column is needed but has no pile height or density
+        (field ``tester.pile_height`` / ``tester.density``).
     """
     if alpha is None or beta is None:
         if setup.roll_spring is None:
@@ -347,14 +400,16 @@ def hardness_from_spring(
                 "no roll spring: give alpha and beta or [tester.roll_spring]",
                 f"{setup.field}.roll_spring",
             )
-        spring = setup.roll_spring
-        if effective_mass is not None:
-            spring = RollSpring(spring.law, effective_mass, spring.restitution)
+        law = setup.roll_spring.law
+        restitution = setup.roll_spring.restitution
     else:
-        m = 0.0 if effective_mass is None else effective_mass
-        spring = RollSpring.quadratic(alpha, beta, m, setup.restitution)
-    if not math.isfinite(spring.effective_mass):
+        law = RollSpring.quadratic(alpha, beta, 0.0, setup.restitution).law
+        restitution = setup.restitution
+    if effective_mass is None:
+        effective_mass = setup.effective_mass(pile_height, density)
+    if not math.isfinite(effective_mass):
         raise InputError("must be finite", f"{setup.field}.roll_spring.effective_mass")
+    spring = RollSpring(law, effective_mass, restitution)
     fd = impact_fd(
         setup.instrument,
         spring,
