@@ -10,8 +10,17 @@ equilibrium, positive towards the roll. The striker is released at rest at ``x =
 equilibrium on the Rho-meter: Table 1's "impact position -0.24 cm", sign as in NOTES.md).
 
 Mass: a preset may give the striker ``mass`` directly or ``natural_frequency`` instead, then
-``mass = spring_stiffness / natural_frequency^2`` {1}. An override of ``spring_stiffness``
-keeps the mass; an override of ``natural_frequency`` (without ``mass``) recomputes it.
+``mass = spring_stiffness / natural_frequency^2`` {1}. Mass, stiffness and natural frequency
+are kept consistent with {1}:
+
+* an instrument that carries all three must satisfy ``k/m = omega^2`` to 1e-3 (relative),
+  else :class:`~woundroll.errors.InputError` on ``natural_frequency`` (a preset file that
+  gives all three is checked the same way);
+* :meth:`Instrument.with_overrides`: ``natural_frequency`` alone (or with ``spring_stiffness``)
+  recomputes the mass, ``m = k/omega^2``; ``spring_stiffness`` and/or ``mass`` without
+  ``natural_frequency`` keep the mass (the striker did not change) and recompute the natural
+  frequency, ``omega = sqrt(k/m)``; giving ``mass`` and ``natural_frequency`` together is
+  checked against the (new or kept) stiffness.
 """
 
 from __future__ import annotations
@@ -41,6 +50,8 @@ QUANTITY_FIELDS: dict[str, str] = {
     "rho_per_g": "dimensionless",
 }  # "g" (an acceleration) is converted separately in _convert
 _TEXT_FIELDS = ("name", "title", "readout", "head_shape", "notes")
+#: Relative tolerance of ``k/m = omega^2`` {1} for an instrument that gives all three.
+EQ1_RTOL = 1e-3
 _HEAD_SHAPES = ("cylinder", "sphere")
 
 
@@ -112,6 +123,15 @@ class Instrument:
             _check(self.head_length, f"{p}.head_length", positive=True)
         if self.natural_frequency is not None:
             _check(self.natural_frequency, f"{p}.natural_frequency", positive=True)
+            w2 = self.spring_stiffness / self.mass
+            if abs(w2 / self.natural_frequency**2 - 1.0) > EQ1_RTOL:
+                raise InputError(
+                    f"mass {self.mass:.6g} kg, spring stiffness {self.spring_stiffness:.6g} N/m "
+                    f"and natural frequency {self.natural_frequency:.6g} rad/s disagree: "
+                    f"{{1}} needs k/m = omega^2, but sqrt(k/m) = {math.sqrt(w2):.6g} rad/s "
+                    f"(tolerance {EQ1_RTOL:g}); give two of the three",
+                    f"{p}.natural_frequency",
+                )
         if not -self.release_position < self.contact_position < self.release_position:
             raise InputError(
                 f"contact position x_gap = {self.contact_position:g} m must lie strictly between "
@@ -136,7 +156,13 @@ class Instrument:
     # -- derived quantities -------------------------------------------------------------
     @property
     def impact_speed(self) -> float:
-        """Striker speed at first contact [m/s]: ``sqrt(k/m (x_in^2 - x_gap^2))``."""
+        """Striker speed at first contact [m/s]: ``sqrt(k/m (x_in^2 - x_gap^2))``.
+
+        Free harmonic motion from rest at ``-x_in`` {10}, {11} to ``x_gap``: the spring energy
+        released, the left side of {19} minus the spring term at contact, is all kinetic.
+        Rho-meter preset (m = 0.12528 kg from {1}): 1.1409 m/s; NOTES.md's 1.142 m/s uses
+        Table 1's rounded 125 g.
+        """
         return math.sqrt(
             self.spring_stiffness
             / self.mass
@@ -145,7 +171,11 @@ class Instrument:
 
     @property
     def impact_energy(self) -> float:
-        """Kinetic energy at first contact [J]: ``k (x_in^2 - x_gap^2) / 2``."""
+        """Kinetic energy at first contact [J]: ``k (x_in^2 - x_gap^2) / 2`` {10}, {11}, {19}.
+
+        The striker spring's energy at release ``k x_in^2/2`` ({19}, left side) minus its energy
+        at contact; independent of the mass (Rho-meter: 0.0815 J, NOTES.md).
+        """
         return 0.5 * self.spring_stiffness * (self.release_position**2 - self.contact_position**2)
 
     @property
@@ -183,12 +213,20 @@ class Instrument:
                     f"unknown instrument field (known: {', '.join(sorted(known))})", fld
                 )
             new[key] = _convert(key, value, fld)
-        if "natural_frequency" in new and "mass" not in new:
+        # keep mass, stiffness and natural frequency consistent with {1} (module docstring)
+        omega_given = new.get("natural_frequency") is not None
+        if omega_given and "mass" not in new:
             new["mass"] = (
                 new.get("spring_stiffness", self.spring_stiffness) / new["natural_frequency"] ** 2
             )
-        elif "mass" in new and "natural_frequency" not in new:
-            new["natural_frequency"] = None
+        elif not omega_given and ("mass" in new or "spring_stiffness" in new):
+            k = new.get("spring_stiffness", self.spring_stiffness)
+            m = new.get("mass", self.mass)
+            ok = all(isinstance(v, float | int) and math.isfinite(v) and v > 0 for v in (k, m))
+            if "natural_frequency" in new or self.natural_frequency is None or not ok:
+                new["natural_frequency"] = None  # explicitly cleared, absent, or bad input
+            else:
+                new["natural_frequency"] = math.sqrt(k / m)
         try:
             return replace(self, **new)
         except InputError as exc:

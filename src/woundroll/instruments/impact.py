@@ -8,7 +8,8 @@ Finite-difference model (:func:`impact_fd`)
     * Free flight {4}, {8}: the central-difference recurrence {8} converges to the harmonic
       solution ``x = -x_in cos(omega t)``; woundroll uses that exact solution up to contact,
       so the contact starts exactly at ``t_c = arccos(-x_gap/x_in)/omega`` with speed
-      ``v_c = omega sqrt(x_in^2 - x_gap^2)`` (Rho-meter: 1.142 m/s). The printed eqs. {12}
+      ``v_c = omega sqrt(x_in^2 - x_gap^2)`` (Rho-meter preset, m_s = 0.12528 kg from {1}:
+      1.1409 m/s; NOTES.md's 1.142 m/s uses the rounded 125 g of Table 1). The printed eqs. {12}
       and {13} carry two sign slips that cancel (``a^0`` should be ``+k_s x_in/m_s``, and the
       Taylor start ``x^{-1} = x^0 - dt v^0 + dt^2 a^0/2``); the start used here is the latter.
     * Contact {7}, {9}: ``(m_s + m_r) x'' + k_s x = -F(x - x_gap)``, central differences.

@@ -56,7 +56,10 @@ def rho_from_deceleration(
 def deceleration_from_rho(
     rho: ArrayLike, rho_per_g: float = RHO_PER_G, g: float = G_STANDARD
 ) -> NDArray[np.float64]:
-    """Peak deceleration [m/s^2] for a Rho reading (inverse of :func:`rho_from_deceleration`)."""
+    """Peak deceleration [m/s^2] for a Rho reading: ``Rho x 3.76 g`` {22}.
+
+    The inverse of :func:`rho_from_deceleration`.
+    """
     return np.asarray(rho, dtype=float) * (rho_per_g * g)
 
 
