@@ -161,6 +161,65 @@ def _tension(value: Any) -> tuple[str, float]:
     )
 
 
+class NipRollerSpec(_Section):
+    """``[winding.nip_roller]``: the nip roller as a beam on the roll (thickness-profile runs).
+
+    Give either ``EI`` (bending stiffness) or a tube: ``E``, ``outer_radius`` and
+    ``inner_radius`` (0 for a solid roller). ``outer_radius`` is also the roller radius of
+    its contact with the roll (default 5 cm with ``EI``). ``overhang``: distance of each
+    bearing beyond the web edge. The load per width and mu are ``winding.nip_load`` and
+    ``winding.friction``.
+    """
+
+    EI: Q("bending_stiffness") | None = None
+    E: Q("pressure") | None = None
+    outer_radius: Q("length") | None = None
+    inner_radius: Q("length", "nonnegative") | None = None
+    overhang: Q("length", "nonnegative") = 0.0
+
+    @model_validator(mode="after")
+    def _one_way(self) -> NipRollerSpec:
+        tube = self.E is not None or self.inner_radius is not None
+        if (self.EI is not None) == tube:
+            raise InputError(
+                "give either EI, or a tube: E, outer_radius and inner_radius",
+                "winding.nip_roller",
+            )
+        if tube:
+            for name in ("E", "outer_radius", "inner_radius"):
+                if getattr(self, name) is None:
+                    raise InputError(
+                        "missing (a tube roller needs E, outer_radius, inner_radius)",
+                        f"winding.nip_roller.{name}",
+                    )
+        return self
+
+    def build(self, line_load: float, friction: float) -> Any:
+        """The :class:`~woundroll.profile.nip.NipRoller` with the winder's load and mu."""
+        from woundroll.profile.nip import NipRoller
+
+        try:
+            if self.EI is not None:
+                return NipRoller(
+                    EI=self.EI,
+                    line_load=line_load,
+                    overhang=self.overhang,
+                    radius=self.outer_radius or 0.05,
+                    friction=friction,
+                )
+            return NipRoller.tube(
+                self.E,
+                self.outer_radius,
+                self.inner_radius,
+                line_load,
+                overhang=self.overhang,
+                friction=friction,
+            )
+        except InputError as exc:
+            name = (exc.field or "").rsplit(".", 1)[-1]
+            raise InputError(exc.message, f"winding.nip_roller.{name}") from None
+
+
 class WindingSpec(_Section):
     """``[winding]``: final size, web tension (+ taper), nip load and friction, numerics."""
 
@@ -171,6 +230,7 @@ class WindingSpec(_Section):
     nip_load: Q("force_per_length", "nonnegative") = 0.0
     friction: Q("dimensionless", "nonnegative") = 0.0
     thickness_profile: str | None = None
+    nip_roller: NipRollerSpec | None = None
     options: dict[str, Any] = Field(default_factory=dict)
 
     @model_validator(mode="after")
@@ -241,6 +301,23 @@ class ContactSpec(_Section):
             raise exc.at("contact") from None
 
 
+class ProfileSpec(_Section):
+    """``[profile]``: the CMD hardness profile (runs with ``winding.thickness_profile``).
+
+    ``sectors``: CMD sectors (default 61, the paper's count); ``groups``: winding increments
+    of the axisymmetric model (default: the model's); ``workers``: parallel contact
+    solutions (default 2); ``foundation_stride``: nip foundation evaluated at every k-th
+    sector; ``depth_max``: depth of each sector's contact solution (default 1 mm, deepened
+    where the striker goes further).
+    """
+
+    sectors: int = Field(default=61, ge=1, le=2000)
+    groups: int | None = Field(default=None, ge=1)
+    workers: int = Field(default=2, ge=1, le=64)
+    foundation_stride: int = Field(default=4, ge=1)
+    depth_max: Q("length") = 1e-3
+
+
 class Case(_Section):
     """A whole case: ``title``, ``[web]``, ``[core]``, ``[winding]``, optional ``[tester]``,
     ``[contact]``, ``[profile]`` (their tables are passed to the models that own them)."""
@@ -251,8 +328,20 @@ class Case(_Section):
     winding: WindingSpec
     tester: dict[str, Any] | None = None
     contact: ContactSpec = ContactSpec()
-    profile: dict[str, Any] = Field(default_factory=dict)
+    profile: ProfileSpec = ProfileSpec()
     base_dir: Path | None = Field(default=None, exclude=True)
+
+    def thickness_profile(self) -> Any:
+        """The CMD :class:`~woundroll.profile.ThicknessProfile` of
+        ``winding.thickness_profile`` (path relative to the case file), or None."""
+        if self.winding.thickness_profile is None:
+            return None
+        from woundroll.profile.thickness import load_thickness
+
+        path = Path(self.winding.thickness_profile).expanduser()
+        if not path.is_absolute() and self.base_dir is not None:
+            path = self.base_dir / path
+        return load_thickness(path, width=self.web.width)
 
     def tester_setup(self) -> Any:
         """The :class:`~woundroll.instruments.TesterSetup` of ``[tester]``, or None."""
@@ -317,6 +406,15 @@ def _check_options(case: Case) -> None:
     case.tester_setup()
     if case.tester is not None:
         case.contact.contact_options()
+    case.thickness_profile()
+    if case.winding.nip_roller is not None:
+        if case.winding.thickness_profile is None:
+            raise InputError(
+                "a nip roller beam needs a thickness profile (winding.thickness_profile); "
+                "without one the nip acts through winding.nip_load and winding.friction",
+                "winding.nip_roller",
+            )
+        case.winding.nip_roller.build(case.winding.nip_load, case.winding.friction)
 
 
 def bundled_cases() -> dict[str, str]:

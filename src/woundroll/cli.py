@@ -10,13 +10,17 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
 
 from woundroll.errors import ConvergenceError, InputError
+
+if TYPE_CHECKING:
+    from woundroll.pipeline import RunResult
 
 app = typer.Typer(
     add_completion=False,
@@ -28,7 +32,7 @@ out = Console()
 
 
 def _fail(exc: Exception, status: int) -> None:
-    err.print(f"[bold red]error:[/] {exc}", highlight=False, soft_wrap=True)
+    err.print(f"[bold red]error:[/] {escape(str(exc))}", highlight=False, soft_wrap=True)
     raise typer.Exit(status)
 
 
@@ -101,11 +105,13 @@ def _summary(result) -> None:  # type: ignore[no-untyped-def]
     t.add_column("quantity")
     t.add_column("value", justify="right")
     for name, value in result_summary(result):
-        t.add_row(name, value)
+        t.add_row(escape(name), escape(value))
     out.print(t)
+    for note in result.notes:
+        out.print(f"note: {escape(note)}", highlight=False)
 
 
-def result_summary(result) -> list[tuple[str, str]]:  # type: ignore[no-untyped-def]
+def result_summary(result: RunResult) -> list[tuple[str, str]]:
     """Headline numbers of a run, as (label, formatted value) rows."""
     rows: list[tuple[str, str]] = []
     w = result.winding
@@ -119,26 +125,39 @@ def result_summary(result) -> list[tuple[str, str]]:  # type: ignore[no-untyped-
     h = result.hardness
     if h is not None:
         d = h.to_dict()
-        for key, label, fmt in (
-            ("rho_fd", "Rho (finite difference)", "{:.1f}"),
-            ("rho_energy", "Rho (energy)", "{:.1f}"),
-            ("impulse_Ns", "impulse [N s]", "{:.4f}"),
-            ("delta_max_m", "max depth [mm]", "{:.3f}"),
-        ):
-            if key in d and d[key] is not None:
-                v = d[key] * (1e3 if key == "delta_max_m" else 1)
-                rows.append((label, fmt.format(v)))
+        rows += [
+            (f"{d['readout']} reading ({d['instrument']})", f"{d['reading']:.1f}"),
+            ("Rho (finite difference / energy)", f"{d['rho_fd']:.1f} / {d['rho_energy']:.1f}"),
+            ("impulse", f"{d['impulse_Ns']:.4f} N s"),
+            ("max depth", f"{d['delta_max_m'] * 1e3:.3f} mm"),
+            ("contact time", f"{d['contact_time_s'] * 1e3:.2f} ms"),
+        ]
     c = result.contact
     if c is not None:
         rows += [
-            ("roll spring alpha (N/m^2)", f"{c.alpha:.4g}"),
-            ("roll spring beta (N/m)", f"{c.beta:.4g}"),
-            ("semi-contact width at max depth (mm)", f"{c.half_width[-1] * 1e3:.3f}"),
+            ("roll spring alpha", f"{c.alpha:.4g} N/m^2"),
+            ("roll spring beta", f"{c.beta:.4g} N/m"),
+            ("semi-contact width at max depth", f"{c.semi_contact_width * 1e3:.3f} mm"),
         ]
     nu = result.no_update
     if nu is not None:
         d = nu.to_dict()
-        rows += [("Rho, no E_r update (FD / energy)", f"{d['rho_fd']:.1f} / {d['rho_energy']:.1f}")]
+        rows.append(
+            ("Rho, no E_r update (FD / energy)", f"{d['rho_fd']:.1f} / {d['rho_energy']:.1f}")
+        )
+    p = result.profile
+    if p is not None:
+        st, th = p.rho_stats, p.thickness_stats
+        rows += [
+            ("CMD sectors", f"{st.n}"),
+            ("thickness mean / CoV", f"{th.mean * 1e6:.2f} um / {100 * th.cov:.2f} %"),
+            ("Rho mean / SD", f"{st.mean:.1f} / {st.sd:.1f}"),
+            ("Rho CoV", f"{100 * st.cov:.1f} % ({st.band})"),
+            (
+                "Rho min / max / peak-to-peak",
+                f"{st.min:.1f} / {st.max:.1f} / {st.peak_to_peak:.1f}",
+            ),
+        ]
     return rows
 
 

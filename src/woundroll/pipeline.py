@@ -2,32 +2,148 @@
 striker motion -> instrument reading (and, with a thickness profile, across the CMD).
 
 Each step lives in its own package; this module only chains them and collects the
-typed results into :class:`RunResult`.
+typed results into :class:`RunResult`:
+
+1. winder settings -> stresses in the roll: :func:`woundroll.winding.hakiel.wind` (1D), or
+   with ``winding.thickness_profile`` :func:`woundroll.profile.predict_profile` (axisymmetric
+   winding, per-sector contact and reading across the CMD);
+2. roll stiffness under the striker: :func:`roll_stiffness` (the 2D contact model
+   :func:`woundroll.contact.indent`, and the spring {3} fitted over the depths the striker
+   reaches, :func:`woundroll.instruments.roll_side.fit_roll_spring`);
+3. striker motion and reading: :func:`woundroll.instruments.hardness_from_spring` (FD
+   {4}-{13} and energy {19}-{22} models).
 """
 
 from __future__ import annotations
 
 import json
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from woundroll.case import Case, ContactSpec, load_case
+from woundroll.errors import ConvergenceError, InputError
 
+if TYPE_CHECKING:
+    from woundroll.contact import ContactResult
+    from woundroll.instruments import HardnessResult, Instrument, TesterSetup
+    from woundroll.instruments.roll_side import SpringFit
+    from woundroll.materials.web import Core, Web
+    from woundroll.profile.hardness import ProfileResult
+    from woundroll.winding.result import WindingResult
+
+#: ``progress(stage, fraction)``; stages "winding", "contact", "impact", "foundation".
 Progress = Callable[[str, float], None]
+
+#: Depth of the first contact solution [m]; deepened when the striker goes further.
+FIRST_DEPTH = 1e-3
+
+
+@dataclass(frozen=True, eq=False)
+class RollStiffness:
+    """Roll stiffness under the striker: the contact solution and the spring {3} used.
+
+    Attributes
+    ----------
+    contact : ContactResult
+        The 2D contact model's F(d), a(d) and fields (at its largest depth).
+    spring : SpringFit
+        ``alpha``, ``beta`` fitted over the depths the striker reaches, with the impact's
+        maximum depth by the energy model {21}.
+    """
+
+    contact: ContactResult
+    spring: SpringFit
+
+    @property
+    def alpha(self) -> float:
+        return self.spring.alpha
+
+    @property
+    def beta(self) -> float:
+        return self.spring.beta
+
+    @property
+    def impact_depth(self) -> float:
+        """Maximum depth of the impact by the energy model {21} [m]."""
+        return float(self.spring.max_depth)  # type: ignore[arg-type]
+
+    @property
+    def semi_contact_width(self) -> float:
+        """Semi-contact width a at the impact's maximum depth [m] (interpolated in a(d))."""
+        return float(np.interp(self.impact_depth, self.contact.delta, self.contact.half_width))
+
+    def to_dict(self) -> dict[str, Any]:
+        """The contact model's JSON (arrays over depth), with the spring actually used.
+
+        ``alpha_N_per_m2`` / ``beta_N_per_m`` are the fit over the striker's reach;
+        ``full_range_fit`` is the unconstrained fit over the whole computed curve.
+        """
+        out = self.contact.to_dict()
+        out["full_range_fit"] = {
+            "alpha_N_per_m2": out.pop("alpha_N_per_m2"),
+            "beta_N_per_m": out.pop("beta_N_per_m"),
+            "fit_r2": out.pop("fit_r2"),
+            "fit_max_rel_residual": out.pop("fit_max_rel_residual"),
+        }
+        out.update(self.spring.to_dict())
+        out["semi_contact_width_m"] = self.semi_contact_width
+        out["depth_max_m"] = float(self.contact.delta[-1])
+        return out
+
+    def plot(self, path: str | Path | None = None) -> Any:
+        """F(d) with the fit, and a(d) (:meth:`ContactResult.plot`)."""
+        return self.contact.plot(path)
+
+
+@dataclass(frozen=True)
+class NoUpdate:
+    """The paper's "no update" comparison (Figure 8): E_r frozen at its pre-impact value."""
+
+    stiffness: RollStiffness
+    hardness: HardnessResult
+
+    def to_dict(self) -> dict[str, Any]:
+        h = self.hardness.to_dict()
+        return {
+            "alpha_N_per_m2": self.stiffness.alpha,
+            "beta_N_per_m": self.stiffness.beta,
+            "rho_fd": h["rho_fd"],
+            "rho_energy": h["rho_energy"],
+            "impulse_Ns": h["impulse_Ns"],
+            "delta_max_m": h["delta_max_m"],
+        }
 
 
 @dataclass(frozen=True)
 class RunResult:
-    """Everything one run produced; parts that did not run are None."""
+    """Everything one run produced; parts that did not run are None.
+
+    Attributes
+    ----------
+    case : Case
+    winding : WindingResult or None
+        1D Hakiel model (with a thickness profile: at the nominal thickness, for reference).
+    contact : RollStiffness or None
+        Contact model and the roll spring under the striker.
+    hardness : HardnessResult or None
+        The reading (FD and energy models).
+    no_update : NoUpdate or None
+        The same with E_r frozen at its pre-impact value.
+    profile : ProfileResult or None
+        CMD profile (runs with ``winding.thickness_profile``).
+    notes : tuple of str
+    """
 
     case: Case
-    winding: Any = None
-    contact: Any = None
-    hardness: Any = None
-    profile: Any = None
-    no_update: Any = None
+    winding: WindingResult | None = None
+    contact: RollStiffness | None = None
+    hardness: HardnessResult | None = None
+    no_update: NoUpdate | None = None
+    profile: ProfileResult | None = None
     notes: tuple[str, ...] = field(default_factory=tuple)
 
     def to_dict(self) -> dict[str, Any]:
@@ -45,11 +161,20 @@ class RunResult:
         return json.dumps(self.to_dict(), default=_json_default, **kw)
 
     def write(self, out_dir: str | Path) -> list[Path]:
-        """Write ``result.json`` and a PNG for every profile into ``out_dir``; return the paths."""
+        """Write ``result.json`` and a PNG for every profile into ``out_dir``; return the paths.
+
+        Raises
+        ------
+        InputError
+            ``out_dir`` cannot be created or written (field ``--out``).
+        """
         out = Path(out_dir)
-        out.mkdir(parents=True, exist_ok=True)
-        written = [out / "result.json"]
-        written[0].write_text(self.to_json(indent=1), encoding="utf-8")
+        try:
+            out.mkdir(parents=True, exist_ok=True)
+            written = [out / "result.json"]
+            written[0].write_text(self.to_json(indent=1), encoding="utf-8")
+        except OSError as exc:
+            raise InputError(f"cannot write to {out}: {exc.strerror or exc}", "--out") from None
         import matplotlib
 
         matplotlib.use("Agg", force=False)
@@ -67,8 +192,6 @@ class RunResult:
 
 
 def _json_default(obj: Any) -> Any:
-    import numpy as np
-
     if isinstance(obj, np.ndarray):
         return obj.tolist()
     if isinstance(obj, np.generic):
@@ -78,72 +201,102 @@ def _json_default(obj: Any) -> Any:
     raise TypeError(f"not JSON serialisable: {type(obj).__name__}")
 
 
+def _check_head(instrument: Instrument) -> float:
+    """The head length of a cylindrical head [m]; other heads are not in the 2D model."""
+    if instrument.head_shape != "cylinder":
+        raise InputError(
+            f"the {instrument.name} has a {instrument.head_shape} head, but the 2D "
+            "(plane-strain) contact model takes a cylindrical head with its axis along the "
+            "CMD: give [tester.roll_spring] for this instrument",
+            "tester.instrument",
+        )
+    # a cylinder without a length: the paper's plane-strain model per unit length would
+    # need one; 2 R is the assumption (docs/contact.md)
+    return instrument.head_length or 2.0 * instrument.head_radius
+
+
 def roll_stiffness(
-    web: Any,
-    core: Any,
-    winding: Any,
-    instrument: Any,
+    web: Web,
+    core: Core,
+    radius: np.ndarray,
+    sigma_r: np.ndarray,
+    instrument: Instrument,
     spec: ContactSpec,
     *,
     update_modulus: bool = True,
-) -> Any:
+) -> RollStiffness:
     """The 2D contact solve that gives the roll spring {3} under the instrument's head.
 
-    The depth range of the fit matters (F(d) is not exactly quadratic), so by default it
-    follows the impact: the contact is solved to ``depth_max``, the energy model {21} gives
-    the impact's maximum depth ``d`` with the fitted spring, and the solve is repeated to
-    ``1.25 d`` until ``d <= depth_max <= 1.6 d`` (at most four solves; the first guess is
-    1 mm). A ``[contact] depth_max`` fixes the range instead. (Assumption: the paper does
-    not say over which range its quadratic was fitted.)
+    The contact is solved to ``[contact] depth_max`` (default 1 mm) and the spring fitted
+    over the depths the striker reaches (:func:`~woundroll.instruments.roll_side.fit_roll_spring`).
+    Without an explicit ``depth_max``, a striker that goes deeper than the computed curve
+    (extrapolation) makes the contact be solved again to 1.25 times its depth (at most
+    three times); with one, that is an error.
+
+    Parameters
+    ----------
+    radius, sigma_r : array [m], [Pa]
+        The roll's pre-impact radial stress profile (core to surface).
     """
     from woundroll.contact import indent
-    from woundroll.instruments import energy_max_depth
+    from woundroll.instruments.roll_side import fit_roll_spring
 
-    def solve(depth: float) -> Any:
-        return indent(
-            web, core, winding.radius, winding.sigma_r,
-            head_radius=instrument.head_radius,
-            head_length=instrument.head_length or 2 * instrument.head_radius,
-            depth_max=depth, friction=spec.friction, update_modulus=update_modulus,
-            options=spec.contact_options(),
-        )
-
-    if spec.depth_max is not None:
-        return solve(spec.depth_max)
-    depth = 1e-3
+    head_length = _check_head(instrument)
+    options = spec.contact_options()
+    depth = spec.depth_max if spec.depth_max is not None else FIRST_DEPTH
     for _ in range(4):
-        contact = solve(depth)
-        d = float(energy_max_depth(contact.alpha, contact.beta, instrument.spring_stiffness,
-                                   instrument.release_position, instrument.contact_position))
-        if d <= depth <= 1.6 * d:
-            break
-        depth = 1.25 * d
-    return contact
+        contact = indent(
+            web,
+            core,
+            radius,
+            sigma_r,
+            head_radius=instrument.head_radius,
+            head_length=head_length,
+            depth_max=depth,
+            friction=spec.friction,
+            update_modulus=update_modulus,
+            options=options,
+        )
+        spring = fit_roll_spring(contact.delta, contact.force, instrument)
+        if not spring.extrapolated:
+            return RollStiffness(contact, spring)
+        if spec.depth_max is not None:
+            raise InputError(
+                f"the striker reaches {spring.max_depth * 1e3:.3g} mm, deeper than the "
+                f"contact solution ({depth * 1e3:.3g} mm): raise it or leave it unset",
+                "contact.depth_max",
+            )
+        depth = 1.25 * float(spring.max_depth)  # type: ignore[arg-type]
+    raise ConvergenceError(
+        f"the striker's depth kept growing past the contact solution ({depth * 1e3:.3g} mm) "
+        "after 4 solutions"
+    )
 
 
-def hardness_on_roll(setup: Any, contact: Any, winding: Any, web: Any, tester_spec: dict) -> Any:
+def hardness_on_roll(
+    setup: TesterSetup,
+    stiffness: RollStiffness,
+    pile_height: float,
+    density: float,
+    *,
+    semi_contact_width_given: bool = False,
+) -> HardnessResult:
     """Impact models {4}-{22} with the contact model's spring and the roll's active mass.
 
-    Active mass {14}-{18}: pile height H = outer minus core radius (or
-    ``tester.pile_height``), density of the web (or ``tester.density``), semi-contact width
-    a = the contact model's half-width at the energy model's maximum depth (the paper takes
-    a from its contact algorithm), unless ``tester.semi_contact_width`` is given.
+    Active mass {14}-{18}: pile height H (``tester.pile_height`` or the wound thickness),
+    density (``tester.density`` or the web's), and the semi-contact width a of the contact
+    model at the impact's maximum depth (the paper takes a from its contact algorithm),
+    unless ``tester.semi_contact_width`` is given.
     """
-    from dataclasses import replace
+    from woundroll.instruments import hardness_from_spring
 
-    import numpy as np
-
-    from woundroll.instruments import energy_max_depth, hardness_from_spring
-
-    ins = setup.instrument
-    if "semi_contact_width" not in tester_spec:
-        d = float(energy_max_depth(contact.alpha, contact.beta, ins.spring_stiffness,
-                                   ins.release_position, ins.contact_position))
-        a = float(np.interp(d, contact.delta, contact.half_width))
-        setup = replace(setup, semi_contact_width=max(a, web.thickness))
-    H = setup.pile_height if setup.pile_height is not None else winding.radius[-1] - winding.radius[0]
-    m_r = setup.effective_mass(pile_height=H, density=setup.density or web.density)
-    return hardness_from_spring(setup, contact.alpha, contact.beta, m_r)
+    if not semi_contact_width_given:
+        setup = replace(setup, semi_contact_width=stiffness.semi_contact_width)
+    m_r = setup.effective_mass(
+        pile_height=setup.pile_height if setup.pile_height is not None else pile_height,
+        density=setup.density if setup.density is not None else density,
+    )
+    return hardness_from_spring(setup, stiffness.alpha, stiffness.beta, m_r)
 
 
 def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResult:
@@ -152,13 +305,14 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     winder settings -> stresses in the roll (:mod:`woundroll.winding`) -> with ``[tester]``:
     roll stiffness under the striker (:mod:`woundroll.contact`, unless an explicit
     ``[tester.roll_spring]`` is given) -> striker motion and reading
-    (:mod:`woundroll.instruments`).
+    (:mod:`woundroll.instruments`). With ``winding.thickness_profile``: the CMD profile
+    (:mod:`woundroll.profile`) instead of a single reading.
 
     Parameters
     ----------
     case : Case, or a path / bundled case name
-    progress : callable(stage, fraction), optional
-        Called as the long steps advance (the CLI draws a progress bar from it).
+    progress : callable, optional
+        ``progress(stage, fraction)``.
     """
     if not isinstance(case, Case):
         case = load_case(case)
@@ -173,9 +327,12 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     r_out = case.winding.final_radius(web, core)
     schedule = case.winding.schedule(web)
     options = WindingOptions.from_dict(case.winding.options, "winding.options")
-    winding = wind(web, core, r_out, schedule, options=options,
-                   progress=lambda f: report("winding", f))
+    winding = wind(
+        web, core, r_out, schedule, options=options, progress=lambda f: report("winding", f)
+    )
     setup = case.tester_setup()
+    if case.winding.thickness_profile is not None:
+        return _run_profile(case, web, core, r_out, schedule, winding, setup, report)
     if setup is None:
         return RunResult(case=case, winding=winding)
 
@@ -185,33 +342,104 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         report("impact", 0.0)
         hardness = hardness_from_spring(setup)
         report("impact", 1.0)
-        return RunResult(case=case, winding=winding, hardness=hardness,
-                         notes=("roll spring given explicitly: contact model bypassed",))
+        return RunResult(
+            case=case,
+            winding=winding,
+            hardness=hardness,
+            notes=("roll spring given explicitly: contact model bypassed",),
+        )
 
+    H = r_out - core.outer_radius
+    a_given = "semi_contact_width" in (case.tester or {})
     report("contact", 0.0)
-    contact = roll_stiffness(web, core, winding, setup.instrument, case.contact)
-    report("contact", 0.5 if case.contact.no_update else 1.0)
-    hardness = hardness_on_roll(setup, contact, winding, web, case.tester or {})
+    stiff = roll_stiffness(
+        web, core, winding.radius, winding.sigma_r, setup.instrument, case.contact
+    )
+    hardness = hardness_on_roll(setup, stiff, H, web.density, semi_contact_width_given=a_given)
     no_update = None
     if case.contact.no_update:
-        frozen = roll_stiffness(web, core, winding, setup.instrument, case.contact,
-                                update_modulus=False)
-        no_update = NoUpdate(frozen, hardness_on_roll(setup, frozen, winding, web,
-                                                      case.tester or {}))
-        report("contact", 1.0)
-    return RunResult(case=case, winding=winding, contact=contact, hardness=hardness,
-                     no_update=no_update)
+        report("contact", 0.5)
+        frozen = roll_stiffness(
+            web,
+            core,
+            winding.radius,
+            winding.sigma_r,
+            setup.instrument,
+            case.contact,
+            update_modulus=False,
+        )
+        no_update = NoUpdate(
+            frozen,
+            hardness_on_roll(setup, frozen, H, web.density, semi_contact_width_given=a_given),
+        )
+    report("contact", 1.0)
+    return RunResult(
+        case=case, winding=winding, contact=stiff, hardness=hardness, no_update=no_update
+    )
 
 
-@dataclass(frozen=True)
-class NoUpdate:
-    """The paper's "no update" comparison (Figure 8): E_r frozen at its pre-impact value."""
+def _run_profile(
+    case: Case,
+    web: Web,
+    core: Core,
+    r_out: float,
+    schedule: Any,
+    winding: WindingResult,
+    setup: TesterSetup | None,
+    report: Callable[[str, float], None],
+) -> RunResult:
+    """The CMD hardness profile: axisymmetric winding -> per-sector contact -> reading."""
+    from woundroll.instruments import get_instrument
+    from woundroll.profile.hardness import ContactModel, NipSpec, predict_profile
 
-    contact: Any
-    hardness: Any
+    if setup is not None and setup.roll_spring is not None:
+        raise InputError(
+            "a CMD profile computes each sector's roll spring with the contact model; "
+            "remove [tester.roll_spring] or winding.thickness_profile",
+            "tester.roll_spring",
+        )
+    instrument = setup.instrument if setup is not None else get_instrument("rho-meter")
+    spec = case.profile
+    notes = [
+        "winding: the 1D model at the nominal web thickness, for reference; "
+        "profile: the axisymmetric model with the thickness profile",
+    ]
+    nip = None
+    if case.winding.nip_roller is not None:
+        roller = case.winding.nip_roller.build(case.winding.nip_load, case.winding.friction)
+        nip = NipSpec(roller, foundation_stride=spec.foundation_stride)
+        schedule = replace(schedule, nip_load=0.0)
+    elif case.winding.nip_load > 0:
+        notes.append(
+            "nip: uniform nip-induced tension mu N / h across the CMD "
+            "(give [winding.nip_roller] for the beam-on-foundation distribution)"
+        )
+    contact = ContactModel(
+        web,
+        core,
+        instrument.head_radius,
+        _check_head(instrument),
+        spec.depth_max,
+        instrument=instrument,
+        options=case.contact.contact_options(),
+    )
 
-    def to_dict(self) -> dict[str, Any]:
-        h = self.hardness.to_dict()
-        return {"alpha_N_per_m2": self.contact.alpha, "beta_N_per_m": self.contact.beta,
-                "rho_fd": h["rho_fd"], "rho_energy": h["rho_energy"],
-                "impulse_Ns": h["impulse_Ns"], "delta_max_m": h["delta_max_m"]}
+    def progress(stage: str, done: int, total: int) -> None:
+        report(stage, done / max(total, 1))
+
+    profile = predict_profile(
+        web,
+        core,
+        schedule,
+        case.thickness_profile(),
+        outer_radius=r_out,
+        contact=contact,
+        instrument=instrument,
+        n_sectors=spec.sectors,
+        n_groups=spec.groups,
+        nip=nip,
+        depth_max=spec.depth_max,
+        workers=spec.workers,
+        progress=progress,
+    )
+    return RunResult(case=case, winding=winding, profile=profile, notes=tuple(notes))

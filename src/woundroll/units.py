@@ -51,6 +51,7 @@ DIMENSIONS: dict[str, str] = {
     "velocity": "[length] / [time]",
     "energy": "[energy]",
     "frequency": "1 / [time]",
+    "bending_stiffness": "[force] * [length] ** 2",
     "dimensionless": "",
 }
 
@@ -67,6 +68,7 @@ _EXAMPLES = {
     "velocity": "'1.1 m/s'",
     "energy": "'0.08 J'",
     "frequency": "'149.5 rad/s', '24 Hz'",
+    "bending_stiffness": "'5.8e5 N m^2'",
     "dimensionless": "'0.3'",
 }
 

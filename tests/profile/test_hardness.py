@@ -10,7 +10,7 @@ import pytest
 from woundroll.errors import InputError
 from woundroll.materials.radial_modulus import Pfeiffer
 from woundroll.materials.web import Core, Web
-from woundroll.profile.hardness import NipSpec, fit_spring_nonneg, predict_profile
+from woundroll.profile.hardness import NipSpec, predict_profile
 from woundroll.profile.nip import NipRoller
 from woundroll.profile.thickness import ThicknessProfile, bundled_profile
 from woundroll.winding.tension import TensionSchedule
@@ -188,16 +188,6 @@ def test_nip_must_be_a_nipspec() -> None:
             nip=1000.0,
         )
     assert exc.value.field == "winding.nip"
-
-
-def test_nonnegative_spring_fit() -> None:
-    d = np.linspace(0, 1e-3, 25)
-    # exact quadratic data are recovered (round-off)
-    a, b = fit_spring_nonneg(d, 3e9 * d**2 + 2e4 * d)
-    assert a == pytest.approx(3e9, rel=1e-9) and b == pytest.approx(2e4, rel=1e-9)
-    # strongly stiffening data (F ~ d^3) would give beta < 0 unconstrained: here beta >= 0
-    a, b = fit_spring_nonneg(d, 1e13 * d**3)
-    assert a > 0 and b >= 0
 
 
 def test_real_contact_chain_uniform_roll() -> None:

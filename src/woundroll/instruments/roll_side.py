@@ -57,7 +57,9 @@ __all__ = [
     "QuadraticLaw",
     "RollSpring",
     "TabulatedLaw",
+    "SpringFit",
     "as_roll_spring",
+    "fit_roll_spring",
     "roll_effective_mass",
     "tapered_column_factor",
 ]
@@ -342,3 +344,134 @@ def roll_effective_mass(a: float, H: float, density: float, length: float) -> fl
     _nonneg(length, "tester.head_length", strict=True)
     kappa = float(tapered_column_factor(a, H))
     return kappa * density * (2.0 * a + H) * H * length
+
+
+@dataclass(frozen=True)
+class SpringFit:
+    """The roll spring {3} fitted to a computed force-depth curve (:func:`fit_roll_spring`).
+
+    Attributes
+    ----------
+    alpha : float [N/m^2]
+    beta : float [N/m]
+    r2 : float [-]
+        Coefficient of determination over the points used.
+    max_rel_residual : float [-]
+        Largest |F_fit - F| over the points used, divided by the largest |F| among them.
+    fit_depth : float [m]
+        Deepest point used in the fit.
+    max_depth : float or None [m]
+        The energy model's maximum depth {21} with this spring (None without an instrument).
+    n_points : int
+        Points used.
+    extrapolated : bool
+        ``max_depth`` lies beyond the deepest computed point: the curve must be computed deeper.
+    """
+
+    alpha: float
+    beta: float
+    r2: float
+    max_rel_residual: float
+    fit_depth: float
+    max_depth: float | None
+    n_points: int
+    extrapolated: bool
+
+    def to_dict(self) -> dict[str, float | int | bool | None]:
+        return {
+            "alpha_N_per_m2": self.alpha,
+            "beta_N_per_m": self.beta,
+            "fit_r2": self.r2,
+            "fit_max_rel_residual": self.max_rel_residual,
+            "fit_depth_m": self.fit_depth,
+            "fit_points": self.n_points,
+            "impact_depth_m": self.max_depth,
+        }
+
+
+def _nnls_quadratic(d: NDArray[np.float64], f: NDArray[np.float64]) -> tuple[float, float]:
+    from scipy.optimize import nnls
+
+    dm = max(float(d.max()), 1e-300)
+    coef, _ = nnls(np.stack([(d / dm) ** 2, d / dm], axis=1), f)
+    return float(coef[0] / dm**2), float(coef[1] / dm)
+
+
+def fit_roll_spring(
+    delta: ArrayLike,
+    force: ArrayLike,
+    instrument: object | None = None,
+    *,
+    reach: float = 1.25,
+    min_points: int = 4,
+    passes: int = 3,
+) -> SpringFit:
+    """Fit the roll spring ``F = alpha d^2 + beta d`` {3} to a force-depth curve.
+
+    The one place where a computed F(d) (the contact model's, for an instrument head or a
+    nip roller) becomes the spring of the 1.5D impact models.
+
+    * Least squares with ``alpha, beta >= 0`` (NNLS): the energy model {21} needs a spring
+      that stiffens from zero, and an unconstrained fit of a curve that stiffens faster
+      than quadratic returns ``beta < 0`` (seen on hard rolls and with spherical tips).
+    * With an ``instrument``, the fit is narrowed to the depths the striker reaches (the
+      paper does not say over which range its quadratic was fitted; F(d) is not exactly
+      quadratic, so the range matters): the energy model's maximum depth ``d_max`` {21} is
+      computed with the fit, and the fit is repeated on the points with
+      ``d <= reach * d_max`` (at least ``min_points``), ``passes`` times.
+
+    Parameters
+    ----------
+    delta, force : array [m], [N]
+        The computed curve (depths increasing, without the origin or with it).
+    instrument : Instrument, optional
+        Striker whose reach narrows the fit.
+    """
+    d = np.asarray(delta, dtype=float).ravel()
+    f = np.asarray(force, dtype=float).ravel()
+    if d.shape != f.shape or d.size < 2:
+        raise InputError("need matching depth and force arrays of >= 2 points", "roll_spring")
+    if not (np.all(np.isfinite(d)) and np.all(np.isfinite(f))):
+        raise InputError("the force-depth curve has non-finite values", "roll_spring")
+    keep = d > 0
+    d, f = d[keep], f[keep]
+    if d.size < 2 or not np.any(f > 0):
+        raise InputError("the force-depth curve carries no load", "roll_spring")
+    sel = np.ones(d.size, dtype=bool)
+    alpha, beta = _nnls_quadratic(d, f)
+    d_max = None
+    if instrument is not None:
+        from woundroll.instruments.impact import energy_max_depth
+
+        def impact_depth(a: float, b: float) -> float:
+            return float(
+                energy_max_depth(
+                    a,
+                    b,
+                    instrument.spring_stiffness,  # type: ignore[attr-defined]
+                    instrument.release_position,  # type: ignore[attr-defined]
+                    instrument.contact_position,  # type: ignore[attr-defined]
+                )
+            )
+
+        for _ in range(passes):
+            sel = d <= reach * impact_depth(alpha, beta)
+            if np.count_nonzero(sel) < min_points:
+                sel = np.zeros(d.size, dtype=bool)
+                sel[: min(min_points, d.size)] = True
+            alpha, beta = _nnls_quadratic(d[sel], f[sel])
+        d_max = impact_depth(alpha, beta)
+    ds, fs = d[sel], f[sel]
+    fit = (alpha * ds + beta) * ds
+    ss_tot = float(np.sum((fs - fs.mean()) ** 2))
+    r2 = 1.0 - float(np.sum((fs - fit) ** 2)) / ss_tot if ss_tot > 0 else 1.0
+    return SpringFit(
+        alpha=alpha,
+        beta=beta,
+        r2=r2,
+        max_rel_residual=float(np.max(np.abs(fit - fs)) / max(float(np.max(np.abs(fs))), 1e-300)),
+        fit_depth=float(ds.max()),
+        max_depth=d_max,
+        n_points=int(ds.size),
+        extrapolated=bool(d_max is not None and d_max > float(d.max()) * (1 + 1e-9)),
+    )

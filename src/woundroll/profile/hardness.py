@@ -40,6 +40,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from woundroll.errors import InputError
+from woundroll.instruments.roll_side import fit_roll_spring
 from woundroll.materials.web import Core, Web
 from woundroll.profile.nip import NipRoller, nip_hook, solve_nip
 from woundroll.profile.stats import ProfileStats, profile_stats
@@ -57,31 +58,13 @@ ReadoutFn = Callable[[FloatArray, FloatArray], ArrayLike]
 ProgressFn = Callable[[str, int, int], None]
 
 
-def fit_spring_nonneg(delta: FloatArray, force: FloatArray) -> tuple[float, float]:
-    """Least-squares ``F = alpha d^2 + beta d`` with ``alpha, beta >= 0`` (NNLS), [N/m^2], [N/m].
-
-    The energy model {21} needs a spring that stiffens from zero; an unconstrained fit of a
-    strongly stiffening F(d) (hard sectors) can return beta < 0.
-    """
-    from scipy.optimize import nnls
-
-    d = np.asarray(delta, dtype=float)
-    f = np.asarray(force, dtype=float)
-    dm = max(float(d.max()), 1e-300)
-    A = np.stack([(d / dm) ** 2, d / dm], axis=1)
-    coef, _ = nnls(A, f)
-    return float(coef[0] / dm**2), float(coef[1] / dm)
-
-
 @dataclass(frozen=True)
 class ContactModel:
     """The default contact callable: :func:`woundroll.contact.indent` on one sector.
 
-    The roll spring {3} is fitted to the computed F(d) with ``alpha, beta >= 0``
-    (:func:`fit_spring_nonneg`). With ``instrument`` set, the fit range is then narrowed to
-    the depths the instrument reaches: the energy model's ``d_max`` is computed with the fit
-    and the fit repeated on the points with ``d <= 1.25 d_max`` (at least 4 points), three
-    times. This reuses the same F(d) points (no new contact solution); a ``d_max`` beyond
+    The roll spring {3} is fitted to the computed F(d) by
+    :func:`woundroll.instruments.roll_side.fit_roll_spring` (``alpha, beta >= 0``; with
+    ``instrument`` set, over the depths the striker reaches). A striker depth beyond
     ``depth_max`` means extrapolation (raise ``depth_max``).
 
     Attributes
@@ -117,28 +100,8 @@ class ContactModel:
             depth_max=self.depth_max,
             options=self.options,
         )
-        d, f = np.asarray(res.delta), np.asarray(res.force)
-        alpha, beta = fit_spring_nonneg(d, f)
-        if self.instrument is not None:
-            from woundroll.instruments.impact import energy_max_depth
-
-            ins = self.instrument
-            for _ in range(3):
-                dmax = float(
-                    energy_max_depth(
-                        alpha,
-                        beta,
-                        ins.spring_stiffness,
-                        ins.release_position,
-                        ins.contact_position,
-                    )
-                )
-                sel = d <= 1.25 * dmax
-                if np.count_nonzero(sel) < 4:
-                    sel = np.zeros(d.size, dtype=bool)
-                    sel[: min(4, d.size)] = True
-                alpha, beta = fit_spring_nonneg(d[sel], f[sel])
-        return alpha, beta
+        fit = fit_roll_spring(res.delta, res.force, self.instrument)
+        return fit.alpha, fit.beta
 
 
 @dataclass(frozen=True)
@@ -242,7 +205,8 @@ class ProfileResult:
     def plot(self, path_prefix: str | Path | None = None) -> list[Any]:
         """Figures: thickness and Rho along the CMD (twin axes, Figures 20-21 of the paper)
         and the radial-stress map sigma_r(r, z). Saves ``<prefix>_cmd.png`` and
-        ``<prefix>_sigma_r.png`` when ``path_prefix`` is given."""
+        ``<prefix>_sigma_r.png`` when ``path_prefix`` is given (a ``.png`` suffix is
+        dropped from it)."""
         from matplotlib.figure import Figure
 
         zc = self.z * 100.0
@@ -268,7 +232,7 @@ class ProfileResult:
         bx.set_ylabel("radius [cm]")
         bx.set_title("radial stress over (r, z)")
         if path_prefix is not None:
-            p = str(path_prefix)
+            p = str(path_prefix).removesuffix(".png")
             f1.savefig(f"{p}_cmd.png", dpi=120)
             f2.savefig(f"{p}_sigma_r.png", dpi=120)
         return [f1, f2]
@@ -540,7 +504,6 @@ __all__ = [
     "EnergyReadout",
     "NipSpec",
     "ProfileResult",
-    "fit_spring_nonneg",
     "map_sectors",
     "predict_profile",
     "solve_nip",

@@ -288,6 +288,46 @@ def _map_average(pos: FloatArray, data: FloatArray, source: str, field: str) -> 
     )
 
 
+def load_thickness(
+    path: Path | str, *, width: float | None = None, field: str = FIELD
+) -> ThicknessProfile:
+    """Read ``winding.thickness_profile``: a CMD profile CSV, a CMD x MD map (CSV or ``.npy``).
+
+    The layout is told from the file: ``.npy`` is a map; a CSV whose first header cell
+    names a position column (``position_m``, ``position [in]``) is a profile, any other CSV
+    a map (module docstring). With ``width`` [m] (the web width) the profile's measured
+    extent must match it within 5 % or two sample spacings (a scan that covers only part
+    of the web would silently narrow the roll: the line force is spread over the extent).
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"file not found: {path}", field)
+    if path.suffix.lower() == ".npy":
+        prof = read_thickness_map(path, width=width, field=field)
+    else:
+        try:
+            with path.open(newline="", encoding="utf-8-sig") as fh:
+                first = next(
+                    (r for r in csv.reader(fh) if r and not r[0].lstrip().startswith("#")), []
+                )
+        except (OSError, UnicodeDecodeError) as exc:
+            raise InputError(f"cannot read {path}: {exc}", field) from None
+        is_profile = bool(first) and parse_header(first[0])[0].lower().startswith("position")
+        if is_profile:
+            prof = read_thickness_profile(path, field)
+        else:
+            prof = read_thickness_map(path, width=width, field=field)
+    if width is not None:
+        spacing = float(np.median(np.diff(prof.position)))
+        if abs(prof.extent - width) > max(0.05 * width, 2.0 * spacing):
+            raise InputError(
+                f"{path.name} spans {prof.extent:.4g} m across the web but web.width is "
+                f"{width:.4g} m; the profile must cover the web (positions from one edge)",
+                field,
+            )
+    return prof
+
+
 def bundled_profile(name: str = "table3_synthetic_pet") -> ThicknessProfile:
     """A thickness profile shipped in ``woundroll/data/profiles/`` (``name`` without ``.csv``)."""
     ref = resources.files("woundroll.data").joinpath("profiles", f"{name}.csv")
