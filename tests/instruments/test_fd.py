@@ -156,3 +156,66 @@ def test_any_force_law_object_works():
     assert impact_energy(RM, Law()).rho == pytest.approx(
         impact_energy(RM, BLOCK_LIKE).rho, rel=1e-9
     )
+
+
+@pytest.mark.parametrize("collision", ["plastic", "keep-velocity"])
+@pytest.mark.parametrize(("m_r", "e"), [(0.0, 1.0), (0.019, 1.0), (0.019, 0.8)])
+def test_deceleration_history_point_by_point(collision, m_r, e):
+    """The reported deceleration is the accelerometer's: spring plus contact force.
+
+    Both collision models move striker and roll together after the first instant (they
+    differ only in the speed right after contact), so for both, at every contact step,
+    ``a = (k x + f)/m_s`` with the contact force on the striker ``f = (m_s F - m_r k x)/M``
+    ({5} with the common acceleration), i.e. ``a = (k x + F)/(m_s + m_r)``. F is the loading
+    curve up to the turning point and the unloading branch after it. At the exact end point
+    the contact force is 0, so a = k x_sep/m_s. Recomputed here with NumPy from the stored
+    positions: rounding only (1e-12 relative). Dropping the spring term k x (a = f/m_s) is off
+    by k x/F ~ 3 % at the peak and fails this test.
+    """
+    spring = RollSpring.quadratic(*BLOCK_LIKE, effective_mass=m_r, restitution=e)
+    res = impact_fd(RM, spring, collision=collision)
+    Mt = M + m_r
+    x = res.position[:-1]
+    d = x - XG
+    i_turn = int(np.argmax(x))  # last loading step is at or next to the maximum
+    F = spring.law.force(d)
+    unloading = np.arange(d.size) > i_turn
+    F = np.where(unloading, spring.unloading_force(d, res.max_depth), F)
+    expected = (K * x + F) / Mt
+    np.testing.assert_allclose(res.deceleration[:-1], expected, rtol=1e-12)
+    f_expected = (M * F - m_r * K * x) / Mt
+    np.testing.assert_allclose(
+        res.contact_force[:-1], f_expected, rtol=1e-12, atol=1e-12 * res.peak_force
+    )
+    # the same identity written with the contact force, at every point including the end
+    np.testing.assert_allclose(
+        res.deceleration, (K * res.position + res.contact_force) / M, rtol=1e-12
+    )
+    assert res.contact_force[-1] == 0.0
+    assert res.deceleration[-1] == pytest.approx(K * res.position[-1] / M, rel=1e-12)
+    # the spring term is a visible part of the reading (so the check above has teeth)
+    i_pk = int(np.argmax(res.deceleration))
+    assert K * res.position[i_pk] / (Mt * res.deceleration[i_pk]) > 0.02
+
+
+@pytest.mark.parametrize("collision", ["plastic", "keep-velocity"])
+@pytest.mark.parametrize("m_r", [0.0, 0.019])
+def test_reported_peak_is_the_history_peak(collision, m_r):
+    """Peak deceleration / Rho: the maximum of the history, refined at the parabola vertex.
+
+    The peak is evaluated at the refined maximum depth, ``(k x_max + F(d_max))/(m_s + m_r)``;
+    it is >= every history point and exceeds the largest by O(dt^2): with 2000 steps per
+    contact, (pi/2000)^2/2 ~ 1.2e-6 relative at most; tolerance 1e-5.
+    """
+    spring = RollSpring.quadratic(*BLOCK_LIKE, effective_mass=m_r)
+    res = impact_fd(RM, spring, collision=collision)
+    a_max = float(np.max(res.deceleration))
+    assert res.peak_deceleration >= a_max
+    assert res.peak_deceleration == pytest.approx(a_max, rel=1e-5)
+    x_max = XG + res.max_depth
+    assert res.peak_deceleration == pytest.approx(
+        (K * x_max + float(spring.law.force(res.max_depth))) / (M + m_r), rel=1e-14
+    )
+    assert res.rho == pytest.approx(res.peak_deceleration / (3.76 * 9.81), rel=1e-14)
+    assert res.peak_g == pytest.approx(res.peak_deceleration / 9.81, rel=1e-14)
+    assert res.peak_force == pytest.approx(float(np.max(res.contact_force)), rel=1e-5)
