@@ -283,8 +283,9 @@ def hardness_on_roll(
 ) -> HardnessResult:
     """Impact models {4}-{22} with the contact model's spring and the roll's active mass.
 
-    Active mass {14}-{18}: pile height H (``tester.pile_height`` or the wound thickness),
-    density (``tester.density`` or the web's), and the semi-contact width a of the contact
+    Active mass {14}-{18}: pile height H (``tester.pile_height``, else ``pile_height``: the
+    wound thickness), density (``tester.density``, else the web's), and the semi-contact
+    width a of the contact
     model at the impact's maximum depth (the paper takes a from its contact algorithm),
     unless ``tester.semi_contact_width`` is given.
     """
@@ -292,11 +293,9 @@ def hardness_on_roll(
 
     if not semi_contact_width_given:
         setup = replace(setup, semi_contact_width=stiffness.semi_contact_width)
-    m_r = setup.effective_mass(
-        pile_height=setup.pile_height if setup.pile_height is not None else pile_height,
-        density=setup.density if setup.density is not None else density,
+    return hardness_from_spring(
+        setup, stiffness.alpha, stiffness.beta, pile_height=pile_height, density=density
     )
-    return hardness_from_spring(setup, stiffness.alpha, stiffness.beta, m_r)
 
 
 def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResult:
@@ -340,7 +339,9 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
 
     if setup.roll_spring is not None:
         report("impact", 0.0)
-        hardness = hardness_from_spring(setup)
+        hardness = hardness_from_spring(
+            setup, pile_height=r_out - core.outer_radius, density=web.density
+        )
         report("impact", 1.0)
         return RunResult(
             case=case,
