@@ -76,3 +76,19 @@ def test_fit_stack_missing_file():
     res = runner.invoke(app, ["fit-stack", "nope.csv"])
     assert res.exit_code == 2
     assert "CSV_FILE: file not found" in res.output
+
+
+def test_study_command_json_and_unknown_name():
+    res = runner.invoke(app, ["study", "slip", "--json", "--workers", "1"])
+    assert res.exit_code == 0, res.output
+    assert json.loads(res.stdout)  # the study as JSON on stdout
+    bad = runner.invoke(app, ["study", "no-such-study"])
+    assert bad.exit_code == 2
+    assert "study:" in bad.output and "Traceback" not in bad.output
+
+
+def test_bracketed_text_survives_in_messages():
+    # rich markup must not eat "[length]" from a dimension error
+    res = runner.invoke(app, ["run", "pet1-26.7N", "--set", "web.density='1 m'"])
+    assert res.exit_code == 2
+    assert "[length]" in res.output

@@ -64,7 +64,7 @@ def run(
         if quiet or as_json or not sys.stderr.isatty():
             result = run_case(c)
         else:
-            result = _run_with_progress(c, run_case)
+            result = _with_progress(lambda progress: run_case(c, progress=progress))
         written = result.write(out_dir) if out_dir is not None else []
     except InputError as exc:
         _fail(exc, 2)
@@ -79,7 +79,8 @@ def run(
             out.print(f"wrote {p}")
 
 
-def _run_with_progress(c, run_case):  # type: ignore[no-untyped-def]
+def _with_progress(job):  # type: ignore[no-untyped-def]
+    """Run ``job(progress)`` under a rich progress bar on stderr (one bar per stage)."""
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
     with Progress(
@@ -97,7 +98,7 @@ def _run_with_progress(c, run_case):  # type: ignore[no-untyped-def]
                 tasks[stage] = bar.add_task(stage, total=1.0)
             bar.update(tasks[stage], completed=min(max(fraction, 0.0), 1.0))
 
-        return run_case(c, progress=progress)
+        return job(progress)
 
 
 def _summary(result) -> None:  # type: ignore[no-untyped-def]
@@ -159,6 +160,57 @@ def result_summary(result: RunResult) -> list[tuple[str, str]]:
             ),
         ]
     return rows
+
+
+@app.command()
+def study(
+    name: Annotated[
+        str,
+        typer.Argument(help="tension (Figures 14/15), pile-height (16/17), slip (18), or all."),
+    ],
+    out_dir: Annotated[
+        Path | None, typer.Option("--out", help="Write study.json and PNG plots here.")
+    ] = None,
+    as_json: Annotated[
+        bool, typer.Option("--json", help="Print the study as JSON on stdout.")
+    ] = False,
+    workers: Annotated[
+        int, typer.Option(help="Rolls run in parallel (processes).", min=1, max=64)
+    ] = 2,
+    quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar.")] = False,
+) -> None:
+    """Run one of the reference paper's studies on its Table 2 rolls; print its tables."""
+    import json
+
+    from woundroll.studies import run_study
+
+    def job(progress):  # type: ignore[no-untyped-def]
+        return run_study(name, progress=progress, workers=workers)
+
+    try:
+        if quiet or as_json or not sys.stderr.isatty():
+            result = job(None)
+        else:
+            result = _with_progress(job)
+        written = result.write(out_dir) if out_dir is not None else []
+    except InputError as exc:
+        _fail(exc, 2)
+    except ConvergenceError as exc:
+        _fail(exc, 1)
+    except OSError as exc:
+        _fail(InputError(f"cannot write to {out_dir}: {exc.strerror or exc}", "--out"), 2)
+    if as_json:
+        sys.stdout.write(json.dumps(result.to_dict()) + "\n")
+        return
+    for title, header, rows in result.summary():
+        t = Table(*[escape(h) for h in header], title=escape(title))
+        for row in rows:
+            t.add_row(*[escape(str(c)) for c in row])
+        out.print(t)
+    for note in result.notes():
+        out.print(f"note: {escape(note)}", highlight=False)
+    for p in written:
+        out.print(f"wrote {p}")
 
 
 @app.command()
