@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import math
 
+import numpy as np
 import pytest
 
 from woundroll.errors import InputError
@@ -197,7 +198,14 @@ def test_plot(tmp_path):
     path = tmp_path / "impact.png"
     fig = r.plot(str(path))
     assert path.stat().st_size > 5000
-    assert len(fig.axes) == 2 and math.isclose(
-        max(fig.axes[0].lines[0].get_ydata()), max(r.fd.contact_force)
-    )
+    # stacked panels (issue 3: twin auto-scaled axes drew force and deceleration on top of
+    # each other): force on top, deceleration [Rho] below with its striker-spring part
+    force_ax, decel_ax = fig.axes[:2]
+    assert force_ax.get_position().y0 > decel_ax.get_position().y1
+    assert math.isclose(max(force_ax.lines[0].get_ydata()), max(r.fd.contact_force))
+    total, contact, spring = (line.get_ydata() for line in decel_ax.lines[:3])
+    rho = r.instrument.rho_unit
+    np.testing.assert_allclose(total, r.fd.deceleration / rho, rtol=1e-12)
+    np.testing.assert_allclose(total - contact, spring, rtol=1e-9, atol=1e-9)
+    assert 0.01 < max(spring) / max(total) < 0.1  # the spring part: a few per cent, drawn
     plt.close(fig)

@@ -328,7 +328,13 @@ class HardnessResult:
         }
 
     def plot(self, path: str | None = None) -> Any:
-        """Contact force and striker deceleration against time; returns the Figure.
+        """Contact force and striker deceleration against time, stacked; returns the Figure.
+
+        Top panel: contact force on the striker [N]. Bottom panel: the deceleration the
+        accelerometer feels [Rho, right axis in g], split into its two parts, the contact
+        force ``f/m_s`` and the striker spring ``k_s x/m_s`` (the part the energy model's {22}
+        leaves out). Separate panels because, with a light roll, force and deceleration are
+        nearly proportional and would lie on top of each other on twin axes.
 
         Parameters
         ----------
@@ -338,24 +344,58 @@ class HardnessResult:
         import matplotlib.pyplot as plt
 
         fd = self.fd
+        inst = self.instrument
         t_ms = (fd.time - fd.contact_start) * 1e3
-        fig, ax = plt.subplots(figsize=(6.4, 4.0))
-        ax.plot(t_ms, fd.contact_force, color="C0", lw=2.5, label="contact force")
-        ax.set_xlabel("time from contact [ms]")
-        ax.set_ylabel("contact force [N]", color="C0")
-        ax2 = ax.twinx()
-        ax2.plot(
-            t_ms,
-            fd.deceleration / self.instrument.rho_unit,
-            color="C1",
-            ls="--",
-            label="deceleration",
+        rho = inst.rho_unit
+        a_spring = inst.spring_stiffness * fd.position / inst.mass
+        a_contact = fd.contact_force / inst.mass
+        fig, (ax, ax2) = plt.subplots(2, 1, sharex=True, figsize=(6.4, 6.0))
+        ax.plot(t_ms, fd.contact_force, color="C0", lw=2.0, label="contact force f (FD)")
+        ax.axhline(
+            self.energy.peak_force,
+            color="C0",
+            ls=":",
+            lw=1.0,
+            label=f"energy model F(d_max) = {self.energy.peak_force:.0f} N",
         )
-        ax2.set_ylabel("striker deceleration [Rho = 3.76 g]", color="C1")
+        ax.set_ylabel("contact force [N]")
+        ax.set_ylim(0.0, 1.3 * max(float(fd.contact_force.max()), self.energy.peak_force))
+        ax.legend(loc="upper center", fontsize=8, ncol=2)
+        ax.grid(alpha=0.3)
+        total = fd.deceleration / rho
+        ax2.plot(t_ms, total, color="C1", lw=2.0, label="total (accelerometer), FD")
+        ax2.plot(t_ms, a_contact / rho, color="C2", ls="--", lw=1.2, label="contact force f/m_s")
+        ax2.fill_between(
+            t_ms,
+            a_contact / rho,
+            total,
+            color="C3",
+            alpha=0.5,
+            lw=0,
+            label="+ striker spring (not in {22})",
+        )
+        ax2.plot(t_ms, a_spring / rho, color="C3", lw=1.0, label="striker spring k_s x/m_s")
+        ax2.axhline(self.energy.rho, color="C4", ls=":", lw=1.0, label="energy model {22}")
+        ax2.annotate(
+            f"peak {fd.rho:.1f} Rho",
+            (t_ms[int(fd.deceleration.argmax())], fd.rho),
+            textcoords="offset points",
+            xytext=(0, 6),
+            ha="center",
+            fontsize=8,
+            color="C1",
+        )
+        ax2.set_ylabel("striker deceleration [Rho]")
+        ax2.set_xlabel("time from contact [ms]")
+        ax2.legend(loc="upper center", fontsize=7.5, ncol=2)
+        ax2.set_ylim(0.0, 1.45 * max(fd.rho, self.energy.rho))
+        ax2.grid(alpha=0.3)
+        per_g = inst.rho_per_g
+        sec = ax2.secondary_yaxis("right", functions=(lambda r: r * per_g, lambda g: g / per_g))
+        sec.set_ylabel("[g]")
         ax.set_title(
-            f"{self.instrument.title or self.instrument.name}: "
-            f"FD {fd.rho:.1f} Rho, energy {self.energy.rho:.1f} Rho, "
-            f"impulse {fd.impulse:.3f} N s",
+            f"{inst.title or inst.name}: FD {fd.rho:.1f} Rho, energy {self.energy.rho:.1f} Rho, "
+            f"impulse {fd.impulse:.3f} N s, m_r = {1e3 * self.effective_mass:.1f} g",
             fontsize=9,
         )
         fig.tight_layout()
