@@ -129,11 +129,18 @@ class NipSpec:
         sector; default :class:`ContactModel` with the roller's radius and unit length.
     foundation_stride : int
         Evaluate the foundation at every k-th sector (and the last), interpolate between.
+    foundation_depth : float [m]
+        Depth of the default foundation's contact solutions, over which its law is fitted.
+        The nip presses far less deep than the striker (tens to hundreds of um), so the
+        fit range follows the nip: after a first fit, the nip is solved on the preliminary
+        roll and the foundation recomputed over ``1.25`` times the largest indentation when
+        that lies outside ``[0.25, 1]`` of this depth (at most twice).
     """
 
     roller: NipRoller
     foundation: Callable[[FloatArray, FloatArray], tuple[float, float]] | None = None
     foundation_stride: int = 4
+    foundation_depth: float = 3e-4
 
     def __post_init__(self) -> None:
         if not isinstance(self.roller, NipRoller):
@@ -142,6 +149,11 @@ class NipSpec:
         if isinstance(s, bool) or not isinstance(s, int) or s < 1:
             raise InputError(
                 f"must be a whole number >= 1, got {s!r}", "winding.nip.foundation_stride"
+            )
+        d = self.foundation_depth
+        if isinstance(d, bool) or not isinstance(d, int | float) or not (0 < d < 0.05):
+            raise InputError(
+                f"must be a depth in (0, 5 cm), got {d!r}", "winding.nip.foundation_depth"
             )
 
 
@@ -159,6 +171,7 @@ class ProfileResult:
     sigma_r_outer : ndarray [Pa]  radial stress of the outermost layer group.
     sigma_r_core : ndarray [Pa]   radial stress of the group on the core.
     nip_load : ndarray or None [N/m]  nip load per width of the last increment.
+    nip_foundation_depth : float or None [m]  depth range of the nip foundation's fit.
     winding : AxisymmetricResult
     rho_stats, thickness_stats : ProfileStats
     timings : dict            seconds per stage.
@@ -177,6 +190,7 @@ class ProfileResult:
     rho_stats: ProfileStats
     thickness_stats: ProfileStats
     timings: dict[str, float] = field(default_factory=dict)
+    nip_foundation_depth: float | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary: lists over CMD positions (SI, unit in the key) and stats."""
@@ -200,6 +214,12 @@ class ProfileResult:
         }
         if self.nip_load is not None:
             out["nip_load_N_per_m"] = lst(self.nip_load)
+            mean = float(np.average(self.nip_load, weights=self.winding.dz))
+            out["nip"] = {
+                "contact_fraction": float(np.mean(self.nip_load > 0)),
+                "peak_to_mean": float(self.nip_load.max() / mean) if mean > 0 else None,
+                "foundation_depth_m": self.nip_foundation_depth,
+            }
         return out
 
     def plot(self, path_prefix: str | Path | None = None) -> list[Any]:
@@ -406,6 +426,7 @@ def predict_profile(
         return lambda d, n: progress(stage, d, n)
 
     hook = None
+    f_depth = None
     if nip is not None and not isinstance(nip, NipSpec):
         raise InputError("must be a NipSpec (roller, foundation) or None", "winding.nip")
     if nip is not None:
@@ -432,24 +453,30 @@ def predict_profile(
             n_sectors=n_sectors,
             n_groups=n_groups,
         )
-        found = nip.foundation or ContactModel(web, core, roller.radius, 1.0, depth_max)
         ns = pre.z.size
         picks = sorted(set(range(0, ns, nip.foundation_stride)) | {ns - 1})
-        fa, fb = map_sectors(
-            found,
-            [pre.sector_profile(j) for j in picks],
-            workers=workers,
-            progress=wind_progress("foundation"),
-        )
-        alpha_n = np.interp(pre.z, pre.z[picks], fa)
-        beta_n = np.interp(pre.z, pre.z[picks], fb)
         edges = np.concatenate(
             [[pre.z[0] - 0.5 * pre.dz[0]], pre.z[0] - 0.5 * pre.dz[0] + np.cumsum(pre.dz)]
         )
-        base = nip_hook(edges, alpha_n, beta_n, roller)
-
-        def hook(g: int, r_out: FloatArray, s_top: FloatArray) -> FloatArray:
-            return base(g, r_out, s_top)
+        gap = float(np.max(pre.outer_radius)) - pre.outer_radius
+        f_depth = nip.foundation_depth
+        for _ in range(3):
+            found = nip.foundation or ContactModel(web, core, roller.radius, 1.0, f_depth)
+            fa, fb = map_sectors(
+                found,
+                [pre.sector_profile(j) for j in picks],
+                workers=workers,
+                progress=wind_progress("foundation"),
+            )
+            alpha_n = np.interp(pre.z, pre.z[picks], fa)
+            beta_n = np.interp(pre.z, pre.z[picks], fb)
+            if nip.foundation is not None:
+                break
+            reach = float(np.max(solve_nip(edges, alpha_n, beta_n, roller, gap=gap).indentation))
+            if reach <= 0 or 0.25 * f_depth <= reach <= f_depth:
+                break
+            f_depth = 1.25 * reach
+        hook = nip_hook(edges, alpha_n, beta_n, roller)
 
         tension = TensionSchedule(
             web_stress=tension.web_stress,
@@ -496,6 +523,7 @@ def predict_profile(
         rho_stats=profile_stats(rho, "profile.rho"),
         thickness_stats=profile_stats(w.thickness, "profile.thickness"),
         timings=timings,
+        nip_foundation_depth=f_depth,
     )
 
 
