@@ -227,3 +227,31 @@ def test_table3_profile_in_time_and_following_thickness() -> None:
     assert time.perf_counter() - t0 < 60
     assert res.winding.n_layers == 1337
     assert np.corrcoef(res.rho, res.thickness)[0, 1] > 0.5
+
+
+@pytest.mark.parametrize("line_load", [5.0, 600.0])
+def test_nip_foundation_is_fitted_over_the_nips_reach(line_load: float) -> None:
+    # the default foundation (the contact model under the roller) is refitted over the
+    # depths the nip reaches: a light nip (5 N/m) presses far less than the first 0.3 mm
+    # range (< 75 um), so the range must shrink below a quarter of it; a heavy one keeps a
+    # finite positive range and a loaded nip
+    prof = ThicknessProfile(np.array([0.0, 0.3, 0.61]), np.array([76e-6, 77e-6, 76e-6]))
+    roller = NipRoller(EI=5.8e5, line_load=line_load, radius=0.05, friction=0.3)
+    res = predict_profile(
+        WEB,
+        CORE,
+        TensionSchedule(web_stress=2.3e6),
+        prof,
+        outer_radius=0.105,
+        contact=standin_contact,
+        instrument=standin_readout,
+        n_sectors=5,
+        n_groups=20,
+        nip=NipSpec(roller, foundation_stride=4),
+        workers=1,
+    )
+    depth = res.to_dict()["nip"]["foundation_depth_m"]
+    if line_load == 5.0:
+        assert depth < 0.25 * 3e-4
+    assert 0 < depth < 3e-3
+    assert res.nip_load is not None and res.nip_load.max() > 0
