@@ -2,14 +2,24 @@
 
 A stack test compresses a pile of web sheets and records the pressure ``P`` against the
 strain ``eps``. Each law of :mod:`woundroll.materials.radial_modulus` implies a stack
-curve; the fit finds its parameters.
+curve; the fit finds its parameters. Stack data span decades of pressure, and relative
+errors are what matter for E_r, so the curved laws are fitted in relative terms.
 
 ``pfeiffer``
     P = K1 (exp(K2 eps) - 1) (integral of {2}); nonlinear least squares on log P
-    (stack data span decades of pressure, and relative errors are what matter for E_r),
-    started from the linear regression of the secant modulus on P.
+    (Levenberg-Marquardt in log K1, log K2). Start: K2 = slope of a straight-line fit of
+    log P against eps over the upper half of the strains (where exp(K2 eps) >> 1, so
+    log P ~ log K1 + K2 eps), at least 1; K1 = median of ``P / (exp(K2 eps) - 1)`` over the
+    points with that K2.
 ``polynomial``
-    P = C1 eps + C2 eps^2 + C3 eps^3 (Hakiel 1987), linear least squares.
+    P = C1 eps + C2 eps^2 + C3 eps^3 (Hakiel 1987); linear least squares on the relative
+    error ``(P_fit - P)/P``, **constrained** to ``C1 > 0, C2 >= 0, C3 >= 0`` (bounded-variable
+    least squares, ``scipy.optimize.lsq_linear(method="bvls")`` on scaled columns). Non-negative
+    coefficients make ``dP/deps = C1 + 2 C2 eps + 3 C3 eps^2 > 0`` for every eps >= 0, so the
+    fitted law is always a stiffening curve (an unconstrained fit can return a negative
+    coefficient and a curve that softens inside the data range). ``C1`` has the lower bound
+    ``1e-9 max(P)/max(eps)`` so that E_r(0) > 0. A cubic cannot follow an exponential stack
+    curve over several decades of pressure: check R^2 and the relative errors.
 ``constant``
     P = E_r eps, linear least squares through the origin.
 
@@ -24,7 +34,7 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.optimize import least_squares
+from scipy.optimize import least_squares, lsq_linear
 
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.materials.radial_modulus import Constant, Pfeiffer, Polynomial, RadialModulusLaw
@@ -101,6 +111,25 @@ def _quality(law: RadialModulusLaw, eps: np.ndarray, p: np.ndarray) -> StackFit:
     )
 
 
+def _fit_polynomial(eps: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """(C1, C2, C3) minimising the relative error, non-negative (module docstring)."""
+    pos = p > 0
+    A = np.column_stack([eps, eps**2, eps**3])[pos] / p[pos, None]
+    scale = np.abs(A).max(axis=0)
+    scale = np.where(scale > 0, scale, 1.0)  # all-zero column (eps = 0 only): keep it at 0
+    lower = np.array([1e-9 * p.max() / eps.max(), 0.0, 0.0])
+    sol = lsq_linear(
+        A / scale,
+        np.ones(A.shape[0]),
+        bounds=(lower * scale, np.inf),
+        method="bvls",
+        tol=1e-15,
+    )
+    if sol.status < 1 or not np.all(np.isfinite(sol.x)):
+        raise ConvergenceError(f"polynomial stack fit did not converge: {sol.message}")
+    return np.maximum(sol.x / scale, lower)
+
+
 def fit_stack(strain: ArrayLike, pressure: ArrayLike, law: str = "pfeiffer") -> StackFit:
     """Fit ``law`` to stack-test data.
 
@@ -121,8 +150,7 @@ def fit_stack(strain: ArrayLike, pressure: ArrayLike, law: str = "pfeiffer") -> 
         E = float(np.dot(eps, p) / np.dot(eps, eps))
         return _quality(Constant(E), eps, p)
     if law == "polynomial":
-        A = np.column_stack([eps, eps**2, eps**3])
-        c, *_ = np.linalg.lstsq(A, p, rcond=None)
+        c = _fit_polynomial(eps, p)
         try:
             fitted = Polynomial(C1=c[0], C2=c[1], C3=c[2], strain_max=float(min(eps.max(), 0.99)))
         except InputError as exc:
