@@ -318,7 +318,12 @@ def test_result_outputs(tmp_path, pet1_default: WindingResult) -> None:
     assert len(table) == res.radius.size + 1
     assert float(table[1].split(",")[0]) == pytest.approx(RC)
     fig = res.plot(tmp_path / "w.png")
-    assert len(fig.axes) == 2
+    # sigma_r (~ -84 kPa) in its own panel, not on the hoop-stress axis (~1.75 MPa)
+    assert len(fig.axes) == 3
+    ax_r, ax_t, _ = fig.axes
+    np.testing.assert_allclose(ax_r.lines[0].get_ydata(), res.sigma_r / 1e3)
+    assert ax_r.get_ylim()[0] <= -res.core_pressure / 1e3 < 0.5 * ax_r.get_ylim()[0]
+    assert all("sigma_r" not in str(line.get_label()) for line in ax_t.lines)
     assert (tmp_path / "w.png").stat().st_size > 1000
 
 

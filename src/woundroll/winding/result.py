@@ -113,7 +113,10 @@ class WindingResult:
         return buf.getvalue()
 
     def plot(self, path: str | Path | None = None) -> Any:
-        """Two panels: sigma_r, sigma_theta [kPa] and E_r [MPa] against radius [cm].
+        """Three panels against radius [cm]: sigma_r [kPa], sigma_theta [kPa], E_r [MPa].
+
+        sigma_r has its own panel: the radial pressure (tens of kPa) is one to two orders of
+        magnitude below the hoop stress (MPa) and would sit flat near zero on a shared axis.
 
         Parameters
         ----------
@@ -126,12 +129,16 @@ class WindingResult:
         """
         from matplotlib.figure import Figure  # pyplot-free: no GUI backend is touched
 
-        fig = Figure(figsize=(7.0, 6.0), layout="constrained")
-        ax1, ax2 = fig.subplots(2, 1, sharex=True)
+        fig = Figure(figsize=(7.0, 8.0), layout="constrained")
+        ax_r, ax_t, ax_e = fig.subplots(3, 1, sharex=True)
         rc = self.radius * 100.0
         rm, st_mean = self.layer_mean_hoop_stress()
-        ax1.plot(rc, self.sigma_r / 1e3, label=r"$\sigma_r$")
-        ax1.plot(
+        ax_r.plot(rc, self.sigma_r / 1e3, color="C0", label=r"$\sigma_r$")
+        ax_r.axhline(0.0, color="0.6", lw=0.5)
+        ax_r.set_ylabel(r"radial stress $\sigma_r$ [kPa]")
+        ax_r.legend(loc="lower right")
+        ax_r.set_title(f"{self.n_layers} layers, core pressure {self.core_pressure / 1e3:.1f} kPa")
+        ax_t.plot(
             rc,
             self.sigma_theta / 1e3,
             color="C1",
@@ -139,14 +146,15 @@ class WindingResult:
             alpha=0.4,
             label=r"$\sigma_\theta$ (nodes)",
         )
-        ax1.plot(rm * 100.0, st_mean / 1e3, color="C1", label=r"$\sigma_\theta$ (layer mean)")
-        ax1.axhline(0.0, color="0.6", lw=0.5)
-        ax1.set_ylabel("stress [kPa]")
-        ax1.legend()
-        ax1.set_title(f"{self.n_layers} layers, core pressure {self.core_pressure / 1e3:.1f} kPa")
-        ax2.plot(rc, self.E_r / 1e6, color="C2")
-        ax2.set_ylabel(r"$E_r$ [MPa]")
-        ax2.set_xlabel("radius [cm]")
+        ax_t.plot(rm * 100.0, st_mean / 1e3, color="C1", label=r"$\sigma_\theta$ (layer mean)")
+        ax_t.axhline(0.0, color="0.6", lw=0.5)
+        ax_t.set_ylabel(r"hoop stress $\sigma_\theta$ [kPa]")
+        ax_t.legend(loc="best")
+        ax_e.plot(rc, self.E_r / 1e6, color="C2")
+        ax_e.set_ylabel(r"$E_r$ [MPa]")
+        ax_e.set_xlabel("radius [cm]")
+        for ax in (ax_r, ax_t, ax_e):
+            ax.grid(alpha=0.3)
         if path is not None:
             fig.savefig(path, dpi=120)
         return fig
