@@ -142,6 +142,8 @@ class TaperSpec(_Section):
 def _tension(value: Any) -> tuple[str, float]:
     """Classify the tension by its dimension: force, force per width, or stress."""
     q = parse_quantity(value)
+    if not math.isfinite(float(q.magnitude)):
+        raise ValueError(f"must be a finite number, got {value!r}")
     for kind in ("force", "force_per_length", "pressure"):
         try:
             v = to_si(q, kind)
@@ -248,7 +250,7 @@ class WindingSpec(_Section):
         if r <= core.outer_radius + web.thickness:
             raise InputError(
                 f"outer radius {r:g} m must exceed the core radius {core.outer_radius:g} m "
-                "by at least one layer",
+                f"by at least one layer (web.thickness = {web.thickness:g} m)",
                 "winding.outer_radius",
             )
         return r
