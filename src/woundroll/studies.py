@@ -444,6 +444,10 @@ class PileHeightStudy:
           the reference mass. Between rolls only the plane-strain geometry differs: the
           ring and the core under a line load. (At the reference H it differs from
           ``rho_fd`` only by the fit range.)
+        * ``axis_approach_m``, ``approach_share_deeper_1cm``, ``..._2cm``: the approach
+          of the surface toward the core along the contact axis, int eps_r dr, at the
+          solve's largest depth ``axis_depth_m`` (it should equal it), and the share of
+          it from layers deeper than 1 cm and 2 cm (:func:`_axis_locality`).
     profiles : list of dict
         Pre-impact radius [m] and radial pressure -sigma_r [Pa] per H (Figure 16), at most
         ~400 points each (denser near the surface).
@@ -484,6 +488,7 @@ class PileHeightStudy:
             "beta [N/m]",
             "a [mm]",
             "max depth [mm]",
+            "approach >1 cm deep [%]",
         )
         rows = []
         for r in self.rolls:
@@ -500,6 +505,7 @@ class PileHeightStudy:
                     f"{r['beta_N_per_m']:.3g}",
                     f"{r['semi_contact_width_m'] * 1e3:.2f}",
                     f"{r['delta_max_m'] * 1e3:.2f}",
+                    f"{r['approach_share_deeper_1cm'] * 100:.0f}",
                 )
             )
         return [SummaryTable(f"Rho against pile height, {self.case} (Figures 16-17)", header, rows)]
@@ -511,6 +517,8 @@ class PileHeightStudy:
             f"ref. m_r+prestress: also that roll's pre-impact sigma_r by depth (spring fitted "
             f"over 0-{self.reference_depth_max_m * 1e3:.2f} mm), so that only the plane-strain "
             "geometry (ring, core) changes with H.",
+            "approach >1 cm deep: share of the head's approach (int eps_r dr along the contact "
+            "axis) that comes from layers more than 1 cm below the surface.",
         ]
 
     def plot(self, prefix: str | Path) -> list[Path]:
@@ -569,6 +577,42 @@ class PileHeightStudy:
         return _write(self, out_dir)
 
 
+def _axis_locality(contact: Any, web: Any) -> dict[str, float]:
+    """Where the head's approach comes from: radial compression along the contact axis.
+
+    On the axis (theta = 0) the shear strain vanishes by symmetry, so the approach of the
+    surface toward the core is the integral of the radial strain, u = int eps_r dr. With
+    nu_theta_r = nu_z_r = 0 (Table 2) the hypoelastic radial strain of an element is
+    eps_r = int dP / E_r(P) from its pre-impact to its final pressure (law {2}), so u follows
+    from the stress fields alone (at the solve's largest depth). ``axis_approach_m`` checks
+    it against that depth; the shares say how much of it comes from deeper than 1 and 2 cm.
+    """
+    theta = np.asarray(contact.element_theta)
+    on_axis = theta <= theta.min() * (1.0 + 1e-9)
+    r = np.asarray(contact.element_r)[on_axis]
+    p_pre = np.maximum(-np.asarray(contact.sigma_r_pre)[on_axis], 0.0)
+    p_end = np.maximum(-np.asarray(contact.sigma_r)[on_axis], 0.0)
+    # geometric grid in (P + p0): accurate for 1 / E_r ~ 1 / (K1 + P)
+    p0 = 1e3
+    t = np.linspace(0.0, 1.0, 257)[:, None]
+    grid = (p_pre + p0) * ((p_end + p0) / (p_pre + p0)) ** t - p0
+    compliance = 1.0 / web.radial_modulus.modulus_at_pressure(grid)
+    eps = np.sum(0.5 * (compliance[1:] + compliance[:-1]) * np.diff(grid, axis=0), axis=0)
+    order = np.argsort(r)
+    r, eps = r[order], eps[order]
+    r_out = float(contact.outer_radius)
+    edges = np.concatenate([[2.0 * r[0] - 0.5 * (r[0] + r[1])], 0.5 * (r[1:] + r[:-1]), [r_out]])
+    u = eps * np.diff(edges)
+    depth = r_out - r
+    total = float(u.sum())
+    return {
+        "axis_approach_m": total,
+        "axis_depth_m": float(contact.delta[-1]),
+        "approach_share_deeper_1cm": float(u[depth > 0.01].sum() / total),
+        "approach_share_deeper_2cm": float(u[depth > 0.02].sum() / total),
+    }
+
+
 def _pile_height_job(
     name: str,
     overrides: tuple[str, ...],
@@ -584,11 +628,12 @@ def _pile_height_job(
     from woundroll.contact import indent
     from woundroll.instruments import hardness_from_spring
 
-    out = _measure(name, overrides, keep=("winding",))
+    out = _measure(name, overrides, keep=("winding", "contact"))
     row = out["row"]
     radius, sigma_r = out["radius"], out["sigma_r"]
     case = load_case(name, list(overrides))
     web, core = case.web.build(), case.core.build()
+    row.update(_axis_locality(out.pop("contact"), web))
     setup = case.tester_setup()
     ins = setup.instrument
     depth = radius[-1] - radius
