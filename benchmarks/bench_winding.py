@@ -6,32 +6,41 @@ layer: 20,001 nodes; midpoint E_r iterated in every increment).
 
 * ``wind``: the default solver (numba Riccati sweep over a 64-layer window, deep part
   frozen between flushes every 8 increments). numba compile time is excluded: a small
-  roll is wound first (warm-up), then the best of 3 runs is reported.
+  roll is wound first (warm-up), then the best of ``--repeat`` (default 5) runs is reported.
 * ``wind_reference``: the straightforward implementation of the same discretisation and
   E_r rule: per increment, NumPy coefficients for every element and
   ``scipy.linalg.solve_banded`` on the whole roll, iterated to the same tolerance.
 
-Run: ``.venv/bin/python benchmarks/bench_winding.py [--layers N] [--exact]``
+BLAS/OpenMP threads are pinned to 1 (set before NumPy is imported; override by exporting
+the variables): the solves are serial, and a multi-threaded BLAS only adds noise when
+other jobs share the machine. Timings are best-of-N (``--repeat``) to damp that noise.
+
+Run: ``.venv/bin/python benchmarks/bench_winding.py [--layers N] [--repeat N] [--exact]``
 (``--exact`` also times the compiled solver without the lazy deep part).
 """
 
 from __future__ import annotations
 
-import argparse
 import os
-import platform
-import time
 
-import numpy as np
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
 
-from woundroll.materials import Core, Pfeiffer, Web
-from woundroll.winding.hakiel import WindingOptions, wind, wind_reference
-from woundroll.winding.tension import TensionSchedule
+import argparse  # noqa: E402
+import platform  # noqa: E402
+import time  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from woundroll.materials import Core, Pfeiffer, Web  # noqa: E402
+from woundroll.winding.hakiel import WindingOptions, wind, wind_reference  # noqa: E402
+from woundroll.winding.tension import TensionSchedule  # noqa: E402
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--layers", type=int, default=10_000)
+    ap.add_argument("--repeat", type=int, default=5, help="timed runs of wind (best is kept)")
     ap.add_argument("--exact", action="store_true")
     args = ap.parse_args()
 
@@ -45,7 +54,7 @@ def main() -> None:
     wind(web, core, 0.076 + 50 * h, sched)  # warm-up: numba compile (or cache load)
 
     times = []
-    for _ in range(3):
+    for _ in range(max(args.repeat, 1)):
         t0 = time.perf_counter()
         fast = wind(web, core, R, sched, options=opts)
         times.append(time.perf_counter() - t0)
@@ -61,9 +70,10 @@ def main() -> None:
         f"problem: {fast.n_layers} layers, {fast.radius.size} nodes, "
         f"{fast.stats['increments']} increments, options {opts.to_dict()}"
     )
-    print("timings exclude numba compilation (warm-up run first)")
+    threads = {v: os.environ[v] for v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS")}
+    print(f"timings exclude numba compilation (warm-up run first); threads {threads}")
     print(
-        f"wind (compiled, lazy deep part), best of 3: {t_fast:8.3f} s   "
+        f"wind (compiled, lazy deep part), best of {len(times)}: {t_fast:8.3f} s   "
         f"(runs: {', '.join(f'{t:.3f}' for t in times)})"
     )
     print(f"wind_reference (NumPy + solve_banded):     {t_ref:8.3f} s")

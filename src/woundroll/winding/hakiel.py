@@ -370,10 +370,8 @@ def wind(
     alpha = np.zeros(max(nn - 1, 1))
     beta = np.zeros_like(alpha)
     Pflush = np.zeros_like(alpha)
-    pw = np.zeros_like(alpha)
     invr = 1.0 / prob.r
     invd = 1.0 / prob.dlog if nn > 1 else np.ones(1)
-    qw = np.zeros_like(alpha)
     dF = np.zeros(nn)
     dFold = np.zeros(nn)
     w = _MODES[options.modulus_update]
@@ -407,8 +405,6 @@ def wind(
             Pflush,
             dF,
             dFold,
-            pw,
-            qw,
             prob.kp,
             prob.ke,
             prob.E_theta,
