@@ -218,3 +218,15 @@ def test_nip_roller_needs_a_thickness_profile():
     with pytest.raises(InputError) as exc:
         woundroll.load_case("pet1-26.7N", ["winding.nip_roller.EI='1e5 N m^2'"])
     assert exc.value.field == "winding.nip_roller"
+
+
+def test_measured_profile_is_compared(tmp_path):
+    case = _profile_case(tmp_path, UNIFORM)
+    (tmp_path / "rho.csv").write_text("position [cm],rho\n2,40\n7.6,41\n13,39\n")
+    res = runner.invoke(app, ["run", str(case), "--set", "profile.measured='rho.csv'", "--json"])
+    assert res.exit_code == 0, res.output
+    m = json.loads(res.stdout)["profile"]["measured"]
+    assert m["measured"] == [40.0, 41.0, 39.0]
+    # uniform roll: the prediction is flat, so bias = predicted - mean(measured)
+    assert m["bias"] == pytest.approx(m["predicted"][0] - 40.0, rel=1e-9)
+    assert m["correlation"] is None  # a flat prediction has no pattern to correlate

@@ -310,10 +310,12 @@ class ProfileSpec(_Section):
     of the axisymmetric model (default: the model's); ``workers``: parallel contact
     solutions (default 2); ``foundation_stride``: nip foundation evaluated at every k-th
     sector; ``depth_max``: depth of each sector's contact solution (default 1 mm, deepened
-    where the striker goes further).
+    where the striker goes further); ``measured``: a measured profile (CSV, path relative to
+    the case file, ``position [in],rho``) to compare with the prediction.
     """
 
     sectors: int = Field(default=61, ge=1, le=2000)
+    measured: str | None = None
     groups: int | None = Field(default=None, ge=1)
     workers: int = Field(default=2, ge=1, le=64)
     foundation_stride: int = Field(default=4, ge=1)
@@ -340,10 +342,21 @@ class Case(_Section):
             return None
         from woundroll.profile.thickness import load_thickness
 
-        path = Path(self.winding.thickness_profile).expanduser()
+        return load_thickness(self._path(self.winding.thickness_profile), width=self.web.width)
+
+    def measured_profile(self) -> Any:
+        """The measured :class:`~woundroll.profile.compare.MeasuredProfile`, or None."""
+        if self.profile.measured is None:
+            return None
+        from woundroll.profile.compare import read_measured_profile
+
+        return read_measured_profile(self._path(self.profile.measured))
+
+    def _path(self, name: str) -> Path:
+        path = Path(name).expanduser()
         if not path.is_absolute() and self.base_dir is not None:
             path = self.base_dir / path
-        return load_thickness(path, width=self.web.width)
+        return path
 
     def tester_setup(self) -> Any:
         """The :class:`~woundroll.instruments.TesterSetup` of ``[tester]``, or None."""
@@ -409,6 +422,14 @@ def _check_options(case: Case) -> None:
     if case.tester is not None:
         case.contact.contact_options()
     case.thickness_profile()
+    if case.profile.measured is not None:
+        if case.winding.thickness_profile is None:
+            raise InputError(
+                "a measured profile is compared with a predicted one: give "
+                "winding.thickness_profile too",
+                "profile.measured",
+            )
+        case.measured_profile()
     if case.winding.nip_roller is not None:
         if case.winding.thickness_profile is None:
             raise InputError(

@@ -159,6 +159,15 @@ def result_summary(result: RunResult) -> list[tuple[str, str]]:
                 f"{st.min:.1f} / {st.max:.1f} / {st.peak_to_peak:.1f}",
             ),
         ]
+        c = p.comparison
+        if c is not None:
+            ms = c.measured_stats
+            r = "n/a" if c.correlation is None else f"{c.correlation:.2f}"
+            rows += [
+                ("measured Rho mean / CoV", f"{ms.mean:.1f} / {100 * ms.cov:.1f} % ({ms.band})"),
+                ("predicted - measured: bias / RMS", f"{c.bias:+.1f} / {c.rms:.1f}"),
+                ("RMS after bias / correlation", f"{c.rms_shape:.1f} / {r}"),
+            ]
     return rows
 
 

@@ -443,4 +443,7 @@ def _run_profile(
         workers=spec.workers,
         progress=progress,
     )
+    measured = case.measured_profile()
+    if measured is not None:
+        profile = profile.compare(measured)
     return RunResult(case=case, winding=winding, profile=profile, notes=tuple(notes))

@@ -32,7 +32,7 @@ import pickle
 import time
 from collections.abc import Callable, Sequence
 from concurrent.futures.process import BrokenProcessPool
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -42,6 +42,7 @@ from numpy.typing import ArrayLike, NDArray
 from woundroll.errors import InputError
 from woundroll.instruments.roll_side import fit_roll_spring
 from woundroll.materials.web import Core, Web
+from woundroll.profile.compare import MeasuredProfile, ProfileComparison, compare_profiles
 from woundroll.profile.nip import NipRoller, nip_hook, solve_nip
 from woundroll.profile.stats import ProfileStats, profile_stats
 from woundroll.profile.thickness import ThicknessProfile
@@ -172,6 +173,7 @@ class ProfileResult:
     sigma_r_core : ndarray [Pa]   radial stress of the group on the core.
     nip_load : ndarray or None [N/m]  nip load per width of the last increment.
     nip_foundation_depth : float or None [m]  depth range of the nip foundation's fit.
+    comparison : ProfileComparison or None    a measured profile beside this one.
     winding : AxisymmetricResult
     rho_stats, thickness_stats : ProfileStats
     timings : dict            seconds per stage.
@@ -191,6 +193,11 @@ class ProfileResult:
     thickness_stats: ProfileStats
     timings: dict[str, float] = field(default_factory=dict)
     nip_foundation_depth: float | None = None
+    comparison: ProfileComparison | None = None
+
+    def compare(self, measured: MeasuredProfile) -> ProfileResult:
+        """This result with a measured profile compared (:mod:`woundroll.profile.compare`)."""
+        return replace(self, comparison=compare_profiles(self.z, self.rho, measured))
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary: lists over CMD positions (SI, unit in the key) and stats."""
@@ -220,6 +227,8 @@ class ProfileResult:
                 "peak_to_mean": float(self.nip_load.max() / mean) if mean > 0 else None,
                 "foundation_depth_m": self.nip_foundation_depth,
             }
+        if self.comparison is not None:
+            out["measured"] = self.comparison.to_dict()
         return out
 
     def plot(self, path_prefix: str | Path | None = None) -> list[Any]:
@@ -239,7 +248,22 @@ class ProfileResult:
         ax2.plot(zc, self.rho, color="tab:red", marker="o", ms=3, label="Rho (model)")
         ax2.set_ylabel("Rho", color="tab:red")
         st = self.rho_stats
-        ax.set_title(f"Rho mean {st.mean:.1f}, CoV {100 * st.cov:.1f} % ({st.band})")
+        title = f"Rho mean {st.mean:.1f}, CoV {100 * st.cov:.1f} % ({st.band})"
+        c = self.comparison
+        if c is not None:
+            ax2.plot(
+                c.measured.position * 100.0,
+                c.measured.reading,
+                "s",
+                color="black",
+                ms=4,
+                mfc="none",
+                label="Rho (measured)",
+            )
+            ax2.legend(loc="best")
+            r = "n/a" if c.correlation is None else f"{c.correlation:.2f}"
+            title += f"\nmeasured: bias {c.bias:+.1f}, RMS {c.rms:.1f}, correlation {r}"
+        ax.set_title(title)
         w = self.winding
         f2 = Figure(figsize=(8, 4.2), layout="constrained")
         bx = f2.subplots()
