@@ -775,6 +775,9 @@ class SlipStudy:
         Largest finite SF within 3 a of the contact axis.
     slip_depth_m, slip_halfwidth_m : float
         Depth below the surface and arc half-width of the SF >= 1 region within 3 a.
+    slip_depth_whole_m : float
+        Deepest element with SF >= 1 anywhere in the model [m] (the region is far larger
+        than the contact, docs/studies.md).
     n_slip, n_near : int
         Elements with SF >= 1, and all elements, within 3 a of the axis.
     n_unbounded : int
@@ -792,6 +795,7 @@ class SlipStudy:
     n_slip: int
     n_near: int
     n_unbounded: int
+    slip_depth_whole_m: float = math.nan
     contact: Any = field(default=None, repr=False, compare=False)
     name: str = "slip"
 
@@ -811,6 +815,7 @@ class SlipStudy:
             "slip_elements_near_contact": self.n_slip,
             "elements_near_contact": self.n_near,
             "unbounded_slip_elements_near_contact": self.n_unbounded,
+            "slip_region_depth_whole_model_m": self.slip_depth_whole_m,
             "roll": dict(self.row),
         }
 
@@ -825,6 +830,7 @@ class SlipStudy:
             "SF>=1 depth [mm]",
             "SF>=1 half-width [mm]",
             "SF>=1 elements (within 3a)",
+            "SF>=1 depth, whole model [mm]",
         )
         rows = [
             (
@@ -837,6 +843,7 @@ class SlipStudy:
                 f"{self.slip_depth_m * 1e3:.2f}",
                 f"{self.slip_halfwidth_m * 1e3:.2f}",
                 f"{self.n_slip} / {self.n_near}",
+                f"{self.slip_depth_whole_m * 1e3:.1f}",
             )
         ]
         return [SummaryTable("Slip factor {23} near the head (Figure 18)", header, rows)]
@@ -944,6 +951,7 @@ def slip_factor_study(
         n_slip=int(np.sum(sf >= 1.0)),
         n_near=int(sf.size),
         n_unbounded=int(np.sum(np.isinf(sf))),
+        slip_depth_whole_m=fields.slip_extent(math.pi * fields.outer_radius)[0],
         contact=fields,
     )
 
