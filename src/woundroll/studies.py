@@ -157,6 +157,7 @@ def _measure(name: str, overrides: Sequence[str], keep: Sequence[str] = ()) -> d
         "delta_max_m": d_fd,
         "delta_max_energy_m": h["delta_max_energy_m"],
         "peak_force_N": h["peak_force_N"],
+        "peak_contact_pressure_Pa": float(np.interp(d_fd, c.delta, c.peak_pressure)),
         "contact_time_s": h["contact_time_s"],
         "effective_mass_kg": h["effective_mass_kg"],
         "contact_depth_max_m": float(c.delta[-1]),
