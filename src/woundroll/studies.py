@@ -10,8 +10,9 @@ impact, :func:`woundroll.run`) on bundled cases and returns a result object:
   impact's maximum depth.
 * :func:`pile_height_study` -- Figures 16/17: one roll wound to several outer radii
   (pile height H = outer radius - core radius); the pre-impact radial pressure against
-  radius, and Rho against H. Two extra columns take the plane-strain roll apart (see
-  :class:`PileHeightStudy`).
+  radius, and Rho against H, with columns that take the H dependence of the plane-strain
+  model apart (active mass, pre-stress, geometry; where along the axis the head's
+  approach comes from; see :class:`PileHeightStudy`).
 * :func:`slip_factor_study` -- Figure 18: the slip factor {23} near the head, the region
   where SF >= 1 and the largest SF.
 
@@ -110,8 +111,9 @@ def _impact_depth_fields(contact: Any, depth: float) -> tuple[Any, str]:
     """The contact fields at the impact's maximum depth, and where they come from.
 
     Uses ``ContactResult.at_depth`` when the contact package provides it; otherwise the
-    fields at the solve's largest depth ``depth_max`` (1 to 1.6 times the impact's
-    maximum depth, :func:`woundroll.pipeline.roll_stiffness`).
+    fields at the solve's largest depth ``delta[-1]``, which is at or beyond the impact's
+    maximum depth (:func:`woundroll.pipeline.roll_stiffness` deepens the solve until the
+    striker's depth is covered).
     """
     at_depth = getattr(contact, "at_depth", None)
     if callable(at_depth):
@@ -771,7 +773,7 @@ class SlipStudy:
         Head depth at which the fields are taken [m].
     fields_source : str
         ``"at_depth"`` (``ContactResult.at_depth`` at the FD maximum depth) or
-        ``"depth_max"`` (the contact solve's largest depth, 1-1.6 x the impact's).
+        ``"depth_max"`` (the contact solve's largest depth, at or beyond the impact's).
     max_slip_factor : float
         Largest finite SF within 3 a of the contact axis.
     slip_depth_m, slip_halfwidth_m : float
