@@ -179,7 +179,7 @@ class TabulatedLaw:
         return self.force_table[i] + self._slope[i] * (d - self.depth[i])
 
     def energy(self, d: ArrayLike) -> NDArray[np.float64]:
-        """Stored energy int_0^d F [J] (exact for the piecewise-linear curve)."""
+        """Stored energy E_roll(d) = int_0^d F [J] {20} (exact for the piecewise-linear curve)."""
         d = np.asarray(d, dtype=float)
         i = self._segment(d)
         s = d - self.depth[i]

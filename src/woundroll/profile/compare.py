@@ -11,7 +11,8 @@ sector centres, held flat beyond the outermost centres):
 * bias: mean of (predicted - measured);
 * RMS difference, and the RMS after removing the bias (the shape error: a level offset
   from an unknown calibration or modulus is common, the CMD pattern is what diagnoses);
-* Pearson correlation of the two profiles (does the pattern follow?);
+* Pearson correlation of the two profiles (does the pattern follow?); None when either is
+  flat (a uniform prediction has no pattern);
 * the statistics and CoV band of each (:mod:`woundroll.profile.stats`).
 """
 
@@ -128,7 +129,8 @@ def compare_profiles(
     diff = at - measured.reading
     bias = float(diff.mean())
     corr = None
-    if np.std(at) > 0 and np.std(measured.reading) > 0:
+    flat = 1e-9 * max(float(np.max(np.abs(at))), 1e-300)  # round-off of a uniform roll
+    if np.ptp(at) > flat and np.ptp(measured.reading) > 0:
         corr = float(np.corrcoef(at, measured.reading)[0, 1])
     return ProfileComparison(
         measured=measured,
