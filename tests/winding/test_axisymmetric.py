@@ -1,5 +1,6 @@
 """Axisymmetric (r, z) winding with a CMD thickness profile: closed forms, the 1D limit,
-convergence, tension allocation, input errors."""
+sigma_z / tau_rz, convergence in the CMD mesh and in the grouping, the lazy deep part,
+tension allocation, the slack flag, input errors."""
 
 from __future__ import annotations
 
@@ -20,8 +21,8 @@ R_CORE, R_OUT, H = 0.1016, 0.2032, 76e-6  # Table 3
 CORE = Core.tube(R_CORE, 0.095, 69e9, 0.33)
 
 
-def table3_web(law=None) -> Web:
-    return Web(
+def table3_web(law=None, **kw) -> Web:
+    args = dict(
         thickness=H,
         width=0.61,
         E_theta=4999e6,
@@ -30,6 +31,14 @@ def table3_web(law=None) -> Web:
         nu_z_r=0.01,
         nu_theta_z=0.3,
     )
+    return Web(**(args | kw))
+
+
+def plane_web(law=None, **kw) -> Web:
+    """Table 3 without the axial Poisson coupling (nu_z_r = nu_theta_z = 0): the axial
+    problem decouples, sigma_z = tau_rz = 0 for a uniform web, and the axisymmetric model
+    must reproduce the plane-stress (1D) models exactly up to discretisation."""
+    return table3_web(law, nu_z_r=0.0, nu_theta_z=0.0, **kw)
 
 
 def altmann(E_r: float, E_t: float, nu: float, E_c: float, T: float, R: float, r: float):
@@ -53,10 +62,10 @@ def altmann(E_r: float, E_t: float, nu: float, E_c: float, T: float, R: float, r
 
 @pytest.mark.parametrize("E_r", [1.25e9, 50e6])
 def test_constant_modulus_matches_altmann_closed_form(E_r: float) -> None:
-    # linear orthotropic limit: the model uses exact ring elements, so only the layering
-    # (200 groups of ~7 layers) and the discrete-vs-continuous build differ from the closed
-    # form; measured max 0.3 % (sigma_r) and 0.2 % of T (sigma_theta). Tolerance 1 %.
-    web = table3_web(Constant(E_r))
+    # linear orthotropic limit, axisymmetric FE (3 sectors) without axial Poisson coupling:
+    # u_r uses the exact ring shapes, so only the layering (200 graded groups) and the
+    # discrete-vs-continuous build differ from the closed form. Tolerance 1 %.
+    web = plane_web(Constant(E_r))
     T = 2.3e6
     res = wind_axisymmetric(
         web, CORE, R_OUT, TensionSchedule(web_stress=T), n_sectors=3, n_groups=200
@@ -80,7 +89,13 @@ def test_constant_modulus_converges_under_layer_grouping() -> None:
     errs = []
     for G in (50, 100):
         res = wind_axisymmetric(
-            web, CORE, R_OUT, TensionSchedule(web_stress=2.3e6), n_sectors=1, n_groups=G
+            web,
+            CORE,
+            R_OUT,
+            TensionSchedule(web_stress=2.3e6),
+            n_sectors=1,
+            n_groups=G,
+            grouping="uniform",
         )
         i = G // 2
         R = R_CORE + res.n_layers * H
@@ -89,34 +104,112 @@ def test_constant_modulus_converges_under_layer_grouping() -> None:
     assert errs[1] < errs[0] / 1.5
 
 
-def test_uniform_thickness_all_sectors_equal_and_equal_to_one_sector() -> None:
-    # a uniform web gives identical sectors (no shear between them): the 61-sector roll is the
-    # 1-sector roll, to round-off
-    web = table3_web()
+def test_uniform_thickness_without_axial_poisson_is_the_1d_model() -> None:
+    # with nu_z_r = nu_theta_z = 0 the axial problem decouples: the 61-sector FE roll must be
+    # the 1-sector (plane-stress column) roll to round-off, with sigma_z = tau_rz = 0
+    web = plane_web()
     ten = TensionSchedule(web_stress=2.3e6)
-    many = wind_axisymmetric(web, CORE, R_OUT, ten, n_sectors=61, n_groups=60)
+    many = wind_axisymmetric(web, CORE, R_OUT, ten, n_sectors=61, n_groups=60, window=None)
     one = wind_axisymmetric(web, CORE, R_OUT, ten, n_sectors=1, n_groups=60)
-    np.testing.assert_allclose(many.sigma_r, np.repeat(one.sigma_r, 61, axis=1), rtol=1e-9)
+    np.testing.assert_allclose(many.sigma_r, np.repeat(one.sigma_r, 61, axis=1), rtol=1e-7)
     # WOT = E_theta (rho / R0 - 1): the subtraction loses ~E_theta / WOT ~ 2000 x eps
     np.testing.assert_allclose(many.wot, 2.3e6, rtol=1e-9)
-    assert np.max(np.abs(many.tau_rz)) < 1e-6 * np.max(np.abs(many.sigma_r))
+    smax = np.max(np.abs(many.sigma_r))
+    assert np.max(np.abs(many.tau_rz)) < 1e-9 * smax
+    assert np.max(np.abs(many.sigma_z)) < 1e-9 * smax
+
+
+def _hakiel_deviation(res, j: int, ref) -> tuple[float, float]:
+    """Largest |d sigma_r| over the roll / P_core, and the largest pointwise relative
+    deviation in the outer 5 mm (where the tester reads), sector j vs the 1D model."""
+    r = res.radius[:, j]
+    s1 = np.interp(r, ref.radius, ref.sigma_r)
+    dev = np.abs(res.sigma_r[:, j] - s1)
+    outer = r > R_OUT - 0.005
+    return dev.max() / ref.core_pressure, float(np.max(dev[outer] / np.abs(s1[outer])))
 
 
 @pytest.mark.parametrize("T", [2.3e6, 3.45e6])
 def test_uniform_thickness_reproduces_the_1d_hakiel_model(T: float) -> None:
-    # the brief's check: uniform thickness within 2 % of the 1D model (woundroll.winding.hakiel,
-    # layer by layer). Measured: 0.3 % of the core pressure at the default 200 groups.
+    # the issue's check: uniform thickness within 2 % of the 1D model (woundroll.winding.hakiel,
+    # layer by layer), pointwise. The 1D model is plane stress (sigma_z = 0), so the
+    # comparison of the discretisation is made without the axial Poisson coupling
+    # (nu_z_r = nu_theta_z = 0; 5 sectors, default graded grouping). Measured at 2.3 / 3.45 MPa:
+    # max over the roll 0.6 / 0.3 % of P_core, outer 5 mm pointwise 1.0 / 1.1 %.
     hakiel = pytest.importorskip("woundroll.winding.hakiel")
-    web = table3_web()
+    web = plane_web()
     ten = TensionSchedule(web_stress=T)
     ref = hakiel.wind(web, CORE, R_OUT, ten)
     res = wind_axisymmetric(web, CORE, R_OUT, ten, n_sectors=5)
-    r = res.radius[:, 2]
-    inner = r < R_OUT - 0.005  # the outermost 5 mm: group centres vs layer nodes
-    dev = np.abs(res.sigma_r[inner, 2] - np.interp(r[inner], ref.radius, ref.sigma_r))
-    assert dev.max() < 0.02 * ref.core_pressure
-    dev_t = np.abs(res.sigma_theta[inner, 2] - np.interp(r[inner], ref.radius, ref.sigma_theta))
+    whole, outer = _hakiel_deviation(res, 2, ref)
+    assert whole < 0.02
+    assert outer < 0.02
+    dev_t = np.abs(res.sigma_theta[:, 2] - np.interp(res.radius[:, 2], ref.radius, ref.sigma_theta))
     assert dev_t.max() < 0.02 * T
+
+
+def test_table3_poisson_coupling_against_the_1d_model() -> None:
+    # with Table 3's nu_z_r = 0.01, nu_theta_z = 0.3 (E_z = E_theta) the layers of a 61 cm
+    # wide roll are tied axially by tau_rz (shear-lag length ~ depth x sqrt(E_z / G_rz), of
+    # the order of the width): at mid-width the roll is nearer plane strain in z than plane
+    # stress, sigma_z reaches ~1.6 MPa at the core, and sigma_r departs from the plane-stress
+    # 1D model by ~7 % of P_core near the core (a physical difference, not a discretisation
+    # error: it vanishes without the coupling, test above). Near the surface, where the
+    # tester reads, mid-width sigma_r stays within 3 % pointwise (measured 2.5 %) and within
+    # 0.2 % of P_core. Bands: regression guards on these measured values.
+    hakiel = pytest.importorskip("woundroll.winding.hakiel")
+    web = table3_web()
+    ten = TensionSchedule(web_stress=2.3e6)
+    ref = hakiel.wind(web, CORE, R_OUT, ten)
+    res = wind_axisymmetric(web, CORE, R_OUT, ten, n_sectors=15)
+    whole, outer = _hakiel_deviation(res, 7, ref)
+    assert 0.04 < whole < 0.10
+    assert outer < 0.03
+    r = res.radius[:, 7]
+    o = r > R_OUT - 0.005
+    assert np.max(np.abs(res.sigma_r[o, 7] - np.interp(r[o], ref.radius, ref.sigma_r))) < (
+        0.002 * ref.core_pressure
+    )
+    assert 1.2e6 < res.sigma_z[0, 7] < 2.0e6
+
+
+def test_uniform_roll_sigma_z_and_tau_rz_symmetry_and_free_edges() -> None:
+    # uniform web, 15 sectors: the solution is symmetric about mid-width, so tau_rz is odd in
+    # z (zero in the middle sector to round-off, 1e-9 of its peak) and sigma_z even; the
+    # edges are traction-free (natural boundary condition), so sigma_z falls toward them,
+    # and with no axial load the net axial force across every CMD section vanishes
+    # (int sigma_z r dr: measured 1e-2 of int |sigma_z| r dr, FE equilibrium in weak form)
+    web = table3_web()
+    res = wind_axisymmetric(web, CORE, 0.15, TensionSchedule(web_stress=2.3e6), n_sectors=15)
+    tmax = np.max(np.abs(res.tau_rz))
+    assert tmax > 0
+    assert np.max(np.abs(res.tau_rz[:, 7])) < 1e-9 * tmax
+    np.testing.assert_allclose(res.tau_rz, -res.tau_rz[:, ::-1], atol=1e-9 * tmax)
+    np.testing.assert_allclose(res.sigma_z, res.sigma_z[:, ::-1], atol=1e-9 * tmax)
+    mid, edge = np.abs(res.sigma_z[:, 7]).max(), np.abs(res.sigma_z[:, 0]).max()
+    assert edge < 0.5 * mid
+    rr = np.concatenate([[R_CORE], 0.5 * (res.radius[1:, 0] + res.radius[:-1, 0]), [0.15]])
+    dr = np.diff(rr)[:, None]
+    Fz = np.sum(res.sigma_z * res.radius * dr, axis=0)
+    Fa = np.sum(np.abs(res.sigma_z) * res.radius * dr, axis=0)
+    assert np.max(np.abs(Fz)) < 0.03 * np.max(Fa)
+
+
+def test_E_z_and_nu_theta_z_enter_sigma_z() -> None:
+    # the axial properties now matter: sigma_z at the core (mid-width) responds to E_z and
+    # nu_theta_z, and vanishes without the axial Poisson coupling
+    ten = TensionSchedule(web_stress=2.3e6)
+    kw = dict(n_sectors=5, n_groups=40)
+    base = wind_axisymmetric(table3_web(), CORE, 0.13, ten, **kw)
+    soft = wind_axisymmetric(table3_web(E_z=0.5e9), CORE, 0.13, ten, **kw)
+    nu = wind_axisymmetric(table3_web(nu_theta_z=0.1), CORE, 0.13, ten, **kw)
+    off = wind_axisymmetric(plane_web(), CORE, 0.13, ten, **kw)
+    s0 = np.abs(base.sigma_z).max()
+    assert s0 > 1e4
+    assert np.abs(soft.sigma_z - base.sigma_z).max() > 0.1 * s0
+    assert np.abs(nu.sigma_z - base.sigma_z).max() > 0.1 * s0
+    assert np.abs(off.sigma_z).max() < 1e-9 * s0
+    assert not np.array_equal(soft.sigma_r, base.sigma_r)
 
 
 def test_k1_zero_layer_by_layer_limit_converges() -> None:
@@ -192,7 +285,13 @@ def test_uniform_nip_adds_mu_n_over_h() -> None:
     web = table3_web()
     ten = TensionSchedule(web_stress=2.3e6, nip_load=1000.0, friction=0.2)
     res = wind_axisymmetric(web, CORE, 0.12, ten, n_sectors=3, n_groups=20)
-    np.testing.assert_allclose(res.wot, 2.3e6 + 0.2 * 1000.0 / H, rtol=1e-12)
+    # the web tension is allocated by radius (the free edges build slightly differently in
+    # the FE model, < 0.1 %), the nip part mu N / h is added in every sector exactly
+    web_part = res.wot - 0.2 * 1000.0 / H
+    np.testing.assert_allclose(
+        (web_part * res.thickness * res.dz).sum(axis=1), res.info["line_force_N"], rtol=1e-9
+    )
+    np.testing.assert_allclose(res.wot, 2.3e6 + 0.2 * 1000.0 / H, rtol=2e-3)
 
 
 def test_nip_callable_is_validated() -> None:
@@ -270,7 +369,13 @@ def test_constant_modulus_matches_discrete_layer_closed_form(E_r: float) -> None
     errs = []
     for G in (100, 200):
         a = wind_axisymmetric(
-            web, CORE, R_OUT, TensionSchedule(web_stress=2.3e6), n_sectors=1, n_groups=G
+            web,
+            CORE,
+            R_OUT,
+            TensionSchedule(web_stress=2.3e6),
+            n_sectors=1,
+            n_groups=G,
+            grouping="uniform",
         )
         sel = a.radius[:, 0] < R_OUT - 0.005
         ref = np.interp(a.radius[sel, 0], r, sr)
@@ -280,8 +385,10 @@ def test_constant_modulus_matches_discrete_layer_closed_form(E_r: float) -> None
 
 
 def test_group_convergence_helper() -> None:
-    # the check halves the group size; on the Table 3 profile 200 -> 400 groups changes the
-    # core stress by ~0.1 % of its peak (benchmark); the helper must report < 1 % here
+    # the check halves the group size. Measured on the bundled profile, 21 sectors, R 15 cm:
+    # 100 -> 200 graded groups: core 1.4 %, WOT 0.4 %, outer 5 mm sigma_r 0.6 % of its peak,
+    # 3.5 % pointwise; 200 -> 400: 0.15 %, 0.12 %, 0.27 %, 0.6 % (docs/profile.md). The bands
+    # here guard the 100 -> 200 values with some margin.
     from woundroll.winding.axisymmetric import group_convergence
 
     out = group_convergence(
@@ -294,8 +401,10 @@ def test_group_convergence_helper() -> None:
         n_groups=100,
     )
     assert out["n_groups_fine"] == 200
-    assert 0 < out["core_stress_change"] < 0.01
+    assert 0 < out["core_stress_change"] < 0.03
     assert 0 <= out["wot_change"] < 0.01
+    assert 0 < out["surface_stress_change"] < 0.015
+    assert 0 < out["surface_stress_change_pointwise"] < 0.06
 
 
 @pytest.mark.parametrize(

@@ -1,0 +1,294 @@
+"""Axisymmetric (r, z) finite elements of the wound stack (used by ``axisymmetric.py``).
+
+Mesh: node ``(k, i)`` at layer-group boundary ``k`` (0 on the core) and sector edge ``i``
+(``n_sectors + 1`` edges, free CMD edges at both ends); element ``(k, j)`` is layer group
+``k`` in sector ``j``, the rectangle ``[R[k, j], R[k+1, j]] x [e_j, e_(j+1)]`` of the sector's
+own build (nodes are shared by layer index, i.e. a layer is continuous across the CMD; the
+tilt of the layers where the build changes across the CMD, at most a few per cent, is not
+rotated into the material axes). Two unknowns per node, ``u_r`` and ``u_z``.
+
+Interpolation (tensor product): linear in z; in r the exact solution of the uniform-modulus
+ring, ``u_r`` in span{x^g, x^-g} (``x = r / r_m``, ``g = sqrt(E_theta / E_r)``), written as
+``N_1 = sinh(g (s_2 - s)) / sinh(g D)``, ``N_2 = sinh(g (s - s_1)) / sinh(g D)`` with
+``s = ln r``, ``D = s_2 - s_1`` (stable for g D -> 0, where it tends to linear in ln r);
+``u_z`` linear in r (it must contain the rigid axial translation; a power-law basis for u_z
+does not, and produced spurious shear). With ``shape="linear"`` u_r is linear in r too
+(kept for the comparison in docs/profile.md).
+
+Constitutive law: full cylindrically orthotropic compliance in (r, theta, z) with the
+project's convention ``nu_ij = -eps_j / eps_i`` under ``sigma_i`` (materials/web.py):
+
+    eps_r     =  sigma_r/E_r - nu_theta_r sigma_theta/E_theta - nu_z_r sigma_z/E_z
+    eps_theta = -nu_theta_r sigma_r/E_theta + sigma_theta/E_theta - nu_theta_z sigma_z/E_theta
+    eps_z     = -nu_z_r sigma_r/E_z - nu_theta_z sigma_theta/E_theta + sigma_z/E_z
+    tau_rz    =  G_rz (du_r/dz + du_z/dr)
+
+Energy per radian ``1/2 int (eps . C eps + G_rz gamma^2) r dr dz``: the radial integrals by
+Gauss-Legendre (``NQ`` points), the axial ones exactly. Stiffness matrices are assembled by
+COO -> CSC and factorised by SuperLU.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+from scipy.sparse.linalg import splu
+
+FloatArray = NDArray[np.float64]
+
+NQ = 6
+_XQ, _WQ = np.polynomial.legendre.leggauss(NQ)
+_GD_MAX = 60.0  # cap of g ln(r2/r1): the shapes are then pure surface exponentials
+
+
+def material_matrices(
+    E_r: FloatArray,
+    E_t: float,
+    E_z: float,
+    nu_tr: float,
+    nu_zr: float,
+    nu_tz: float,
+) -> FloatArray:
+    """Stiffness ``C`` (..., 3, 3) in (r, theta, z): inverse of the compliance above."""
+    S = np.zeros(E_r.shape + (3, 3))
+    S[..., 0, 0] = 1.0 / E_r
+    S[..., 1, 1] = 1.0 / E_t
+    S[..., 2, 2] = 1.0 / E_z
+    S[..., 0, 1] = S[..., 1, 0] = -nu_tr / E_t
+    S[..., 0, 2] = S[..., 2, 0] = -nu_zr / E_z
+    S[..., 1, 2] = S[..., 2, 1] = -nu_tz / E_t
+    return np.linalg.inv(S)
+
+
+def radial_shapes(
+    r1: FloatArray, r2: FloatArray, g: FloatArray, r: FloatArray, shape: str = "power"
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Radial shape functions at radii ``r`` (..., q) of elements [r1, r2] (..., 1).
+
+    Returns N, dN/dr (for u_r) and L, dL/dr (for u_z), each (..., q, 2).
+    """
+    Lr = r2 - r1
+    L = np.stack([(r2 - r) / Lr, (r - r1) / Lr], axis=-1)
+    dL = np.stack([-1.0 / Lr + 0 * r, 1.0 / Lr + 0 * r], axis=-1)
+    if shape == "linear":
+        return L, dL, L, dL
+    s1, s2, s = np.log(r1), np.log(r2), np.log(r)
+    D = s2 - s1
+    gg = np.minimum(g, _GD_MAX / D)
+    small = gg * D < 1e-6
+    gs = np.where(small, 1e-6 / D, gg)  # sinh ratio -> linear in ln r (to 1e-13)
+    den = np.sinh(gs * D)
+    a1, a2 = gs * (s2 - s), gs * (s - s1)
+    N = np.stack([np.sinh(a1) / den, np.sinh(a2) / den], axis=-1)
+    dN = np.stack([-gs * np.cosh(a1) / (r * den), gs * np.cosh(a2) / (r * den)], axis=-1)
+    return N, dN, L, dL
+
+
+class Stack:
+    """Assembly and solution of the incremental problem of a stack of layer groups.
+
+    Parameters
+    ----------
+    dz : (n_sectors,) sector widths [m].
+    core_stiffness : E_c per unit area [Pa] (``inf``: rigid, u_r = 0 on the core).
+    material : (E_t, E_z, nu_tr, nu_zr, nu_tz).
+    shear : callable E_r -> G_rz.
+    """
+
+    def __init__(self, dz, core_stiffness, material, shear, shape="power"):
+        self.dz = np.asarray(dz, dtype=float)
+        self.ncol = self.dz.size
+        self.nc1 = self.ncol + 1
+        self.E_c = float(core_stiffness)
+        self.rigid = not np.isfinite(self.E_c)
+        self.mat = material
+        self.shear = shear
+        self.shape = shape
+        # local dof (a, b, c): radial node a, CMD node b, component c (0: u_r, 1: u_z)
+        a, b, c = np.meshgrid([0, 1], [0, 1], [0, 1], indexing="ij")
+        self._loc = (a.ravel(), b.ravel(), c.ravel())
+        dzz = self.dz[:, None, None]
+        self.M0 = dzz / 6.0 * np.array([[2.0, 1.0], [1.0, 2.0]])[None]
+        self.M1 = 1.0 / dzz * np.array([[1.0, -1.0], [-1.0, 1.0]])[None]
+        self.Zx = np.array([[-0.5, 0.5], [-0.5, 0.5]])  # int M_b dM_d/dz dz
+        self.u_z_fixed_node = self.ncol // 2  # on the core: removes the rigid translation
+
+    def dofs(self, ne: int) -> NDArray[np.int64]:
+        """Global dofs (ne, ncol, 8) of the elements of a stack of ``ne`` groups."""
+        k = np.arange(ne)[:, None, None]
+        j = np.arange(self.ncol)[None, :, None]
+        a, b, c = self._loc
+        return 2 * ((k + a) * self.nc1 + j + b) + c
+
+    def _element_matrices(self, rn: FloatArray, E_r: FloatArray) -> tuple:
+        E_t, E_z, nu_tr, nu_zr, nu_tz = self.mat
+        r1, r2 = rn[:-1, :, None], rn[1:, :, None]
+        rq = 0.5 * (r1 + r2) + 0.5 * (r2 - r1) * _XQ
+        wq = 0.5 * (r2 - r1) * _WQ
+        g = np.sqrt(E_t / E_r)[..., None]
+        N, dN, L, dL = radial_shapes(r1, r2, g, rq, self.shape)
+        C = material_matrices(E_r, E_t, E_z, nu_tr, nu_zr, nu_tz)
+        Gs = self.shear(E_r)
+        shp = E_r.shape
+        nel = int(np.prod(shp))
+
+        # all weighted products of the radial functions [N, dN, L, dL] at once
+        F = np.concatenate([N, dN, L, dL], axis=-1).reshape(nel, NQ, 8)
+        Fw = F[:, None, :, :] * np.stack([wq * rq, wq, wq / rq], axis=-2).reshape(nel, 3, NQ, 1)
+        P = np.swapaxes(Fw, -1, -2) @ F[:, None]  # (nel, 3, 8, 8)
+        n_, d_, l_, g_ = slice(0, 2), slice(2, 4), slice(4, 6), slice(6, 8)
+        Pr, P1, Pi = P[:, 0], P[:, 1], P[:, 2]  # weights r, 1, 1/r
+        Rrr, Rrt, Rtt, Rnn = Pr[:, d_, d_], P1[:, d_, n_], Pi[:, n_, n_], Pr[:, n_, n_]
+        Arz, Atz, Ag = Pr[:, d_, l_], P1[:, n_, l_], Pr[:, n_, g_]
+        Bzz, Bgg = Pr[:, l_, l_], Pr[:, g_, g_]
+        Cf = C.reshape(nel, 3, 3)[..., None, None]
+        Gq = Gs.reshape(nel, 1, 1)
+        Rth = Cf[:, 0, 0] * Rrr + Cf[:, 0, 1] * (Rrt + Rrt.transpose(0, 2, 1)) + Cf[:, 1, 1] * Rtt
+        Xuz = Cf[:, 0, 2] * Arz + Cf[:, 1, 2] * Atz
+        col = np.broadcast_to(np.arange(shp[-1]), shp).ravel()
+        M0, M1 = self.M0[col][:, None, :, None, :], self.M1[col][:, None, :, None, :]
+        Zx = self.Zx[None, None, :, None, :]
+        ZxT = self.Zx.T[None, None, :, None, :]
+
+        def kron(Rm: FloatArray, Zm: FloatArray) -> FloatArray:  # (e,a,a') x (e,b,b')
+            return Rm[:, :, None, :, None] * Zm
+
+        K = np.empty((nel, 2, 2, 2, 2, 2, 2))
+        K[:, :, :, 0, :, :, 0] = kron(Rth, M0) + kron(Gq * Rnn, M1)
+        Kuz = kron(Xuz, Zx) + kron(Gq * Ag, ZxT)
+        K[:, :, :, 0, :, :, 1] = Kuz
+        K[:, :, :, 1, :, :, 0] = Kuz.transpose(0, 3, 4, 1, 2)
+        K[:, :, :, 1, :, :, 1] = kron(Cf[:, 2, 2] * Bzz, M1) + kron(Gq * Bgg, M0)
+        return K.reshape(E_r.shape + (8, 8)), C, Gs
+
+    def _system(
+        self, rn: FloatArray, E_r: FloatArray, S: FloatArray | None
+    ) -> tuple[sp.csc_matrix, NDArray[np.bool_], FloatArray | None, FloatArray | None]:
+        """Stiffness of a stack of ``ne = E_r.shape[0]`` groups (local layers 0..ne). The
+        bottom layer lies on the core (``S`` None: Hakiel's core spring or a rigid core,
+        u_z fixed at one node) or carries the condensed stiffness ``S`` of a deep part."""
+        ne = E_r.shape[0]
+        nc1 = self.nc1
+        n = 2 * (ne + 1) * nc1
+        rows, cols, vals = [], [], []
+        C = Gs = None
+        if ne > 0:
+            Ke, C, Gs = self._element_matrices(rn, E_r)
+            d = self.dofs(ne)
+            rows.append(np.broadcast_to(d[..., :, None], Ke.shape).ravel())
+            cols.append(np.broadcast_to(d[..., None, :], Ke.shape).ravel())
+            vals.append(Ke.ravel())
+        fixed = np.zeros(n, dtype=bool)
+        if S is not None:
+            i = np.arange(2 * nc1)
+            rows.append(np.repeat(i, i.size))
+            cols.append(np.tile(i, i.size))
+            vals.append(S.ravel())
+        else:
+            if self.rigid:
+                fixed[0 : 2 * nc1 : 2] = True
+            else:  # Hakiel's core condition, consistent over each sector's width
+                kc = self.E_c * self.M0  # (ncol, 2, 2): u = r_c sigma_r / E_c, per radian
+                i0 = 2 * np.arange(self.ncol)
+                ii = np.stack([i0, i0 + 2], axis=-1)
+                rows.append(np.broadcast_to(ii[:, :, None], kc.shape).ravel())
+                cols.append(np.broadcast_to(ii[:, None, :], kc.shape).ravel())
+                vals.append(kc.ravel())
+            if ne == 0:
+                fixed[1::2] = True  # no stack: only the core's radial spring
+            else:
+                fixed[2 * self.u_z_fixed_node + 1] = True
+        r_, c_, v_ = np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
+        keep = ~(fixed[r_] | fixed[c_])
+        fi = np.flatnonzero(fixed)
+        A = sp.csc_matrix(
+            (
+                np.concatenate([v_[keep], np.ones(fi.size)]),
+                (np.concatenate([r_[keep], fi]), np.concatenate([c_[keep], fi])),
+            ),
+            shape=(n, n),
+        )
+        return A, fixed, C, Gs
+
+    def solve(
+        self, rn: FloatArray, E_r: FloatArray, f_top: FloatArray, S: FloatArray | None = None
+    ) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Displacement increments of a stack of ``ne = E_r.shape[0]`` groups.
+
+        rn : (ne + 1, ncol) node radii of each sector's build; E_r : (ne, ncol) element
+        moduli; f_top : (ncol + 1,) radial nodal forces per radian on the top nodes; S: the
+        condensed deep part under the bottom layer (:meth:`condense`), else the core.
+        Returns du_r, du_z (ne + 1, ncol + 1) and the element-centre stress increments
+        (4, ne, ncol): sigma_r, sigma_theta, sigma_z, tau_rz.
+        """
+        ne = E_r.shape[0]
+        nc1 = self.nc1
+        A, fixed, C, Gs = self._system(rn, E_r, S)
+        rhs = np.zeros(A.shape[0])
+        rhs[2 * ne * nc1 : 2 * (ne + 1) * nc1 : 2] = f_top
+        rhs[fixed] = 0.0
+        x = splu(A, permc_spec="MMD_AT_PLUS_A").solve(rhs)
+        x = x.reshape(ne + 1, nc1, 2)
+        du_r, du_z = x[..., 0], x[..., 1]
+        if ne == 0:
+            return du_r, du_z, np.zeros((4, 0, self.ncol))
+        return du_r, du_z, self.centre_stress(rn, E_r, du_r, du_z, C, Gs)
+
+    def condense(self, rn: FloatArray, E_r: FloatArray) -> FloatArray:
+        """Freeze the deep part (``E_r.shape[0]`` >= 1 groups on the core): factorise it with
+        the natural (layer by layer) order, so that its top layer is eliminated last and the
+        trailing block of the factors is the Schur complement ``S`` (2 (ncol+1))^2 that the
+        deep part presents to the layer above it. Returns S; :meth:`recover` gives the deep
+        response to a displacement of that layer."""
+        A, fixed, C, Gs = self._system(rn, E_r, None)
+        lu = splu(
+            A,
+            permc_spec="NATURAL",
+            diag_pivot_thresh=0.0,
+            options={"SymmetricMode": True},
+        )
+        t = A.shape[0] - 2 * self.nc1
+        ident = np.arange(A.shape[0])
+        if np.array_equal(lu.perm_r, ident) and np.array_equal(lu.perm_c, ident):
+            S = (lu.L[t:, t:] @ lu.U[t:, t:]).toarray()
+        else:  # pivoting happened: the Schur complement by solves (slow, not expected)
+            Kdi = A[:t, t:].toarray()
+            Ad = splu(A[:t, :t].tocsc())
+            S = A[t:, t:].toarray() - A[t:, :t] @ Ad.solve(Kdi)
+        S = 0.5 * (S + S.T)
+        self._deep = (lu, S, rn, E_r, C, Gs)
+        return S
+
+    def recover(self, x_top: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Response of the frozen deep part to the displacement ``x_top`` (ncol+1, 2) of its
+        top layer: du_r, du_z of its layers (k_s + 1, ncol + 1) and the stress increments
+        (4, k_s, ncol) of its elements."""
+        lu, S, rn, E_r, C, Gs = self._deep
+        nc1 = self.nc1
+        rhs = np.zeros(lu.shape[0])
+        rhs[-2 * nc1 :] = S @ x_top.ravel()
+        x = lu.solve(rhs).reshape(-1, nc1, 2)
+        x[-1] = x_top
+        du_r, du_z = x[..., 0], x[..., 1]
+        return du_r, du_z, self.centre_stress(rn, E_r, du_r, du_z, C, Gs)
+
+    def centre_stress(self, rn, E_r, du_r, du_z, C, Gs) -> FloatArray:
+        """Stress increments (4, ne, ncol) at the element centres."""
+        E_t = self.mat[0]
+        r1, r2 = rn[:-1, :, None], rn[1:, :, None]
+        rm = 0.5 * (r1 + r2)
+        N, dN, L, dL = radial_shapes(r1, r2, np.sqrt(E_t / E_r)[..., None], rm, self.shape)
+        N, dN, L, dL = N[..., 0, :], dN[..., 0, :], L[..., 0, :], dL[..., 0, :]
+        U = np.stack([du_r[:-1], du_r[1:]], axis=-1)  # (ne, nc1, a)
+        Z = np.stack([du_z[:-1], du_z[1:]], axis=-1)
+        Um, Ud = 0.5 * (U[:, 1:] + U[:, :-1]), U[:, 1:] - U[:, :-1]  # (ne, ncol, a)
+        Zm, Zd = 0.5 * (Z[:, 1:] + Z[:, :-1]), Z[:, 1:] - Z[:, :-1]
+        dz = self.dz[None, :]
+        e_r = (dN * Um).sum(-1)
+        e_t = (N * Um).sum(-1) / rm[..., 0]
+        e_z = (L * Zd).sum(-1) / dz
+        gam = (N * Ud).sum(-1) / dz + (dL * Zm).sum(-1)
+        eps = np.stack([e_r, e_t, e_z], axis=-1)
+        sig = np.einsum("...ij,...j->...i", C, eps)
+        return np.stack([sig[..., 0], sig[..., 1], sig[..., 2], Gs * gam])
