@@ -2,18 +2,42 @@
 
 Degrees of freedom are the polar components ``(u_r, u_theta)`` of each node's displacement
 (in the node's own polar frame), so the core condition and the contact normal are simple.
-Strains are evaluated in Cartesian form and rotated to the local cylindrical axes
-``(r, theta)`` at each integration point, where the material law is diagonal-by-blocks:
+The material law is diagonal-by-blocks in the local cylindrical axes ``(r, theta)``:
 
     [sigma_r, sigma_theta]^T = C [eps_r, eps_theta]^T,   tau_r_theta = G_r_theta gamma_r_theta.
 
 ``C`` is the inverse of the reduced plane-strain compliance (see :func:`plane_strain_moduli`).
 Because ``C`` and ``G`` are constant in each element, every element stiffness is
 ``C11 A_rr + C12 A_rt + C22 A_tt + G A_s`` with four geometric matrices computed once; a load
-increment only recombines them (no quadrature in the loop). The shear matrix ``A_s`` is
-integrated with one point at the element centre by default (selective reduced integration),
-which removes the parasitic shear that makes long thin bilinear elements too stiff in
-bending; the normal terms keep 2x2 Gauss points, so no hourglass mode appears.
+increment only recombines them (no quadrature in the loop).
+
+Two elements (``element=``):
+
+* ``"curved"`` (default): the element is the exact annular sector
+  ``r_i <= r <= r_i+1, theta_j <= theta <= theta_j+1``; ``u_r`` and ``u_theta`` are bilinear
+  in ``(r, theta)`` and the strains are the polar ones,
+  ``eps_r = du_r/dr``, ``eps_theta = (du_theta/dtheta + u_r) / r``,
+  ``gamma = du_r/(r dtheta) + du_theta/dr - u_theta / r``, integrated over ``r dr dtheta``.
+* ``"flat"``: the straight-edged (chord) isoparametric quadrilateral through the same nodes;
+  strains are evaluated in Cartesian form and rotated to the local polar axes at each
+  integration point (the element of earlier versions, kept for comparison).
+
+**Assumed hoop strain (``assumed_hoop=True``, default).** With linear interpolation along
+the hoop direction, a curved layer that bends inextensionally (``du_theta/dtheta + u_r = 0``,
+the way a hoop-stiff roll deforms away from the head) cannot keep its hoop strain zero
+across the element: ``u_r`` varies linearly along the element, ``du_theta/dtheta`` does
+not, and the parasitic hoop strain costs E_theta, 1e3-1e4 times E_r here. This is the
+membrane locking of linear curved elements (both the curved element and, through the axes
+rotating between its Gauss points, the flat one). The remedy used is the classic one: the
+hoop strain of each radial Gauss line is taken at the element's tangential mid-line (a
+B-bar of eps_theta along theta), so only its mean along the element is constrained. It keeps
+the element's rank (3 zero-energy modes: the rigid motions, exact for "flat", to first order
+in the element angle for "curved"). docs/contact.md has the measured effect.
+
+**Reduced shear.** The shear matrix ``A_s`` is integrated with one point at the element
+centre by default (selective reduced integration), which removes the parasitic shear that
+makes long thin bilinear elements too stiff in bending; the normal terms keep 2x2 Gauss
+points (hoop: 2 radial points on the mid-line), so no hourglass mode appears.
 """
 
 from __future__ import annotations
@@ -36,8 +60,9 @@ _XI = np.array([-1.0, 1.0, 1.0, -1.0])
 _ETA = np.array([-1.0, -1.0, 1.0, 1.0])
 
 
-def plane_strain_moduli(web: Web, E_r: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray,
-                                                              FloatArray]:
+def plane_strain_moduli(
+    web: Web, E_r: FloatArray
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
     """In-plane stiffness ``C11, C12, C22`` [Pa] and shear modulus ``G_r_theta`` [Pa].
 
     The 3D compliance of the cylindrically orthotropic web in axes (r, theta, z) is
@@ -86,11 +111,12 @@ class ElementBasis:
         CMD length [m^2 / m^2 = -].
     B_centre : ndarray (n_el, 3, 8)
         Local strains ``(eps_r, eps_t, gamma_rt)`` at the element centre from the element's
-        polar nodal displacements [1/m].
+        polar nodal displacements [1/m] (the strains the stresses are recovered from).
     dofs : ndarray (n_el, 8)
         Global DOF numbers of each element (``2 node + 0`` radial, ``+1`` tangential).
     centre_xy : ndarray (n_el, 2)
-        Element centre coordinates [m].
+        Element centre coordinates [m] (curved: the sector's centre ``(r_mid, theta_mid)``;
+        flat: the image of the parent centre).
     area : ndarray (n_el,)
         Element areas [m^2].
     """
@@ -116,10 +142,10 @@ def _local_b(dN_dx: FloatArray, phi: FloatArray, node_angle: FloatArray) -> Floa
     # nodal polar -> Cartesian: ux = cn ur - sn ut, uy = sn ur + cn ut
     cn, sn = np.cos(node_angle), np.sin(node_angle)
     # projections of each nodal basis vector on the local axes at the point
-    er_r = c * cn + s * sn      # e_r(node) . e_r(point)
-    er_t = -s * cn + c * sn     # e_r(node) . e_t(point)
-    et_r = -c * sn + s * cn     # e_t(node) . e_r(point)
-    et_t = s * sn + c * cn      # e_t(node) . e_t(point)
+    er_r = c * cn + s * sn  # e_r(node) . e_r(point)
+    er_t = -s * cn + c * sn  # e_r(node) . e_t(point)
+    et_r = -c * sn + s * cn  # e_t(node) . e_r(point)
+    et_t = s * sn + c * cn  # e_t(node) . e_t(point)
     shape = dN_dx.shape[:-1]
     B = np.zeros((*shape[:-1], 3, 8))
     # eps_r = d(u.e_r)/dr, eps_t = d(u.e_t)/(r dt) + u.e_r / r in the fixed local frame:
@@ -133,48 +159,148 @@ def _local_b(dN_dx: FloatArray, phi: FloatArray, node_angle: FloatArray) -> Floa
     return B
 
 
-def element_basis(mesh: RollMesh, *, reduced_shear: bool = True) -> ElementBasis:
-    """Compute :class:`ElementBasis` for ``mesh`` (vectorised over all elements)."""
+ELEMENTS = ("curved", "flat")
+
+
+def element_basis(
+    mesh: RollMesh,
+    *,
+    element: str = "curved",
+    reduced_shear: bool = True,
+    assumed_hoop: bool = True,
+) -> ElementBasis:
+    """Compute :class:`ElementBasis` for ``mesh`` (vectorised over all elements).
+
+    Parameters
+    ----------
+    mesh : RollMesh
+    element : {"curved", "flat"}
+        Exact annular-sector element with polar strains, or the straight-edged chord
+        quadrilateral (module docstring).
+    reduced_shear : bool
+        One-point shear integration.
+    assumed_hoop : bool
+        Hoop strain taken on the element's tangential mid-line (removes membrane locking).
+    """
+    if element == "curved":
+        return _curved_basis(mesh, reduced_shear, assumed_hoop)
+    if element == "flat":
+        return _flat_basis(mesh, reduced_shear, assumed_hoop)
+    raise ValueError(f"unknown element {element!r}; known: {', '.join(ELEMENTS)}")
+
+
+def _accumulate(
+    A: FloatArray, w: FloatArray, B: FloatArray, bt: FloatArray, full_shear: bool
+) -> None:
+    """Add one integration point's contribution (weight ``w`` (ne,)) to the four matrices;
+    ``bt`` the hoop-strain row to use (point's own or assumed)."""
+    w = w[:, None, None]
+    br, bs = B[:, 0, :], B[:, 2, :]
+    A[0] += w * br[:, :, None] * br[:, None, :]
+    rt = br[:, :, None] * bt[:, None, :]
+    A[1] += w * (rt + rt.transpose(0, 2, 1))
+    A[2] += w * bt[:, :, None] * bt[:, None, :]
+    if full_shear:
+        A[3] += w * bs[:, :, None] * bs[:, None, :]
+
+
+def _dofs(conn: IntArray) -> IntArray:
+    dofs = np.empty((conn.shape[0], 8), dtype=np.int64)
+    dofs[:, 0::2] = 2 * conn
+    dofs[:, 1::2] = 2 * conn + 1
+    return dofs
+
+
+def _curved_basis(mesh: RollMesh, reduced_shear: bool, assumed_hoop: bool) -> ElementBasis:
+    """The exact-sector element. Local coordinates ``a`` (radial, node 0 -> 1) and ``b``
+    (tangential, node 0 -> 3) in [0, 1]; connectivity order (i, j), (i+1, j), (i+1, j+1),
+    (i, j+1)."""
+    conn = mesh.connectivity()
+    r_node = np.tile(mesh.r, mesh.n_theta)
+    th = mesh.node_angle()[conn]  # (ne, 4)
+    r0, r1 = r_node[conn[:, 0]], r_node[conn[:, 1]]
+    t0, t1 = th[:, 0], th[:, 3]
+    if mesh.periodic:  # the element closing the annulus
+        t1 = np.where(t1 < t0, t1 + 2.0 * np.pi, t1)
+    dr, dt = r1 - r0, t1 - t0
+    ne = conn.shape[0]
+
+    def b_matrix(a: float, b: float) -> tuple[FloatArray, FloatArray]:
+        N = np.array([(1 - a) * (1 - b), a * (1 - b), a * b, (1 - a) * b])
+        N_a = np.array([-(1 - b), 1 - b, b, -b])
+        N_b = np.array([-(1 - a), -a, a, 1 - a])
+        r = r0 + a * dr
+        d_r = N_a[None, :] / dr[:, None]  # d/dr
+        d_t = N_b[None, :] / (dt * r)[:, None]  # d/(r dtheta)
+        n_r = N[None, :] / r[:, None]  # N / r
+        B = np.zeros((ne, 3, 8))
+        B[:, 0, 0::2] = d_r
+        B[:, 1, 0::2] = n_r
+        B[:, 1, 1::2] = d_t
+        B[:, 2, 0::2] = d_t
+        B[:, 2, 1::2] = d_r - n_r
+        return B, r
+
+    A = np.zeros((4, ne, 8, 8))
+    area = np.zeros(ne)
+    pts = (0.5 - 0.5 * _G, 0.5 + 0.5 * _G)
+    for a in pts:
+        B_mid, _ = b_matrix(a, 0.5)
+        for b in pts:
+            B, r = b_matrix(a, b)
+            w = 0.25 * r * dr * dt  # r dr dtheta, Gauss weights 1/4
+            _accumulate(A, w, B, B_mid[:, 1, :] if assumed_hoop else B[:, 1, :], not reduced_shear)
+            area += w
+    Bc, rc = b_matrix(0.5, 0.5)
+    if reduced_shear:
+        bs = Bc[:, 2, :]
+        A[3] = (rc * dr * dt)[:, None, None] * bs[:, :, None] * bs[:, None, :]
+    tc = t0 + 0.5 * dt
+    centre = np.stack([rc * np.cos(tc), rc * np.sin(tc)], axis=1)
+    return ElementBasis(A=A, B_centre=Bc, dofs=_dofs(conn), centre_xy=centre, area=area)
+
+
+def _flat_basis(mesh: RollMesh, reduced_shear: bool, assumed_hoop: bool) -> ElementBasis:
+    """The straight-edged element. Parent coordinates: xi radial (node 0 -> 1), eta
+    tangential (node 0 -> 3)."""
     xy = mesh.node_xy()
     conn = mesh.connectivity()
-    ang = mesh.node_angle()[conn]                      # (ne, 4)
-    X = xy[conn]                                       # (ne, 4, 2)
+    ang = mesh.node_angle()[conn]  # (ne, 4)
+    X = xy[conn]  # (ne, 4, 2)
 
     def gradients(xi: FloatArray, eta: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         dN = np.stack([0.25 * _XI * (1 + eta * _ETA), 0.25 * _ETA * (1 + xi * _XI)], axis=-1)
         N = 0.25 * (1 + xi * _XI) * (1 + eta * _ETA)
-        J = np.einsum("na,enb->eab", dN, X)            # (ne, 2, 2): J[a, b] = dx_b/dxi_a
+        J = np.einsum("na,enb->eab", dN, X)  # (ne, 2, 2): J[a, b] = dx_b/dxi_a
         det = J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0]
-        inv = np.stack([np.stack([J[:, 1, 1], -J[:, 0, 1]], -1),
-                        np.stack([-J[:, 1, 0], J[:, 0, 0]], -1)], -2) / det[:, None, None]
-        dN_dx = np.einsum("eba,na->enb", inv, dN)       # dN/dx_b = sum_a invJ[b,a] dN/dxi_a
+        inv = (
+            np.stack(
+                [np.stack([J[:, 1, 1], -J[:, 0, 1]], -1), np.stack([-J[:, 1, 0], J[:, 0, 0]], -1)],
+                -2,
+            )
+            / det[:, None, None]
+        )
+        dN_dx = np.einsum("eba,na->enb", inv, dN)  # dN/dx_b = sum_a invJ[b,a] dN/dxi_a
         pt = np.einsum("n,enb->eb", N, X)
         return dN_dx, det, pt
+
+    def local_b(xi: float, eta: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+        dN_dx, det, pt = gradients(np.float64(xi), np.float64(eta))
+        return _local_b(dN_dx, np.arctan2(pt[:, 1], pt[:, 0]), ang), det, pt
 
     ne = conn.shape[0]
     A = np.zeros((4, ne, 8, 8))
     area = np.zeros(ne)
     for xi, eta in _GAUSS:
-        dN_dx, det, pt = gradients(np.float64(xi), np.float64(eta))
-        B = _local_b(dN_dx, np.arctan2(pt[:, 1], pt[:, 0]), ang)
-        w = det[:, None, None]
-        br, bt, bs = B[:, 0, :], B[:, 1, :], B[:, 2, :]
-        A[0] += w * br[:, :, None] * br[:, None, :]
-        rt = br[:, :, None] * bt[:, None, :]
-        A[1] += w * (rt + rt.transpose(0, 2, 1))
-        A[2] += w * bt[:, :, None] * bt[:, None, :]
-        if not reduced_shear:
-            A[3] += w * bs[:, :, None] * bs[:, None, :]
+        B, det, _ = local_b(xi, eta)
+        bt = local_b(xi, 0.0)[0][:, 1, :] if assumed_hoop else B[:, 1, :]
+        _accumulate(A, det, B, bt, not reduced_shear)
         area += det
-    dN_dx, det, pt = gradients(np.float64(0.0), np.float64(0.0))
-    Bc = _local_b(dN_dx, np.arctan2(pt[:, 1], pt[:, 0]), ang)
+    Bc, det, pt = local_b(0.0, 0.0)
     if reduced_shear:
         bs = Bc[:, 2, :]
         A[3] = 4.0 * det[:, None, None] * bs[:, :, None] * bs[:, None, :]
-    dofs = np.empty((ne, 8), dtype=np.int64)
-    dofs[:, 0::2] = 2 * conn
-    dofs[:, 1::2] = 2 * conn + 1
-    return ElementBasis(A=A, B_centre=Bc, dofs=dofs, centre_xy=pt, area=area)
+    return ElementBasis(A=A, B_centre=Bc, dofs=_dofs(conn), centre_xy=pt, area=area)
 
 
 class Assembler:
@@ -194,14 +320,15 @@ class Assembler:
         Extra diagonal stiffness (elastic-core springs) [N/m per m].
     """
 
-    def __init__(self, basis: ElementBasis, free: NDArray[np.bool_],
-                 diagonal: FloatArray | None = None) -> None:
+    def __init__(
+        self, basis: ElementBasis, free: NDArray[np.bool_], diagonal: FloatArray | None = None
+    ) -> None:
         self.basis = basis
         n_dof = free.size
         self.free_index = np.full(n_dof, -1, dtype=np.int64)
         self.free_index[free] = np.arange(int(free.sum()))
         n = self.n_free = int(free.sum())
-        d = self.free_index[basis.dofs]                       # (ne, 8)
+        d = self.free_index[basis.dofs]  # (ne, 8)
         rows = np.broadcast_to(d[:, :, None], (d.shape[0], 8, 8)).ravel()
         cols = np.broadcast_to(d[:, None, :], (d.shape[0], 8, 8)).ravel()
         keep = (rows >= 0) & (cols >= 0)
@@ -229,17 +356,19 @@ class Assembler:
         low_el = self._lower[self._lower < n_el_entries]
         self._elem_low = self._elem[low_el]
         self._A_low = self._A[:, low_el]
-        self._diag_low = self._diag_vals        # spring entries are diagonal: all lower
+        self._diag_low = self._diag_vals  # spring entries are diagonal: all lower
 
-    def values(self, C11: FloatArray, C12: FloatArray, C22: FloatArray,
-               G: FloatArray) -> FloatArray:
+    def values(
+        self, C11: FloatArray, C12: FloatArray, C22: FloatArray, G: FloatArray
+    ) -> FloatArray:
         """All element (and spring) contributions, in the order of the scatter map."""
         e, A = self._elem, self._A
         ke = C11[e] * A[0] + C12[e] * A[1] + C22[e] * A[2] + G[e] * A[3]
         return np.concatenate([ke, self._diag_vals])
 
-    def values_lower(self, C11: FloatArray, C12: FloatArray, C22: FloatArray,
-                     G: FloatArray) -> FloatArray:
+    def values_lower(
+        self, C11: FloatArray, C12: FloatArray, C22: FloatArray, G: FloatArray
+    ) -> FloatArray:
         """The lower-triangle part of :meth:`values` (what :meth:`banded` needs), half the work."""
         e, A = self._elem_low, self._A_low
         ke = C11[e] * A[0] + C12[e] * A[1] + C22[e] * A[2] + G[e] * A[3]
@@ -263,8 +392,9 @@ class Assembler:
         if self._csc is None:
             keys, inv = np.unique(self._cols * self.n_free + self._rows, return_inverse=True)
             indices = (keys % self.n_free).astype(np.int32)
-            indptr = np.searchsorted(keys // self.n_free,
-                                     np.arange(self.n_free + 1)).astype(np.int32)
+            indptr = np.searchsorted(keys // self.n_free, np.arange(self.n_free + 1)).astype(
+                np.int32
+            )
             self._csc = (inv, keys.size, indices, indptr)
         inv, nnz, indices, indptr = self._csc
         data = np.bincount(inv, weights=vals, minlength=nnz)

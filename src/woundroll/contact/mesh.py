@@ -33,12 +33,15 @@ FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 
 
-def graded_sizes(length: float, first: float, growth: float, field: str) -> FloatArray:
+def graded_sizes(
+    length: float, first: float, growth: float, field: str, largest: float | None = None
+) -> FloatArray:
     """Element sizes [m] that start at ``first`` and grow geometrically to fill ``length``.
 
     The number of elements is the smallest that a ratio no larger than ``growth`` can fill;
     the ratio is then lowered so that the sizes sum to ``length`` exactly while the first
-    size stays ``first``.
+    size stays ``first``. With ``largest``, sizes grow (ratio ``growth``) only up to
+    ``largest`` and the rest of the length is divided uniformly into sizes <= ``largest``.
 
     Parameters
     ----------
@@ -50,9 +53,28 @@ def graded_sizes(length: float, first: float, growth: float, field: str) -> Floa
         Largest allowed ratio of neighbouring sizes [-], >= 1.
     field : str
         Dotted option name used in error messages.
+    largest : float, optional
+        Largest allowed size [m].
     """
     if first <= 0 or not math.isfinite(first):
         raise InputError(f"element size must be positive, got {first:g} m", field)
+    if largest is not None:
+        first = min(first, largest)
+        sizes = graded_sizes(length, first, growth, field)
+        if sizes.max() <= largest * (1.0 + 1e-12):
+            return sizes
+        n_g = (
+            0
+            if growth <= 1.0 + 1e-12
+            else max(0, math.ceil(math.log(largest / first) / math.log(growth) - 1e-9))
+        )
+        grown = first * growth ** np.arange(n_g)
+        while n_g and grown.sum() > length:  # cannot happen unless largest ~ length
+            n_g -= 1
+            grown = grown[:-1]
+        rest = length - grown.sum()
+        n_u = max(1, math.ceil(rest / largest - 1e-9))
+        return np.concatenate([grown, np.full(n_u, rest / n_u)])
     if first >= length:
         return np.array([length])
     if growth <= 1.0 + 1e-12:
@@ -142,13 +164,23 @@ class RollMesh:
         """Nodes on the symmetry lines theta = 0 and theta = pi (half model; empty if periodic)."""
         if self.periodic:
             return np.array([], dtype=np.int64)
-        return np.concatenate([np.arange(self.n_r), (self.n_theta - 1) * self.n_r
-                               + np.arange(self.n_r)])
+        return np.concatenate(
+            [np.arange(self.n_r), (self.n_theta - 1) * self.n_r + np.arange(self.n_r)]
+        )
 
 
-def build_mesh(r_in: float, r_out: float, *, surface_size: float, radial_growth: float,
-               tangential_size: float, fine_halfwidth: float,
-               tangential_growth: float, periodic: bool = False) -> RollMesh:
+def build_mesh(
+    r_in: float,
+    r_out: float,
+    *,
+    surface_size: float,
+    radial_growth: float,
+    tangential_size: float,
+    fine_halfwidth: float,
+    tangential_growth: float,
+    max_element_angle: float | None = None,
+    periodic: bool = False,
+) -> RollMesh:
     """Build the graded annulus mesh (module docstring).
 
     Parameters
@@ -175,8 +207,14 @@ def build_mesh(r_in: float, r_out: float, *, surface_size: float, radial_growth:
     n_fine = max(1, math.ceil(fine_halfwidth / tangential_size - 1e-9))
     w = min(n_fine * tangential_size, 0.5 * half_arc)
     s_fine = np.linspace(0.0, w, n_fine + 1)
-    ds = graded_sizes(half_arc - w, min(tangential_size * tangential_growth, half_arc - w),
-                      tangential_growth, "options.tangential_size")
+    largest = None if max_element_angle is None else max_element_angle * r_out
+    ds = graded_sizes(
+        half_arc - w,
+        min(tangential_size * tangential_growth, half_arc - w),
+        tangential_growth,
+        "options.tangential_size",
+        largest,
+    )
     s_half = np.concatenate([s_fine, w + np.cumsum(ds)])
     s_half[-1] = half_arc
     theta_half = s_half / r_out

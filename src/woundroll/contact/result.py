@@ -2,12 +2,16 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, fields
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
+
+from woundroll.errors import InputError
+from woundroll.units import to_si
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -52,11 +56,108 @@ def fit_spring(delta: FloatArray, force: FloatArray) -> tuple[float, float, floa
     return alpha, beta, r2, max_rel
 
 
+def slip_factor(tau_r_theta: FloatArray, sigma_r: FloatArray, friction: float) -> FloatArray:
+    """In-plane slip factor of eq. {23}: SF = |tau_r_theta| / (mu P), P = max(-sigma_r, 0).
+
+    Parameters
+    ----------
+    tau_r_theta : ndarray
+        Shear stress [Pa].
+    sigma_r : ndarray
+        Total radial stress [Pa], compression negative.
+    friction : float
+        Interlayer friction coefficient mu [-].
+
+    Returns
+    -------
+    ndarray
+        SF [-]; inf where shear acts without pressure (or mu = 0), 0 where neither.
+    """
+    tau = np.abs(np.asarray(tau_r_theta, dtype=float))
+    capacity = friction * np.maximum(-np.asarray(sigma_r, dtype=float), 0.0)  # Coulomb [Pa]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(capacity > 0, tau / capacity, np.where(tau > 0, np.inf, 0.0))
+
+
+def _slip_extent(
+    slip: NDArray[np.bool_],
+    element_r: FloatArray,
+    element_theta: FloatArray,
+    outer_radius: float,
+    window: float,
+) -> tuple[float, float]:
+    s = outer_radius * np.abs(element_theta)
+    m = slip & (s <= window)
+    if not np.any(m):
+        return 0.0, 0.0
+    depth = outer_radius - element_r[m]
+    return float(depth.max()), float(s[m].max())
+
+
 def _readonly(a: Any) -> Any:
     if isinstance(a, np.ndarray):
         a = a.copy()
         a.setflags(write=False)
     return a
+
+
+@dataclass(frozen=True, eq=False)
+class ContactState:
+    """The fields under the head at one depth ``d`` (:meth:`ContactResult.at_depth`).
+
+    Between two computed increments every quantity is interpolated linearly in ``d``; the slip
+    factor is then recomputed from the interpolated stresses (eq. {23}), not interpolated.
+
+    Attributes
+    ----------
+    depth : float [m]
+        Head depth d.
+    force : float [N]
+        Force on the head at d.
+    half_width : float [m]
+        Semi-contact width a(d).
+    sigma_r : ndarray [Pa]
+        Total radial stress (pre-impact + contact) at the element centres.
+    sigma_theta, tau_r_theta : ndarray [Pa]
+        Contact-induced hoop and r-theta shear stress.
+    slip_factor : ndarray [-]
+        In-plane slip factor {23} from these stresses (:func:`slip_factor`).
+    contact_pressure : ndarray [Pa]
+        Nodal contact pressures at the surface nodes (``ContactResult.contact_s``).
+    friction : float [-]
+    element_r, element_theta : ndarray [m], [rad]
+        Element centres (as in the result).
+    outer_radius : float [m]
+    """
+
+    depth: float
+    force: float
+    half_width: float
+    sigma_r: FloatArray
+    sigma_theta: FloatArray
+    tau_r_theta: FloatArray
+    slip_factor: FloatArray
+    contact_pressure: FloatArray
+    friction: float
+    element_r: FloatArray
+    element_theta: FloatArray
+    outer_radius: float
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            object.__setattr__(self, f.name, _readonly(getattr(self, f.name)))
+
+    @property
+    def slip(self) -> NDArray[np.bool_]:
+        """Elements where slip is expected at this depth, SF >= 1 (eq. {23})."""
+        return self.slip_factor >= 1.0
+
+    def slip_extent(self, window: float | None = None) -> tuple[float, float]:
+        """Depth below the surface and arc half-width [m] of the SF >= 1 region within the
+        arc ``|s| <= window`` of the contact axis (default: three semi-contact widths at
+        this depth); see :meth:`ContactResult.slip_extent`."""
+        w = 3.0 * self.half_width if window is None else window
+        return _slip_extent(self.slip, self.element_r, self.element_theta, self.outer_radius, w)
 
 
 @dataclass(frozen=True, eq=False)
@@ -94,6 +195,12 @@ class ContactResult:
     slip_factor : ndarray [-]
         In-plane part of eq. {23}: |tau_r_theta| / (mu P), P = max(-sigma_r, 0); inf where
         the layers carry shear without pressure, 0 where neither.
+    sigma_r_history, sigma_theta_history, tau_r_theta_history : ndarray (n_steps + 1, n_el) [Pa]
+        The same three stress fields at every computed depth ``delta[k]`` (row 0: before
+        contact; the last row equals ``sigma_r``, ``sigma_theta``, ``tau_r_theta``). Use
+        :meth:`at_depth` for the fields at any depth.
+    contact_pressure_history : ndarray (n_steps + 1, n_surface_nodes) [Pa]
+        ``contact_pressure`` at every computed depth.
     """
 
     delta: FloatArray
@@ -116,6 +223,10 @@ class ContactResult:
     sigma_theta: FloatArray
     tau_r_theta: FloatArray
     slip_factor: FloatArray
+    sigma_r_history: FloatArray
+    sigma_theta_history: FloatArray
+    tau_r_theta_history: FloatArray
+    contact_pressure_history: FloatArray
     friction: float
     head_radius: float
     head_length: float
@@ -148,12 +259,66 @@ class ContactResult:
         close to zero after winding, can show SF >= 1 far from the head too.
         """
         w = 3.0 * self.semi_contact_width if window is None else window
-        s = self.outer_radius * np.abs(self.element_theta)
-        m = self.slip & (s <= w)
-        if not np.any(m):
-            return 0.0, 0.0
-        depth = self.outer_radius - self.element_r[m]
-        return float(depth.max()), float(s[m].max())
+        return _slip_extent(self.slip, self.element_r, self.element_theta, self.outer_radius, w)
+
+    def at_depth(self, depth: float | str) -> ContactState:
+        """Stress fields, slip factor {23}, slip region and semi-contact width at depth ``d``.
+
+        The increments are stored at the depths ``delta``; at one of them the state is that
+        increment's exactly (at ``depth_max`` it equals ``sigma_r``, ``slip_factor``,
+        ``semi_contact_width``, ...), in between every field is interpolated linearly in d
+        and the slip factor recomputed from the interpolated stresses. Use it for the fields
+        at the impact's maximum depth, which is below ``depth_max``.
+
+        Parameters
+        ----------
+        depth : float or str
+            Head depth [m] in ``[0, delta[-1]]`` (a string with a unit, ``"0.8 mm"``, works).
+
+        Raises
+        ------
+        InputError
+            ``depth`` not a finite number in ``[0, depth_max]`` (field ``depth``).
+        """
+        if isinstance(depth, bool):
+            raise InputError(f"must be a number, got {depth!r}", "depth")
+        if isinstance(depth, str):
+            d = to_si(depth, "length", "depth")
+        else:
+            try:
+                d = float(depth)
+            except (TypeError, ValueError):
+                raise InputError(f"must be a number, got {depth!r}", "depth") from None
+        d_max = float(self.delta[-1])
+        if not (math.isfinite(d) and 0.0 <= d <= d_max):
+            raise InputError(f"must lie in [0, depth_max = {d_max:g} m], got {depth!r}", "depth")
+        k = int(np.searchsorted(self.delta, d, side="left"))
+        if self.delta[k] == d:  # a computed increment: its values exactly
+
+            def at(a: FloatArray) -> Any:
+                return a[k]
+        else:  # delta[k - 1] < d < delta[k]
+            w = (d - self.delta[k - 1]) / (self.delta[k] - self.delta[k - 1])
+
+            def at(a: FloatArray) -> Any:
+                return (1.0 - w) * a[k - 1] + w * a[k]
+
+        sigma_r = at(self.sigma_r_history)
+        tau = at(self.tau_r_theta_history)
+        return ContactState(
+            depth=d,
+            force=float(at(self.force)),
+            half_width=float(at(self.half_width)),
+            sigma_r=sigma_r,
+            sigma_theta=at(self.sigma_theta_history),
+            tau_r_theta=tau,
+            slip_factor=slip_factor(tau, sigma_r, self.friction),
+            contact_pressure=at(self.contact_pressure_history),
+            friction=self.friction,
+            element_r=self.element_r,
+            element_theta=self.element_theta,
+            outer_radius=self.outer_radius,
+        )
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary, SI with the unit in each key.
@@ -179,8 +344,9 @@ class ContactResult:
             "friction": self.friction,
             "slip_region_depth_m": depth,
             "slip_region_halfwidth_m": width,
-            "max_slip_factor_near_contact": float(np.max(sf_near[np.isfinite(sf_near)],
-                                                         initial=0.0)),
+            "max_slip_factor_near_contact": float(
+                np.max(sf_near[np.isfinite(sf_near)], initial=0.0)
+            ),
             "unbounded_slip_elements_near_contact": int(np.sum(np.isinf(sf_near))),
             "head_radius_m": self.head_radius,
             "head_length_m": self.head_length,
@@ -204,8 +370,12 @@ class ContactResult:
         d_mm = self.delta * 1e3
         dd = np.linspace(0.0, self.delta[-1], 200)
         ax1.plot(d_mm, self.force, "o", ms=4, label="FE")
-        ax1.plot(dd * 1e3, self.alpha * dd**2 + self.beta * dd, "-",
-                 label=rf"$\alpha d^2+\beta d$, $R^2$={self.fit_r2:.4f}")
+        ax1.plot(
+            dd * 1e3,
+            self.alpha * dd**2 + self.beta * dd,
+            "-",
+            label=rf"$\alpha d^2+\beta d$, $R^2$={self.fit_r2:.4f}",
+        )
         ax1.set_xlabel("depth d [mm]")
         ax1.set_ylabel("force on head F [N]")
         ax1.legend()
@@ -218,8 +388,13 @@ class ContactResult:
         return fig
 
 
-def plot_slip_factor(result: ContactResult, path: str | Path | None = None, *,
-                     window: float | None = None, depth: float | None = None) -> Figure:
+def plot_slip_factor(
+    result: ContactResult,
+    path: str | Path | None = None,
+    *,
+    window: float | None = None,
+    depth: float | None = None,
+) -> Figure:
     """Map of the slip factor {23} near the contact (log colour scale, SF = 1 contour).
 
     Parameters
@@ -242,8 +417,14 @@ def plot_slip_factor(result: ContactResult, path: str | Path | None = None, *,
     sf = np.clip(result.slip_factor[m], 1e-3, 1e3)
     fig = Figure(figsize=(7, 3.8), layout="constrained")
     ax = fig.subplots()
-    tri = ax.tricontourf(s[m] * 1e3, -z[m] * 1e3, sf, levels=np.logspace(-3, 3, 25),
-                         norm=LogNorm(1e-3, 1e3), cmap="viridis")
+    tri = ax.tricontourf(
+        s[m] * 1e3,
+        -z[m] * 1e3,
+        sf,
+        levels=np.logspace(-3, 3, 25),
+        norm=LogNorm(1e-3, 1e3),
+        cmap="viridis",
+    )
     if np.nanmin(sf) < 1.0 < np.nanmax(sf):
         ax.tricontour(s[m] * 1e3, -z[m] * 1e3, sf, levels=[1.0], colors="w", linewidths=1.2)
     fig.colorbar(tri, ax=ax, label=rf"slip factor SF, $\mu$ = {result.friction:g}")
@@ -255,5 +436,4 @@ def plot_slip_factor(result: ContactResult, path: str | Path | None = None, *,
     return fig
 
 
-__all__ = ["ContactResult", "fit_spring", "plot_slip_factor"]
-
+__all__ = ["ContactResult", "ContactState", "fit_spring", "plot_slip_factor", "slip_factor"]

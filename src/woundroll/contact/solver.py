@@ -24,7 +24,9 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any, TypeVar
 
 import numpy as np
 import scipy.linalg as la
@@ -32,14 +34,15 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 from scipy.optimize import nnls
 
-from woundroll.contact.fem import Assembler, element_basis, plane_strain_moduli
+from woundroll.contact.fem import ELEMENTS, Assembler, element_basis, plane_strain_moduli
 from woundroll.contact.mesh import RollMesh, build_mesh
-from woundroll.contact.result import ContactResult, fit_spring
+from woundroll.contact.result import ContactResult, fit_spring, slip_factor
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.materials.web import Core, Web
 from woundroll.units import to_si
 
 FloatArray = NDArray[np.float64]
+_S = TypeVar("_S", bound=Any)
 
 
 @dataclass(frozen=True)
@@ -68,6 +71,18 @@ class ContactOptions:
         than the fine zone is still solved exactly, on the coarser elements).
     tangential_growth : float
         Ratio of neighbouring tangential element sizes away from the fine zone [-].
+    max_element_angle : float or None
+        Largest angle one element may span [rad]; None (default): no cap beyond what
+        ``tangential_growth`` gives (about 0.29 rad at 1.1). With the default locking-free
+        element the far field needs no cap (docs/contact.md, mesh study); it is there to
+        check that, and for the ``"flat"`` element without ``assumed_hoop``.
+    element : {"curved", "flat"}
+        ``"curved"`` (default): exact annular-sector bilinear element with polar strains;
+        ``"flat"``: the straight-edged chord quadrilateral of earlier versions
+        (:mod:`woundroll.contact.fem`).
+    assumed_hoop : bool
+        Hoop strain taken on each element's tangential mid-line (True, default): removes the
+        membrane locking that made the far field of a hoop-stiff roll too stiff (docs).
     reduced_shear : bool
         One-point integration of the shear term (module :mod:`woundroll.contact.fem`).
     min_modulus_ratio : float
@@ -93,6 +108,9 @@ class ContactOptions:
     tangential_size: float | None = None
     fine_halfwidth: float | None = None
     tangential_growth: float = 1.1
+    max_element_angle: float | None = None
+    element: str = "curved"
+    assumed_hoop: bool = True
     reduced_shear: bool = True
     min_modulus_ratio: float = 1e-6
     max_modulus_ratio: float | None = None
@@ -101,15 +119,33 @@ class ContactOptions:
     step_exponent: float = 1.5
 
     def __post_init__(self) -> None:
-        for name in ("reduced_shear", "midpoint", "half_model"):
+        if self.element not in ELEMENTS:
+            raise InputError(
+                f"must be one of {', '.join(ELEMENTS)}, got {self.element!r}", "options.element"
+            )
+        if self.max_element_angle is not None and not (
+            isinstance(self.max_element_angle, int | float | np.number)
+            and not isinstance(self.max_element_angle, bool)
+            and 0 < self.max_element_angle <= math.pi / 2
+        ):
+            raise InputError(
+                f"must lie in (0, pi/2] rad, got {self.max_element_angle!r}",
+                "options.max_element_angle",
+            )
+        for name in ("reduced_shear", "assumed_hoop", "midpoint", "half_model"):
             if not isinstance(getattr(self, name), bool | np.bool_):
-                raise InputError(f"must be true or false, got {getattr(self, name)!r}",
-                                 f"options.{name}")
+                raise InputError(
+                    f"must be true or false, got {getattr(self, name)!r}", f"options.{name}"
+                )
         if not (math.isfinite(self.step_exponent) and 1.0 <= self.step_exponent <= 3.0):
-            raise InputError(f"must lie in [1, 3], got {self.step_exponent!r}",
-                             "options.step_exponent")
-        if not isinstance(self.n_steps, int | np.integer) or isinstance(self.n_steps, bool) \
-                or self.n_steps < 1:
+            raise InputError(
+                f"must lie in [1, 3], got {self.step_exponent!r}", "options.step_exponent"
+            )
+        if (
+            not isinstance(self.n_steps, int | np.integer)
+            or isinstance(self.n_steps, bool)
+            or self.n_steps < 1
+        ):
             raise InputError(f"must be a positive integer, got {self.n_steps!r}", "options.n_steps")
         for name in ("surface_size", "tangential_size", "fine_halfwidth"):
             v = getattr(self, name)
@@ -120,13 +156,17 @@ class ContactOptions:
             if not (math.isfinite(v) and 1.0 <= v <= 3.0):
                 raise InputError(f"must lie in [1, 3], got {v!r}", f"options.{name}")
         if self.max_modulus_ratio is not None and not (
-                math.isfinite(self.max_modulus_ratio)
-                and self.min_modulus_ratio < self.max_modulus_ratio <= 10.0):
-            raise InputError(f"must lie in (min_modulus_ratio, 10], got "
-                             f"{self.max_modulus_ratio!r}", "options.max_modulus_ratio")
+            math.isfinite(self.max_modulus_ratio)
+            and self.min_modulus_ratio < self.max_modulus_ratio <= 10.0
+        ):
+            raise InputError(
+                f"must lie in (min_modulus_ratio, 10], got {self.max_modulus_ratio!r}",
+                "options.max_modulus_ratio",
+            )
         if not (math.isfinite(self.min_modulus_ratio) and 0 < self.min_modulus_ratio < 1):
-            raise InputError(f"must lie in (0, 1), got {self.min_modulus_ratio!r}",
-                             "options.min_modulus_ratio")
+            raise InputError(
+                f"must lie in (0, 1), got {self.min_modulus_ratio!r}", "options.min_modulus_ratio"
+            )
 
 
 def _check_scalar(value: float | str, field: str, kind: str = "length") -> float:
@@ -145,8 +185,9 @@ def _check_scalar(value: float | str, field: str, kind: str = "length") -> float
     return v
 
 
-def _check_profile(web: Web, core: Core, radius: object, sigma_r: object
-                   ) -> tuple[FloatArray, FloatArray]:
+def _check_profile(
+    web: Web, core: Core, radius: object, sigma_r: object
+) -> tuple[FloatArray, FloatArray]:
     try:
         r = np.asarray(radius, dtype=float)
         s = np.asarray(sigma_r, dtype=float)
@@ -155,8 +196,10 @@ def _check_profile(web: Web, core: Core, radius: object, sigma_r: object
     if r.ndim != 1 or r.size < 2:
         raise InputError("must be a 1D array of at least 2 radii [m]", "radius")
     if s.ndim != 1 or s.size != r.size:
-        raise InputError(f"must be a 1D array of the same length as radius ({r.size}), "
-                         f"got shape {s.shape}", "sigma_r")
+        raise InputError(
+            f"must be a 1D array of the same length as radius ({r.size}), got shape {s.shape}",
+            "sigma_r",
+        )
     if not np.all(np.isfinite(r)):
         raise InputError("must hold finite numbers only", "radius")
     if not np.all(np.isfinite(s)):
@@ -164,16 +207,20 @@ def _check_profile(web: Web, core: Core, radius: object, sigma_r: object
     if np.any(np.diff(r) <= 0):
         raise InputError("must increase strictly from the core outward", "radius")
     if r[0] < core.outer_radius - 1.01 * web.thickness:
-        raise InputError(f"starts at {r[0]:g} m, inside the core (outer radius "
-                         f"{core.outer_radius:g} m)", "radius")
+        raise InputError(
+            f"starts at {r[0]:g} m, inside the core (outer radius {core.outer_radius:g} m)",
+            "radius",
+        )
     if r[-1] <= core.outer_radius + web.thickness:
-        raise InputError(f"the outer radius {r[-1]:g} m leaves no wound layer on the core "
-                         f"({core.outer_radius:g} m)", "radius")
+        raise InputError(
+            f"the outer radius {r[-1]:g} m leaves no wound layer on the core "
+            f"({core.outer_radius:g} m)",
+            "radius",
+        )
     return r, s
 
 
-def _gap(pos: FloatArray, centre: FloatArray, head_radius: float
-         ) -> tuple[FloatArray, FloatArray]:
+def _gap(pos: FloatArray, centre: FloatArray, head_radius: float) -> tuple[FloatArray, FloatArray]:
     """Signed gap [m] of points ``pos`` (n, 2) to the head circle and the unit normals (n, 2)
     pointing from the head axis to the points."""
     d = pos - centre
@@ -193,8 +240,10 @@ def _solve_lcp(W: FloatArray, q: FloatArray) -> FloatArray:
     try:
         L = la.cholesky(W / scale, lower=True)
     except la.LinAlgError:
-        raise ConvergenceError("contact flexibility matrix is not positive definite "
-                               "(mesh too coarse or roll not supported)") from None
+        raise ConvergenceError(
+            "contact flexibility matrix is not positive definite "
+            "(mesh too coarse or roll not supported)"
+        ) from None
     b = -la.solve_triangular(L, q / scale, lower=True)
     try:
         lam, _ = nnls(L.T, b, maxiter=50 * max(q.size, 10))
@@ -206,16 +255,28 @@ def _solve_lcp(W: FloatArray, q: FloatArray) -> FloatArray:
 class _Roll:
     """Mesh, element data, boundary conditions and pre-impact state of one roll section."""
 
-    def __init__(self, web: Web, core: Core, radius: FloatArray, sigma_r: FloatArray,
-                 mesh: RollMesh, opts: ContactOptions) -> None:
+    def __init__(
+        self,
+        web: Web,
+        core: Core,
+        radius: FloatArray,
+        sigma_r: FloatArray,
+        mesh: RollMesh,
+        opts: ContactOptions,
+    ) -> None:
         self.web = web
         self.mesh = mesh
-        self.basis = element_basis(mesh, reduced_shear=opts.reduced_shear)
+        self.basis = element_basis(
+            mesh,
+            element=opts.element,
+            reduced_shear=opts.reduced_shear,
+            assumed_hoop=opts.assumed_hoop,
+        )
         n_dof = 2 * mesh.n_nodes
         free = np.ones(n_dof, dtype=bool)
         core_nodes = mesh.core_nodes()
-        free[2 * core_nodes + 1] = False                 # no tangential slip on the core
-        free[2 * mesh.edge_nodes() + 1] = False          # symmetry lines of the half model
+        free[2 * core_nodes + 1] = False  # no tangential slip on the core
+        free[2 * mesh.edge_nodes() + 1] = False  # symmetry lines of the half model
         diagonal = None
         if core.rigid:
             free[2 * core_nodes] = False
@@ -240,8 +301,9 @@ class _Roll:
         #: pre-impact radial stress at element centres [Pa] (winding model, interpolated)
         self.sigma_pre = np.interp(r_c, radius, sigma_r)
         self.E_floor = opts.min_modulus_ratio * web.E_theta
-        self.E_cap = (math.inf if opts.max_modulus_ratio is None
-                      else opts.max_modulus_ratio * web.E_theta)
+        self.E_cap = (
+            math.inf if opts.max_modulus_ratio is None else opts.max_modulus_ratio * web.E_theta
+        )
 
     def moduli(self, sigma_r_total: FloatArray) -> tuple[FloatArray, ...]:
         E_r = np.clip(self.web.E_r(sigma_r_total), self.E_floor, self.E_cap)
@@ -259,16 +321,26 @@ class _Roll:
         return c * vec[:, 0] + s * vec[:, 1], -s * vec[:, 0] + c * vec[:, 1]
 
     def strain_increment(self, du: FloatArray) -> FloatArray:
+        """Strain increments ``(eps_r, eps_theta, gamma_r_theta)`` at the element centres."""
         return np.einsum("eij,ej->ei", self.basis.B_centre, du[self.basis.dofs])
+
+    def stress_increment(self, moduli: tuple[FloatArray, ...], du: FloatArray) -> FloatArray:
+        """Stress increments ``(sigma_r, sigma_theta, tau_r_theta)`` [Pa] at the element
+        centres for the displacement increment ``du`` at per-element ``moduli``."""
+        C11, C12, C22, G = moduli
+        e = self.strain_increment(du)
+        return np.stack(
+            [C11 * e[:, 0] + C12 * e[:, 1], C12 * e[:, 0] + C22 * e[:, 1], G * e[:, 2]], axis=1
+        )
 
 
 @dataclass
 class _Step:
     du: FloatArray
     dsig: FloatArray
-    lam: FloatArray          # total contact force magnitude per surface node [N/m]
-    normal: FloatArray       # unit normals (n_surf, 2) the forces act along
-    gap: FloatArray          # gaps of the surface nodes after the step [m]
+    lam: FloatArray  # total contact force magnitude per surface node [N/m]
+    normal: FloatArray  # unit normals (n_surf, 2) the forces act along
+    gap: FloatArray  # gaps of the surface nodes after the step [m]
 
 
 class _Factor:
@@ -302,12 +374,19 @@ def _factorize(roll: _Roll, moduli: tuple[FloatArray, ...]) -> _Factor:
     return _Factor(lu=lu)
 
 
-def _step(roll: _Roll, moduli: tuple[FloatArray, ...], lu: _Factor, u: FloatArray,
-          f_contact: FloatArray, lam_old: FloatArray, centre: FloatArray, head_radius: float,
-          tol_gap: float) -> _Step:
+def _step(
+    roll: _Roll,
+    moduli: tuple[FloatArray, ...],
+    lu: _Factor,
+    u: FloatArray,
+    f_contact: FloatArray,
+    lam_old: FloatArray,
+    centre: FloatArray,
+    head_radius: float,
+    tol_gap: float,
+) -> _Step:
     """One depth increment at fixed moduli (``lu`` their factorised stiffness): candidate
     flexibility and exact LCP."""
-    C11, C12, C22, G = moduli
     fi = roll.assembler.free_index
     surf = roll.surface
     pos = roll.xy[surf] + roll.cartesian(u, surf)
@@ -317,8 +396,9 @@ def _step(roll: _Roll, moduli: tuple[FloatArray, ...], lu: _Factor, u: FloatArra
     release = -f_contact[roll.free]
     for _ in range(8):
         band = np.flatnonzero(cand)
-        idx = np.unique(np.clip(np.concatenate([band + k for k in (-2, -1, 0, 1, 2)]),
-                                0, surf.size - 1))
+        idx = np.unique(
+            np.clip(np.concatenate([band + k for k in (-2, -1, 0, 1, 2)]), 0, surf.size - 1)
+        )
         nodes = surf[idx]
         n_r, n_t = roll.polar(normal[idx], nodes)
         m = idx.size
@@ -342,17 +422,49 @@ def _step(roll: _Roll, moduli: tuple[FloatArray, ...], lu: _Factor, u: FloatArra
         if not np.any(bad):
             lam = np.zeros(surf.size)
             lam[idx] = lam_c
-            e = roll.strain_increment(du)
-            dsig = np.stack([C11 * e[:, 0] + C12 * e[:, 1], C12 * e[:, 0] + C22 * e[:, 1],
-                             G * e[:, 2]], axis=1)
-            return _Step(du=du, dsig=dsig, lam=lam, normal=normal, gap=gap)
+            return _Step(
+                du=du, dsig=roll.stress_increment(moduli, du), lam=lam, normal=normal, gap=gap
+            )
         cand |= bad
-    raise ConvergenceError("contact set did not settle in 8 enlargements of the candidate "
-                           "nodes; refine options.tangential_size or use more n_steps")
+    raise ConvergenceError(
+        "contact set did not settle in 8 enlargements of the candidate "
+        "nodes; refine options.tangential_size or use more n_steps"
+    )
 
 
-def _half_width(s: FloatArray, lam: FloatArray, gap: FloatArray, j0: int,
-                sides: tuple[int, ...] = (1, -1)) -> float:
+def _hypoelastic_increment(
+    roll: _Roll,
+    sigma_r: FloatArray,
+    midpoint: bool,
+    solve: Callable[[tuple[FloatArray, ...], _Factor], _S],
+) -> _S:
+    """One load increment with the hypoelastic radial modulus (Pfeiffer {2} or the web's law).
+
+    ``solve(moduli, factor)`` solves the increment at fixed per-element moduli and returns an
+    object with the stress increments ``dsig`` (n_el, 3). Forward Euler (``midpoint=False``):
+    the moduli at the start-of-step total radial stress ``sigma_pre + sigma_r``. Midpoint: a
+    trial increment at those moduli gives the mid-step stress
+    ``sigma_pre + sigma_r + dsig_r / 2``, and the increment is solved again at the moduli
+    there (second order in the step for a smooth law).
+
+    Parameters
+    ----------
+    roll : _Roll
+    sigma_r : ndarray
+        Contact-induced radial stress so far [Pa] (the pre-impact part is ``roll.sigma_pre``).
+    midpoint : bool
+    solve : callable
+    """
+    mod = roll.moduli(roll.sigma_pre + sigma_r)
+    if midpoint:
+        trial = solve(mod, _factorize(roll, mod))
+        mod = roll.moduli(roll.sigma_pre + sigma_r + 0.5 * trial.dsig[:, 0])
+    return solve(mod, _factorize(roll, mod))
+
+
+def _half_width(
+    s: FloatArray, lam: FloatArray, gap: FloatArray, j0: int, sides: tuple[int, ...] = (1, -1)
+) -> float:
     """Contact half-width [m] from the active set, interpolated between nodes.
 
     Beyond the last node in contact the gap of a Hertz-type contact opens as
@@ -383,10 +495,19 @@ def _half_width(s: FloatArray, lam: FloatArray, gap: FloatArray, j0: int,
     return float(np.mean(out))
 
 
-def indent(web: Web, core: Core, radius: FloatArray, sigma_r: FloatArray, *,
-           head_radius: float | str, head_length: float | str, depth_max: float | str = 1e-3,
-           friction: float = 0.3, update_modulus: bool = True,
-           options: ContactOptions | None = None) -> ContactResult:
+def indent(
+    web: Web,
+    core: Core,
+    radius: FloatArray,
+    sigma_r: FloatArray,
+    *,
+    head_radius: float | str,
+    head_length: float | str,
+    depth_max: float | str = 1e-3,
+    friction: float = 0.3,
+    update_modulus: bool = True,
+    options: ContactOptions | None = None,
+) -> ContactResult:
     """Press a rigid cylindrical head into the wound roll and return F(d), a(d) and the fields.
 
     Parameters
@@ -446,29 +567,45 @@ def indent(web: Web, core: Core, radius: FloatArray, sigma_r: FloatArray, *,
         raise InputError("must be a ContactOptions", "options")
     r_in, r_out = core.outer_radius, float(r[-1])
     if depth_max >= 0.5 * head_radius:
-        raise InputError(f"must be below half the head radius ({0.5 * head_radius:g} m), got "
-                         f"{depth_max:g} m", "depth_max")
+        raise InputError(
+            f"must be below half the head radius ({0.5 * head_radius:g} m), got {depth_max:g} m",
+            "depth_max",
+        )
     if depth_max >= 0.25 * (r_out - r_in):
-        raise InputError(f"must be below a quarter of the wound thickness "
-                         f"({0.25 * (r_out - r_in):g} m), got {depth_max:g} m", "depth_max")
+        raise InputError(
+            f"must be below a quarter of the wound thickness "
+            f"({0.25 * (r_out - r_in):g} m), got {depth_max:g} m",
+            "depth_max",
+        )
     R_eff = 1.0 / (1.0 / head_radius + 1.0 / r_out)
     a_geo = math.sqrt(2.0 * R_eff * depth_max)
     surface_size = opts.surface_size if opts.surface_size is not None else web.thickness
-    t_size = (opts.tangential_size if opts.tangential_size is not None
-              else max(0.25 * surface_size, a_geo / 40.0))
+    t_size = (
+        opts.tangential_size
+        if opts.tangential_size is not None
+        else max(0.25 * surface_size, a_geo / 40.0)
+    )
     fine = opts.fine_halfwidth if opts.fine_halfwidth is not None else a_geo
     if surface_size >= 0.5 * (r_out - r_in):
         raise InputError("is too large for the wound thickness", "options.surface_size")
-    mesh = build_mesh(r_in, r_out, surface_size=surface_size, radial_growth=opts.radial_growth,
-                      tangential_size=t_size, fine_halfwidth=max(fine, t_size),
-                      tangential_growth=opts.tangential_growth, periodic=not opts.half_model)
-    sym = 2.0 if opts.half_model else 1.0   # the half model carries half the load
+    mesh = build_mesh(
+        r_in,
+        r_out,
+        surface_size=surface_size,
+        radial_growth=opts.radial_growth,
+        tangential_size=t_size,
+        fine_halfwidth=max(fine, t_size),
+        tangential_growth=opts.tangential_growth,
+        max_element_angle=opts.max_element_angle,
+        periodic=not opts.half_model,
+    )
+    sym = 2.0 if opts.half_model else 1.0  # the half model carries half the load
     roll = _Roll(web, core, r, s, mesh, opts)
 
     n_dof = 2 * mesh.n_nodes
     n_surf = roll.surface.size
     u = np.zeros(n_dof)
-    sig = np.zeros((mesh.n_elements, 3))          # contact-induced (r, theta, r-theta) [Pa]
+    sig = np.zeros((mesh.n_elements, 3))  # contact-induced (r, theta, r-theta) [Pa]
     lam = np.zeros(n_surf)
     f_contact = np.zeros(n_dof)
     s_surf = r_out * mesh.theta
@@ -481,23 +618,30 @@ def indent(web: Web, core: Core, radius: FloatArray, sigma_r: FloatArray, *,
     force = np.zeros(n + 1)
     half = np.zeros(n + 1)
     p_peak = np.zeros(n + 1)
+    # fields at every recorded depth (row k at delta[k]; row 0 the pre-impact state)
+    sig_hist = np.zeros((n + 1, mesh.n_elements, 3))
+    p_hist = np.zeros((n + 1, n_surf))
     frozen = roll.moduli(roll.sigma_pre) if not update_modulus else None
     tol_gap = 1e-3 * delta[1]
     step = None
     lu_frozen = _factorize(roll, frozen) if frozen is not None else None
     for k in range(1, n + 1):
         centre = np.array([r_out + head_radius - delta[k], 0.0])
+
+        def solve(
+            mod: tuple[FloatArray, ...],
+            lu: _Factor,
+            u: FloatArray = u,
+            f_contact: FloatArray = f_contact,
+            lam: FloatArray = lam,
+            centre: FloatArray = centre,
+        ) -> _Step:
+            return _step(roll, mod, lu, u, f_contact, lam, centre, head_radius, tol_gap)
+
         if frozen is not None and lu_frozen is not None:
-            mod, lu = frozen, lu_frozen            # one factorisation for all increments
+            step = solve(frozen, lu_frozen)  # one factorisation for all increments
         else:
-            mod = roll.moduli(roll.sigma_pre + sig[:, 0])
-            if opts.midpoint:
-                # trial increment with the start-of-step modulus -> mid-step stress
-                trial = _step(roll, mod, _factorize(roll, mod), u, f_contact, lam, centre,
-                              head_radius, tol_gap)
-                mod = roll.moduli(roll.sigma_pre + sig[:, 0] + 0.5 * trial.dsig[:, 0])
-            lu = _factorize(roll, mod)
-        step = _step(roll, mod, lu, u, f_contact, lam, centre, head_radius, tol_gap)
+            step = _hypoelastic_increment(roll, sig[:, 0], opts.midpoint, solve)
         u += step.du
         sig += step.dsig
         lam = step.lam
@@ -508,19 +652,17 @@ def indent(web: Web, core: Core, radius: FloatArray, sigma_r: FloatArray, *,
         force[k] = sym * float(np.sum(-lam * step.normal[:, 0]))
         half[k] = _half_width(s_surf, lam, step.gap, j0, (1,) if opts.half_model else (1, -1))
         p_peak[k] = float(np.max(lam / trib))
+        sig_hist[k] = sig
+        p_hist[k] = lam / trib
     assert step is not None
     sigma_r_total = roll.sigma_pre + sig[:, 0]
-    pressure = np.maximum(-sigma_r_total, 0.0)
-    tau = np.abs(sig[:, 2])
-    capacity = friction * pressure           # Coulomb shear capacity of the interface [Pa]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        sf = np.where(capacity > 0, tau / capacity, np.where(tau > 0, np.inf, 0.0))
+    sf = slip_factor(sig[:, 2], sigma_r_total, friction)
     alpha, beta, r2, max_res = fit_spring(delta, force * head_length)
     xy = roll.basis.centre_xy
     return ContactResult(
         delta=delta,
         force=force * head_length,
-        contact_pressure=lam / trib,
+        contact_pressure=p_hist[-1],
         force_per_length=force,
         half_width=half,
         peak_pressure=p_peak,
@@ -538,6 +680,10 @@ def indent(web: Web, core: Core, radius: FloatArray, sigma_r: FloatArray, *,
         sigma_theta=sig[:, 1],
         tau_r_theta=sig[:, 2],
         slip_factor=sf,
+        sigma_r_history=roll.sigma_pre[None, :] + sig_hist[:, :, 0],
+        sigma_theta_history=sig_hist[:, :, 1],
+        tau_r_theta_history=sig_hist[:, :, 2],
+        contact_pressure_history=p_hist,
         friction=friction,
         head_radius=head_radius,
         head_length=head_length,

@@ -1,0 +1,150 @@
+"""Convergence of the contact model on the rolls the pipeline runs (woundroll.contact).
+
+The pre-impact profiles come from the winding model (``woundroll.winding.hakiel.wind``) on
+the bundled cases, and the head is the Rho-meter's (``get_instrument("rho-meter")``,
+radius 6.565 mm, length 2.54 cm). The depths are the ``depth_max`` the pipeline's depth
+search ends at for these cases (1.25 x the impact's maximum depth): 1.0 mm (PET1 26.7 N),
+2.1 mm (PET2 26.7 N), 1.54 mm (PET2 80 N), 0.73 mm (PET1 46.7 N).
+
+Each mesh parameter is refined alone from the defaults and F(d) over 0.2-1 depth_max must
+move by less than 2 % (the project's discretisation bar). The defect these tests pin: the
+earlier default (straight-edged elements with full hoop-strain integration) locked in the
+far field, where the hoop-stiff roll (E_theta / E_r ~ 1e4 at the surface) bends
+inextensionally, and was 7 % (PET1) and 18 % (PET2) too stiff; refining the tangential
+growth alone moved F by that much. ``test_flat_element_without_assumed_hoop_locks`` keeps
+that failure visible.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import cache
+
+import numpy as np
+import pytest
+
+from woundroll.contact import ContactOptions, ContactResult, indent
+
+CASES = {"pet1-26.7N": 1.0e-3, "pet2-26.7N": 2.1e-3}
+MORE_CASES = {"pet2-80N": 1.54e-3, "pet1-46.7N": 0.73e-3}
+BAR = 0.02  # the project's 2 % bar for discretisation changes of F(d)
+
+
+@cache
+def real_roll(name: str) -> tuple:
+    """Web, core and the Hakiel pre-impact profile (radius, sigma_r) of a bundled case."""
+    from woundroll.case import load_case
+    from woundroll.winding.hakiel import wind
+
+    case = load_case(name)
+    web, core = case.web.build(), case.core.build()
+    w = wind(web, core, case.winding.final_radius(web, core), case.winding.schedule(web))
+    return web, core, np.asarray(w.radius), np.asarray(w.sigma_r)
+
+
+@cache
+def rho_meter_head() -> dict[str, float]:
+    from woundroll.instruments import get_instrument
+
+    ins = get_instrument("rho-meter")
+    return {"head_radius": ins.head_radius, "head_length": ins.head_length}
+
+
+def solve(name: str, depth: float, options: ContactOptions) -> ContactResult:
+    web, core, radius, sigma_r = real_roll(name)
+    return indent(web, core, radius, sigma_r, depth_max=depth, **rho_meter_head(), options=options)
+
+
+def refinements(
+    name: str, depth: float, base: ContactOptions, angles: tuple[float, ...] = (3.0,)
+) -> dict[str, ContactOptions]:
+    """Each mesh parameter refined alone from ``base`` (sizes halved, growth ratios
+    square-rooted, fine zone doubled, far-field element angle capped)."""
+    web, _, radius, _ = real_roll(name)
+    h = web.thickness
+    r_eff = 1.0 / (1.0 / rho_meter_head()["head_radius"] + 1.0 / radius[-1])
+    a_geo = math.sqrt(2.0 * r_eff * depth)
+    t_size = max(h / 4, a_geo / 40)  # the defaults of ContactOptions
+    out = {
+        "tangential_growth": {"tangential_growth": base.tangential_growth**0.5},
+        "radial_growth": {"radial_growth": base.radial_growth**0.5},
+        "surface_size": {"surface_size": h / 2},
+        "tangential_size": {"tangential_size": t_size / 2},
+        "fine_halfwidth": {"fine_halfwidth": 2 * a_geo},
+    }
+    for deg in angles:
+        out[f"max_element_angle {deg:g} deg"] = {"max_element_angle": math.radians(deg)}
+    return {k: ContactOptions(**{**base.__dict__, **v}) for k, v in out.items()}
+
+
+def max_change(res: ContactResult, ref: ContactResult, depth: float) -> float:
+    """Largest relative change of F(d) over 0.2-1 depth_max (interpolated between steps)."""
+    d = np.linspace(0.2 * depth, depth, 9)
+    return float(
+        np.max(np.abs(np.interp(d, res.delta, res.force) / np.interp(d, ref.delta, ref.force) - 1))
+    )
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_default_mesh_converged_on_real_profiles(name: str) -> None:
+    """Default mesh vs each parameter refined alone (8 depth increments on both: the mesh
+    error does not depend on the steps; the step study is the next test). Measured changes:
+    at most 0.15 % (PET1) and 0.07 % (PET2), from the radial growth; the far-field
+    parameters (tangential growth, element angle) 0.01 %."""
+    depth = CASES[name]
+    base_opts = ContactOptions(n_steps=8)
+    base = solve(name, depth, base_opts)
+    for label, opts in refinements(name, depth, base_opts).items():
+        res = solve(name, depth, opts)
+        assert res.n_elements > base.n_elements, label  # it is a refinement
+        assert max_change(res, base, depth) < BAR, label
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_default_steps_converged_on_real_profiles(name: str) -> None:
+    """24 (default) vs 48 depth increments on the default mesh: measured 0.46 % (PET1),
+    0.05 % (PET2); bar 2 %."""
+    depth = CASES[name]
+    base = solve(name, depth, ContactOptions())
+    finer = solve(name, depth, ContactOptions(n_steps=48))
+    assert max_change(finer, base, depth) < BAR
+
+
+def test_flat_element_without_assumed_hoop_locks() -> None:
+    """The earlier element (straight edges, hoop strain at all four Gauss points) on PET2:
+    square-rooting the tangential growth moves F by ~10 % (membrane locking in the far
+    field; 127.7 -> 115.0 N at 24 steps); the default element moves < 0.1 % (measured
+    0.001 %). The 5 % threshold sits between the two."""
+    name, depth = "pet2-26.7N", CASES["pet2-26.7N"]
+    g = ContactOptions().tangential_growth
+    for element, hoop, locks in (("flat", False, True), ("curved", True, False)):
+        coarse = solve(name, depth, ContactOptions(n_steps=6, element=element, assumed_hoop=hoop))
+        fine = solve(
+            name,
+            depth,
+            ContactOptions(n_steps=6, element=element, assumed_hoop=hoop, tangential_growth=g**0.5),
+        )
+        change = max_change(fine, coarse, depth)
+        assert (change > 0.05) if locks else (change < 0.001), element
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", list(CASES | MORE_CASES))
+def test_full_convergence_study_on_real_profiles(name: str) -> None:
+    """The whole study at the default 24 increments, four cases: every parameter alone
+    (element angle capped at 3 and 1 deg), the step count doubled, and everything refined
+    at once (~5x the elements). Measured: at most 0.18 % for any mesh parameter, 0.68 % for
+    the steps (PET1 46.7 N), 0.41 % all at once."""
+    depth = (CASES | MORE_CASES)[name]
+    base_opts = ContactOptions()
+    base = solve(name, depth, base_opts)
+    variants = refinements(name, depth, base_opts, angles=(3.0, 1.0))
+    variants["n_steps"] = ContactOptions(n_steps=2 * base_opts.n_steps)
+    merged: dict = {}
+    for label, opts in variants.items():
+        if not label.startswith("max_element_angle"):
+            merged.update({k: v for k, v in opts.__dict__.items() if v != getattr(base_opts, k)})
+    variants["all at once"] = ContactOptions(**{**base_opts.__dict__, **merged})
+    for label, opts in variants.items():
+        res = solve(name, depth, opts)
+        assert max_change(res, base, depth) < BAR, label
