@@ -305,14 +305,16 @@ class TensionStudy:
         return [SummaryTable("Rho against winding tension (Figures 14-15)", header, rows)]
 
     def notes(self) -> list[str]:
-        return [
+        notes = [
             "FD: finite-difference impact {4}-{13}; energy: {19}-{22}; no-upd: E_r frozen at "
-            "its pre-impact value (Figures 8-9).",
-            f"Device manual impulse: {MANUAL_IMPULSE_NS} N s; elastic bound 2 m v = "
-            f"{self.rolls[0]['elastic_impulse_bound_Ns']:.3f} N s."
-            if self.rolls
-            else "",
+            "its pre-impact value (Figures 8-9)."
         ]
+        if self.rolls:
+            notes.append(
+                f"Device manual impulse: {MANUAL_IMPULSE_NS} N s; elastic bound 2 m v = "
+                f"{self.rolls[0]['elastic_impulse_bound_Ns']:.3f} N s."
+            )
+        return notes
 
     def plot(self, prefix: str | Path) -> list[Path]:
         """Write ``tension_rho.png`` and ``tension_impulse.png`` (in directory ``prefix``,
