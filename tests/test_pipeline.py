@@ -45,6 +45,20 @@ def test_coupled_json_has_every_documented_key(pet1):
     assert {"rho_fd", "rho_energy", "impulse_Ns"} <= set(d["no_update"])
 
 
+def test_contact_fields_are_reported_at_the_impact_depth(pet1):
+    # the fields and the slip factor {23} belong to the striker's deepest point, not to
+    # the deepest contact increment computed
+    c = pet1.contact.to_dict()
+    at = c["at_impact_depth"]
+    assert at["depth_m"] == pytest.approx(c["impact_depth_m"], rel=1e-12)
+    assert at["depth_m"] < c["depth_max_m"]
+    assert c["semi_contact_width_m"] == pytest.approx(at["semi_contact_width_m"], rel=1e-12)
+    # the force there is the computed F(d) interpolated at that depth
+    f = np.interp(at["depth_m"], c["delta_m"], c["force_N"])
+    assert at["force_N"] == pytest.approx(f, rel=1e-9)
+    assert at["max_slip_factor_near_contact"] >= 1.0  # Figure 18: slip around the head
+
+
 def test_fd_and_energy_agree_on_the_contact_spring(pet1):
     # they differ by the striker spring's force at maximum depth (eq. 22 leaves it out,
     # ~1.7 Rho) and by the roll's active mass (FD only): a few per cent
@@ -91,7 +105,13 @@ def test_out_writes_json_and_plots(tmp_path):
     )
     assert res.exit_code == 0, res.output
     names = {p.name for p in tmp_path.iterdir()}
-    assert {"result.json", "winding.png", "contact.png", "hardness.png"} <= names
+    assert {
+        "result.json",
+        "winding.png",
+        "contact.png",
+        "contact_slip.png",
+        "hardness.png",
+    } <= names
     assert "no_update" not in json.loads((tmp_path / "result.json").read_text())
 
 

@@ -185,7 +185,7 @@ def study(
     ] = False,
     workers: Annotated[
         int, typer.Option(help="Rolls run in parallel (processes).", min=1, max=64)
-    ] = 2,
+    ] = 1,
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar.")] = False,
 ) -> None:
     """Run one of the reference paper's studies on its Table 2 rolls; print its tables."""
@@ -211,11 +211,12 @@ def study(
     if as_json:
         sys.stdout.write(json.dumps(result.to_dict()) + "\n")
         return
+    wide = out if out.is_terminal else Console(width=160)
     for title, header, rows in result.summary():
         t = Table(*[escape(h) for h in header], title=escape(title))
         for row in rows:
             t.add_row(*[escape(str(c)) for c in row])
-        out.print(t)
+        wide.print(t)
     for note in result.notes():
         out.print(f"note: {escape(note)}", highlight=False)
     for p in written:

@@ -29,6 +29,7 @@ from woundroll.errors import ConvergenceError, InputError
 
 if TYPE_CHECKING:
     from woundroll.contact import ContactResult
+    from woundroll.contact.result import ContactState
     from woundroll.instruments import HardnessResult, Instrument, TesterSetup
     from woundroll.instruments.roll_side import SpringFit
     from woundroll.materials.web import Core, Web
@@ -72,9 +73,14 @@ class RollStiffness:
         return float(self.spring.max_depth)  # type: ignore[arg-type]
 
     @property
+    def at_impact(self) -> ContactState:
+        """Fields, slip factor {23} and a at the impact's maximum depth (interpolated)."""
+        return self.contact.at_depth(min(self.impact_depth, float(self.contact.delta[-1])))
+
+    @property
     def semi_contact_width(self) -> float:
-        """Semi-contact width a at the impact's maximum depth [m] (interpolated in a(d))."""
-        return float(np.interp(self.impact_depth, self.contact.delta, self.contact.half_width))
+        """Semi-contact width a at the impact's maximum depth [m]."""
+        return self.at_impact.semi_contact_width
 
     def to_dict(self) -> dict[str, Any]:
         """The contact model's JSON (arrays over depth), with the spring actually used.
@@ -90,13 +96,21 @@ class RollStiffness:
             "fit_max_rel_residual": out.pop("fit_max_rel_residual"),
         }
         out.update(self.spring.to_dict())
-        out["semi_contact_width_m"] = self.semi_contact_width
+        at = self.at_impact
+        out["semi_contact_width_m"] = at.semi_contact_width
         out["depth_max_m"] = float(self.contact.delta[-1])
+        out["at_impact_depth"] = at.to_dict()
         return out
 
-    def plot(self, path: str | Path | None = None) -> Any:
-        """F(d) with the fit, and a(d) (:meth:`ContactResult.plot`)."""
-        return self.contact.plot(path)
+    def plot(self, path: str | Path | None = None) -> list[Any]:
+        """F(d) with the fit and a(d), and the slip-factor map {23} at the impact's depth.
+
+        With ``path`` (``contact.png``) the second figure goes to ``contact_slip.png``.
+        """
+        from woundroll.contact import plot_slip_factor
+
+        slip_path = None if path is None else str(path).removesuffix(".png") + "_slip.png"
+        return [self.contact.plot(path), plot_slip_factor(self.at_impact, slip_path)]
 
 
 @dataclass(frozen=True)

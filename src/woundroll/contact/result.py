@@ -148,9 +148,32 @@ class ContactState:
             object.__setattr__(self, f.name, _readonly(getattr(self, f.name)))
 
     @property
+    def semi_contact_width(self) -> float:
+        """Semi-contact width a at this depth [m] (the paper's ``a``, {14}-{18})."""
+        return float(self.half_width)
+
+    @property
     def slip(self) -> NDArray[np.bool_]:
         """Elements where slip is expected at this depth, SF >= 1 (eq. {23})."""
         return self.slip_factor >= 1.0
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready summary at this depth: force, a, pressures, slip region {23}."""
+        depth, width = self.slip_extent()
+        near = self.outer_radius * np.abs(self.element_theta) <= 3.0 * self.half_width
+        sf = self.slip_factor[near]
+        return {
+            "depth_m": self.depth,
+            "force_N": self.force,
+            "semi_contact_width_m": self.half_width,
+            "max_contact_pressure_Pa": float(np.max(self.contact_pressure, initial=0.0)),
+            "max_radial_pressure_Pa": float(np.max(-self.sigma_r, initial=0.0)),
+            "friction": self.friction,
+            "slip_region_depth_m": depth,
+            "slip_region_halfwidth_m": width,
+            "max_slip_factor_near_contact": float(np.max(sf[np.isfinite(sf)], initial=0.0)),
+            "unbounded_slip_elements_near_contact": int(np.sum(np.isinf(sf))),
+        }
 
     def slip_extent(self, window: float | None = None) -> tuple[float, float]:
         """Depth below the surface and arc half-width [m] of the SF >= 1 region within the
@@ -389,7 +412,7 @@ class ContactResult:
 
 
 def plot_slip_factor(
-    result: ContactResult,
+    result: ContactResult | ContactState,
     path: str | Path | None = None,
     *,
     window: float | None = None,
@@ -399,7 +422,8 @@ def plot_slip_factor(
 
     Parameters
     ----------
-    result : ContactResult
+    result : ContactResult or ContactState
+        The fields at the largest depth, or at any depth (:meth:`ContactResult.at_depth`).
     path : str or Path, optional
         PNG file to write.
     window, depth : float, optional
@@ -430,7 +454,8 @@ def plot_slip_factor(
     fig.colorbar(tri, ax=ax, label=rf"slip factor SF, $\mu$ = {result.friction:g}")
     ax.set_xlabel("arc from the contact axis [mm]")
     ax.set_ylabel("depth below surface [mm]")
-    ax.set_title(f"slip factor at d = {result.delta[-1] * 1e3:.3g} mm (white: SF = 1)")
+    head_depth = result.depth if isinstance(result, ContactState) else float(result.delta[-1])
+    ax.set_title(f"slip factor at d = {head_depth * 1e3:.3g} mm (white: SF = 1)")
     if path is not None:
         fig.savefig(path, dpi=120)
     return fig
