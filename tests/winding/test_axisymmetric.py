@@ -178,7 +178,9 @@ def test_uniform_roll_sigma_z_and_tau_rz_symmetry_and_free_edges() -> None:
     # z (zero in the middle sector to round-off, 1e-9 of its peak) and sigma_z even; the
     # edges are traction-free (natural boundary condition), so sigma_z falls toward them,
     # and with no axial load the net axial force across every CMD section vanishes
-    # (int sigma_z r dr: measured 1e-2 of int |sigma_z| r dr, FE equilibrium in weak form)
+    # (int sigma_z r dr: measured 3e-4 of int |sigma_z| r dr at the sector centres; the FE
+    # satisfies equilibrium in weak form, so 3e-3). Measured: tau_rz in the middle 1e-13 of
+    # its peak, sigma_z at the edge sector 0.33 of mid-width.
     web = table3_web()
     res = wind_axisymmetric(web, CORE, 0.15, TensionSchedule(web_stress=2.3e6), n_sectors=15)
     tmax = np.max(np.abs(res.tau_rz))
@@ -192,7 +194,7 @@ def test_uniform_roll_sigma_z_and_tau_rz_symmetry_and_free_edges() -> None:
     dr = np.diff(rr)[:, None]
     Fz = np.sum(res.sigma_z * res.radius * dr, axis=0)
     Fa = np.sum(np.abs(res.sigma_z) * res.radius * dr, axis=0)
-    assert np.max(np.abs(Fz)) < 0.03 * np.max(Fa)
+    assert np.max(np.abs(Fz)) < 3e-3 * np.max(Fa)
 
 
 def test_E_z_and_nu_theta_z_enter_sigma_z() -> None:
@@ -316,6 +318,10 @@ def test_nip_callable_is_validated() -> None:
         ({"n_groups": 10**7}, "winding.n_groups"),
         ({"n_sectors": 0}, "profile.n_sectors"),
         ({"E_r_floor": -1.0}, "winding.E_r_floor"),
+        ({"grouping": "log"}, "winding.grouping"),
+        ({"shape": "cubic"}, "winding.shape"),
+        ({"window": 0}, "winding.window"),
+        ({"flush": 0}, "winding.flush"),
     ],
 )
 def test_bad_input(kwargs: dict, fld: str) -> None:
@@ -323,6 +329,32 @@ def test_bad_input(kwargs: dict, fld: str) -> None:
     with pytest.raises(InputError) as exc:
         wind_axisymmetric(table3_web(), CORE, tension=TensionSchedule(web_stress=1e6), **args)
     assert exc.value.field == fld
+
+
+def test_rigid_core_with_lazy_deep_part_and_corrections() -> None:
+    # a rigid core inside the condensed deep part (fixed u_r on the core, u_z at one node)
+    # and fixed-point corrections: the lazy result matches the whole-stack solve (0.5 %)
+    ten = TensionSchedule(web_stress=2.3e6)
+    kw = dict(n_sectors=5, n_groups=60, corrections=1)
+    a = wind_axisymmetric(table3_web(), Core(R_CORE), 0.13, ten, _band(0.01), **kw)
+    b = wind_axisymmetric(table3_web(), Core(R_CORE), 0.13, ten, _band(0.01), window=None, **kw)
+    assert np.all(a.sigma_r < 0)
+    assert np.max(np.abs(a.sigma_r - b.sigma_r)) < 0.005 * np.max(np.abs(b.sigma_r))
+
+
+def test_single_first_layer_on_a_rigid_core() -> None:
+    # with as many groups as layers the first increment is one layer on the bare core: with a
+    # rigid core nothing moves (an empty stack), and the layer keeps its wound-on tension
+    res = wind_axisymmetric(
+        table3_web(),
+        Core(R_CORE),
+        R_CORE + 12 * H,
+        TensionSchedule(web_stress=2e6),
+        n_sectors=3,
+        n_groups=12,
+    )
+    assert res.layers_per_group[0] == 1
+    assert np.all(np.isfinite(res.sigma_r)) and np.all(res.sigma_r < 0)
 
 
 def test_rigid_core_and_progress() -> None:
@@ -428,3 +460,71 @@ def test_wrong_types_are_input_errors(kwargs: dict, fld: str) -> None:
     with pytest.raises(InputError) as exc:
         wind_axisymmetric(**args)
     assert exc.value.field == fld
+
+
+def _band(amp: float) -> ThicknessProfile:
+    z = np.linspace(0, 0.61, 245)
+    return ThicknessProfile(z, H * (1 + amp * np.exp(-(((z - 0.305) / 0.06) ** 2))))
+
+
+def test_cmd_mesh_convergence() -> None:
+    # a smooth +1 % band (Gaussian, 6 cm), 15 / 31 / 61 sectors (finite elements across the
+    # CMD), 80 groups, R 13 cm. Measured core pressure at the band centre 723.6 / 767.7 /
+    # 778.1 kPa: the differences fall 4.2x per halving (second order; extrapolated 781.6,
+    # 61 sectors within 0.5 %); the outer-group sigma_r 31.08 / 31.61 / 31.73 kPa (4.3x).
+    # Asserted: the ratio of successive differences > 3 and 31 vs 61 sectors within 2 %.
+    web = table3_web()
+    ten = TensionSchedule(web_stress=2.3e6)
+    core, top = [], []
+    for ns in (15, 31, 61):
+        a = wind_axisymmetric(web, CORE, 0.13, ten, _band(0.01), n_sectors=ns, n_groups=80)
+        core.append(a.sigma_r_core[ns // 2])
+        top.append(a.sigma_r[-8, ns // 2])
+    for v in (core, top):
+        assert abs(v[0] - v[1]) > 3 * abs(v[1] - v[2])
+        assert abs(v[1] / v[2] - 1) < 0.02
+
+
+def test_slack_flag_marks_a_thin_lane() -> None:
+    # a -3 % lane goes slack (zero wound-on tension near the surface): flagged; the full
+    # thickness sectors away from it are taut and not flagged
+    res = wind_axisymmetric(
+        table3_web(),
+        CORE,
+        0.13,
+        TensionSchedule(web_stress=2.3e6),
+        _band(-0.03),
+        n_sectors=15,
+        n_groups=60,
+    )
+    assert res.slack.shape == (15,) and res.slack.dtype == bool
+    assert res.slack[7]
+    assert np.all(res.wot[-5:, 7] == 0)
+    assert not np.any(res.slack[:3]) and not np.any(res.slack[-3:])
+
+
+def test_lazy_deep_part_matches_the_exact_solve() -> None:
+    # freezing and condensing the groups below the top 24 (refreshed every 8 increments)
+    # against solving the whole stack every increment: measured 0.15 % (sigma_r) and 0.03 %
+    # (sigma_z) of the peak on a -1 % lane, 15 sectors, 60 groups. Tolerance 0.5 %.
+    kw = dict(n_sectors=15, n_groups=60)
+    ten = TensionSchedule(web_stress=2.3e6)
+    a = wind_axisymmetric(table3_web(), CORE, 0.13, ten, _band(-0.01), **kw)
+    b = wind_axisymmetric(table3_web(), CORE, 0.13, ten, _band(-0.01), window=None, **kw)
+    for name in ("sigma_r", "sigma_theta", "sigma_z"):
+        x, y = getattr(a, name), getattr(b, name)
+        assert np.max(np.abs(x - y)) < 0.005 * np.max(np.abs(y))
+
+
+@pytest.mark.slow
+def test_table3_grouping_converged_near_the_surface() -> None:
+    # the audit's finding: near-surface sigma_r must be converged in the grouping on the
+    # Table 3 case (61 sectors, 1,337 layers, bundled profile). 200 -> 400 graded groups.
+    from woundroll.winding.axisymmetric import group_convergence
+
+    out = group_convergence(
+        table3_web(), CORE, R_OUT, TensionSchedule(web_stress=2.3e6), bundled_profile()
+    )
+    assert out["surface_stress_change"] < 0.01
+    assert out["core_stress_change"] < 0.02
+    assert out["wot_change"] < 0.01

@@ -171,7 +171,7 @@ class Stack:
         ne = E_r.shape[0]
         nc1 = self.nc1
         n = 2 * (ne + 1) * nc1
-        rows, cols, vals = [], [], []
+        rows, cols, vals = [np.zeros(0, np.int64)], [np.zeros(0, np.int64)], [np.zeros(0)]
         C = Gs = None
         if ne > 0:
             Ke, C, Gs = self._element_matrices(rn, E_r)

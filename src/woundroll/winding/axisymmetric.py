@@ -1,59 +1,60 @@
 """Axisymmetric (r, z) center-winding model with a CMD thickness profile.
 
-The roll is cut along the CMD (z) into ``n_sectors`` columns. Each column has its own web
-thickness ``h_j`` (the sector average of the thickness profile) and builds its own radius:
-after ``n`` layers its undeformed outer radius is ``r_core + n h_j``. The roll is grown
-layer group by layer group (``n_groups`` increments of about equal layer counts); every
-increment solves the incremental elasticity problem of the wound stack under the pressure
-the new group exerts, with the radial modulus taken at the current pressure.
+The roll is cut along the CMD (z) into ``n_sectors`` sectors, one finite element wide each.
+Sector ``j`` has its own web thickness ``h_j`` (the sector average of the thickness profile)
+and builds its own radius: after ``n`` layers its undeformed outer radius is
+``r_c + n h_j``. The roll is grown layer group by layer group (``n_groups`` increments);
+every increment solves the incremental elasticity problem of the wound stack under the
+pressure the new group exerts, with the radial modulus taken at the mid-increment pressure.
 
-Discretisation ("generalised plane stress per column + axial shear coupling")
-----------------------------------------------------------------------------
-* Unknowns: the radial displacement ``u(k, j)`` of node ``k`` (group boundary; node 0 on the
-  core) of column ``j``. One ring element per group and column whose stiffness is the
-  exact solution for uniform moduli (``sigma_r = A r^(g-1) + B r^(-g-1)``,
-  ``g = sqrt(E_theta/E_r)``), so a constant-modulus roll has no radial discretisation
-  error; only the variation of E_r between groups is discretised.
-* In each column the web is in plane stress in z (``sigma_z = 0``): the film is free to
-  contract across the web, so ``sigma_z`` is reported as zero. Constitutive law
-  ``eps_r = sigma_r/E_r - nu_theta_r sigma_theta/E_theta``,
-  ``eps_theta = -nu_theta_r sigma_r/E_theta + sigma_theta/E_theta``
-  (convention ``nu_ij = -eps_j/eps_i`` under ``sigma_i``, so
-  ``nu_r_theta/E_r = nu_theta_r/E_theta``).
-* Neighbouring columns are coupled by the transverse shear ``tau_rz = G_rz du/dz``
-  (``G_rz = 2 E_r`` at the current pressure by default, Table 2/3 of the reference paper):
-  a shear spring ``G_rz r L / dz`` between nodes of equal index ``k`` in columns ``j`` and
-  ``j + 1`` (``L`` the radial tributary length, ``dz`` the distance of the sector centres).
-  The axial displacement ``u_z`` is not an unknown: no interlayer slip in z and no
-  ``du_z/dr`` shear, so this coupling is the stiff bound of the shear transfer. The CMD
-  edges are free (no shear beyond them).
-* Core: Hakiel's condition ``u(r_c) = r_c sigma_r(r_c) / E_c`` (a spring on node 0);
-  a rigid core fixes node 0.
+Discretisation (``_axisym_fe``; docs/profile.md section 2)
+----------------------------------------------------------
+* Unknowns ``u_r`` and ``u_z`` at the nodes ``(k, i)``: group boundary ``k`` (0 on the core)
+  and sector edge ``i``; element ``(k, j)`` is group ``k`` of sector ``j``. Nodes are shared
+  by layer index (a layer is continuous across the CMD).
+* Full cylindrically orthotropic law in (r, theta, z) (convention ``nu_ij = -eps_j/eps_i``
+  under ``sigma_i``, ``nu_ij/E_i = nu_ji/E_j``; web.py) with ``E_r`` from the radial-modulus
+  law, ``E_theta``, ``E_z``, ``nu_theta_r``, ``nu_z_r``, ``nu_theta_z`` and
+  ``tau_rz = G_rz (du_r/dz + du_z/dr)``, ``G_rz = 2 E_r`` by default (Tables 2-3).
+* Interpolation: linear in z; in r, ``u_r`` spans the exact uniform-modulus ring solution
+  {x^g, x^-g} (``g = sqrt(E_theta/E_r)``), so a constant-modulus roll has no radial
+  discretisation error and the surface boundary layer (``g`` up to ~1000) is represented
+  within an element; ``u_z`` is linear in r.
+* CMD edges free (``sigma_z = tau_rz = 0``, natural boundary condition). Core: Hakiel's
+  ``u_r(r_c) = r_c sigma_r / E_c`` (consistent over each sector's width) or ``u_r = 0`` for a
+  rigid core; **axially frictionless** (no shear traction between core and roll: the web is
+  wound onto the core, not bonded to it, and this is the choice that keeps a uniform roll
+  on a uniform core free of axial load from the core); ``u_z`` is fixed at one core node
+  only to remove the rigid axial translation (the loads carry no net axial force, so the
+  stresses do not depend on that node).
+* ``shear_coupling=False``: the sectors are independent 1D plane-stress rolls (exact ring
+  elements per sector, ``sigma_z = tau_rz = 0``): the previous column model, for comparison.
 * Layer groups (midpoint rule): the ``m`` layers of a group are wound one after the other,
   each pressing on the stack below it. The increment applies the whole group's load
-  ``sigma_j w L`` (per radian) to a stack that includes ``(m - 1) / 2`` layers of the group
-  itself (the average layer's situation); with ``m = 1`` the new layer is not in the stack,
-  which is Hakiel's scheme. The group's own stresses are the averages over its layers:
-  ``sigma_r = -p_j / 2`` (0 at its top, ``-p_j`` at its bottom) and the hoop stress
-  ``sigma_j`` plus ``(m - 1)/(2 m)`` of the hoop increment. This makes the grouped model
-  second-order in the group size (constant moduli) and converge to the layer-by-layer 1D
-  model (docs/profile.md).
-* Radial modulus per element at the mid-increment pressure (midpoint rule): the increment
-  of each element is predicted from the previous increment scaled by the ratio of the
-  loads (``corrections`` extra fixed-point solves optional). With ``K1 = 0`` (Table 3)
-  ``E_r = K2 P`` vanishes at zero pressure; the mid-increment pressure is positive
-  wherever load arrives, and ``E_r`` is floored at ``E_r_floor`` (default
-  ``1e-6 E_theta``, 5 kPa for Table 3) so that an unloaded (slack) column stays solvable
-  with zero stress.
-* Linear solve per increment: sparse LU (nodes numbered layer by layer) with coupling, a
-  tridiagonal Cholesky per column without.
+  ``sigma_j m h_j w_j`` (per radian) to a stack that includes ``(m - 1) / 2`` layers of the
+  group itself; with ``m = 1`` the new layer is not in the stack (Hakiel's scheme). The
+  group's own stresses are the averages over its layers: ``sigma_r = -p_j / 2`` and the hoop
+  stress ``sigma_j`` plus ``(m - 1)/(2 m)`` of the hoop (and sigma_z, tau_rz) increment.
+  Default **graded** grouping: single layers at the outer surface, a group holding about a
+  quarter of the layers above it, equal groups below (``_split_layers``).
+* Radial modulus per element at the mid-increment pressure, predicted from the previous
+  increment's response scaled by the ratio of the loads (``corrections`` extra fixed-point
+  solves optional). With ``K1 = 0`` (Table 3) ``E_r`` is floored at ``E_r_floor`` (default
+  ``1e-6 E_theta``, 5 kPa) so that a slack sector stays solvable with zero stress.
+* Lazy deep part: groups below the top ``window`` (24) are frozen (E_r at the pressure
+  predicted for the middle of the period) and condensed onto the window's bottom layer
+  (Schur complement from a natural-order sparse LU), refreshed every ``flush`` (8)
+  increments; their response is recovered at each refresh. ``window=None`` solves the
+  whole stack every increment (sparse LU).
+* Slack flag: ``slack[j]`` is True when, within ``SLACK_DEPTH`` (1 mm) of the surface, a
+  group of sector ``j`` was wound without tension or its E_r sat at the floor.
 
 Tension allocation (relaxation radius)
 --------------------------------------
 The incoming web of line tension ``F = T_w h_nom W`` (``T_w`` the web stress of the
 :class:`~woundroll.winding.tension.TensionSchedule`, tapered at the mean radius of the
 group, ``h_nom`` the web's nominal thickness, ``W`` the profile's CMD extent) is stress-free
-at a radius ``R0``. At the deformed radius ``rho_j`` where the group lands on column ``j``
+at a radius ``R0``. At the deformed radius ``rho_j`` where the group lands on sector ``j``
 (current deformed outer radius + half the group's thickness), the MD stress is
 ``sigma_j = E_theta max(rho_j - R0, 0) / R0``; ``R0`` is solved exactly (the total is
 piecewise linear in ``1/R0``) so that ``sum_j sigma_j h_j w_j = F``. A nip adds
@@ -62,8 +63,7 @@ unless a ``nip`` callable gives the CMD distribution). The group's layers carry 
 wound-on tension as initial hoop stress; their pressure on the stack below is
 ``p_j = sigma_j m h_j / rho_j`` (``m`` layers in the group).
 
-Outputs at the group centres; ``sigma_z = 0`` by the plane-stress assumption; ``tau_rz`` is
-the shear of the coupling springs, averaged from the two sides of each sector.
+Outputs at the element (group, sector) centres: sigma_r, sigma_theta, sigma_z, tau_rz.
 """
 
 from __future__ import annotations
@@ -101,7 +101,7 @@ SLACK_DEPTH = 1e-3
 @dataclass(frozen=True)
 class AxisymmetricResult:
     """Stresses of an axisymmetric wound roll, SI; 2-D arrays are ``(n_groups, n_sectors)``,
-    rows from the core outward, values at element (group) centres.
+    rows from the core outward, values at element (group, sector) centres.
 
     Attributes
     ----------
@@ -110,6 +110,7 @@ class AxisymmetricResult:
     thickness : ndarray [m]  sector web thickness.
     radius : ndarray [m]     element-centre radii (undeformed build).
     sigma_r, sigma_theta, sigma_z, tau_rz : ndarray [Pa]
+        Stresses of the (r, z) model (``sigma_z = tau_rz = 0`` with ``shear_coupling=False``).
     E_r : ndarray [Pa]       radial modulus at the final pressure.
     wot : ndarray [Pa]       wound-on tension of each group in each sector.
     nip_load : ndarray [N/m] nip load per width used for each group (zeros without nip).
@@ -118,6 +119,11 @@ class AxisymmetricResult:
     layers_per_group : ndarray  layers wound in each group.
     build_radius : ndarray [m]  undeformed outer radius of each sector (``r_c + n h_j``).
     core_radius : float [m]
+    info : dict              counts, options, ``u_z_outer_m`` (axial displacement of the
+                             outer surface per sector).
+    slack : ndarray of bool  per sector: within ``SLACK_DEPTH`` (1 mm) of the surface a group
+                             was wound without tension or its E_r sat at the floor, i.e. the
+                             near-surface state (and a reading there) is set by the floor.
     """
 
     z: FloatArray
@@ -412,7 +418,11 @@ def wind_axisymmetric(
     grouping : {"graded", "uniform"}
         Layer groups shrinking to single layers at the outer surface (default) or equal.
     shape : {"power", "linear"}
-        Radial interpolation of the finite elements (module docstring).
+        Radial interpolation of u_r in the finite elements (module docstring).
+    window, flush : int
+        Lazy deep part: groups below the top ``window`` are frozen and condensed, refreshed
+        every ``flush`` increments (``window=None``: the whole stack every increment, exact
+        but ~8x slower on Table 3; the two differ by 0.2 % of max |sigma_r| there).
 
     Raises
     ------
@@ -445,6 +455,12 @@ def wind_axisymmetric(
         raise InputError(f"choose graded or uniform, got {grouping!r}", "winding.grouping")
     if shape not in ("power", "linear"):
         raise InputError(f"choose power or linear, got {shape!r}", "winding.shape")
+    if window is not None and (
+        isinstance(window, bool) or not isinstance(window, int | np.integer) or window < 1
+    ):
+        raise InputError(f"must be a whole number >= 1 or None, got {window!r}", "winding.window")
+    if isinstance(flush, bool) or not isinstance(flush, int | np.integer) or flush < 1:
+        raise InputError(f"must be a whole number >= 1, got {flush!r}", "winding.flush")
     edges = thickness.sector_edges(int(n_sectors))
     _, h = thickness.sector_average(int(n_sectors))
     w = np.diff(edges)
