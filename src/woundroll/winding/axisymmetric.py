@@ -639,7 +639,7 @@ def wind_axisymmetric(
             if ne > g:
                 pred[g - k0] = -0.25 * p
             if prev_p is not None:
-                k = min(prev_n, ne)
+                k = max(min(prev_n, ne), k0)
                 scale = np.divide(p, prev_p, out=np.ones_like(p), where=prev_p > 0)
                 pred[: k - k0] = s_old[: k - k0] + 0.5 * prev_dsr[k0:k] * scale[None, :]
             E2 = modulus(pred)
