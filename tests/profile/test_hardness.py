@@ -47,12 +47,19 @@ def test_uniform_profile_gives_a_flat_reading() -> None:
         n_groups=40,
         workers=1,
     )
-    np.testing.assert_allclose(res.rho, res.rho[0], rtol=1e-9)
-    assert res.rho_stats.cov < 1e-9 and res.rho_stats.band == "very good"
+    # a uniform web is symmetric about mid-width (round-off), and flat within 1 % but for
+    # the edge sectors: the free CMD edges are nearer plane stress than the interior
+    # (sigma_z -> 0), a few per cent (physics of the (r, z) model, not discretisation)
+    np.testing.assert_allclose(res.rho, res.rho[::-1], rtol=1e-9)
+    # (measured: edges 42.0, interior 42.8-43.1, the edge effect decaying with a ripple)
+    np.testing.assert_allclose(res.rho[1:-1], res.rho[4], rtol=1e-2)
+    assert abs(res.rho[0] / res.rho[4] - 1) < 0.05
+    assert res.rho_stats.cov < 0.03 and res.rho_stats.band == "very good"
     # the stand-in readout of the stand-in spring: rho = (1e4 + 10 P) / 1e3 with P the mean
     # pressure of the outer groups: checks the plumbing from sigma_r to the reading
-    p = -np.mean(res.winding.sigma_r[-5:, 0])
-    assert res.rho[0] == pytest.approx((1e4 + 10 * p) / 1e3, rel=1e-12)
+    for j in (0, 4):
+        p = -np.mean(res.winding.sigma_r[-5:, j])
+        assert res.rho[j] == pytest.approx((1e4 + 10 * p) / 1e3, rel=1e-12)
 
 
 def test_thick_band_reads_harder_and_threads_match_serial() -> None:
