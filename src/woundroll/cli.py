@@ -159,6 +159,9 @@ def result_summary(result: RunResult) -> list[tuple[str, str]]:
                 f"{st.min:.1f} / {st.max:.1f} / {st.peak_to_peak:.1f}",
             ),
         ]
+        n_slack = int(p.slack.sum())
+        if n_slack:
+            rows.append(("slack sectors (reading set by the E_r floor)", f"{n_slack}"))
         c = p.comparison
         if c is not None:
             ms = c.measured_stats

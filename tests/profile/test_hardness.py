@@ -262,3 +262,26 @@ def test_nip_foundation_is_fitted_over_the_nips_reach(line_load: float) -> None:
         assert depth < 0.25 * 3e-4
     assert 0 < depth < 3e-3
     assert res.nip_load is not None and res.nip_load.max() > 0
+
+
+def test_slack_lanes_are_flagged() -> None:
+    # a 3 % thin lane beside thick ones goes slack (relaxation radius: its MD strain is
+    # negative, clipped to zero tension); its reading is set by the E_r floor and must be
+    # flagged, while the taut lanes are not
+    prof = ThicknessProfile(
+        np.linspace(0.0, 0.61, 7), np.array([77.0, 77.0, 77.0, 74.7, 77.0, 77.0, 77.0]) * 1e-6
+    )
+    res = predict_profile(
+        WEB,
+        CORE,
+        TensionSchedule(web_stress=2.3e6),
+        prof,
+        outer_radius=0.13,
+        contact=standin_contact,
+        instrument=standin_readout,
+        n_sectors=7,
+        n_groups=40,
+        workers=1,
+    )
+    assert res.slack[3] and not res.slack[0]
+    assert res.to_dict()["slack"][3] is True

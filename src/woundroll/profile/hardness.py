@@ -195,6 +195,12 @@ class ProfileResult:
     nip_foundation_depth: float | None = None
     comparison: ProfileComparison | None = None
 
+    @property
+    def slack(self) -> NDArray[np.bool_]:
+        """Sectors whose outer layers were wound slack or sit at the E_r floor: their
+        reading is set by the modulus floor of a K1 = 0 law, not by the roll (flag them)."""
+        return np.asarray(self.winding.slack, dtype=bool)
+
     def compare(self, measured: MeasuredProfile) -> ProfileResult:
         """This result with a measured profile compared (:mod:`woundroll.profile.compare`)."""
         return replace(self, comparison=compare_profiles(self.z, self.rho, measured))
@@ -215,6 +221,7 @@ class ProfileResult:
             "alpha_N_per_m2": lst(self.alpha),
             "beta_N_per_m": lst(self.beta),
             "stats": {"rho": self.rho_stats.to_dict(), "thickness": self.thickness_stats.to_dict()},
+            "slack": [bool(x) for x in self.slack],
             "n_layers": self.winding.n_layers,
             "n_groups": int(self.winding.layers_per_group.size),
             "timings_s": dict(self.timings),
@@ -246,6 +253,16 @@ class ProfileResult:
         ax.set_ylabel("thickness (MD average) [um]", color="tab:blue")
         ax2 = ax.twinx()
         ax2.plot(zc, self.rho, color="tab:red", marker="o", ms=3, label="Rho (model)")
+        if np.any(self.slack):
+            ax2.plot(
+                zc[self.slack],
+                self.rho[self.slack],
+                "x",
+                color="tab:red",
+                ms=8,
+                label="slack sector (reading set by the E_r floor)",
+            )
+            ax2.legend(loc="best")
         ax2.set_ylabel("Rho", color="tab:red")
         st = self.rho_stats
         title = f"Rho mean {st.mean:.1f}, CoV {100 * st.cov:.1f} % ({st.band})"
