@@ -404,8 +404,8 @@ def _run_profile(
     report: Callable[[str, float], None],
 ) -> RunResult:
     """The CMD hardness profile: axisymmetric winding -> per-sector contact -> reading."""
-    from woundroll.instruments import get_instrument
-    from woundroll.profile.hardness import ContactModel, NipSpec, predict_profile
+    from woundroll.instruments import get_instrument, tester_from_spec
+    from woundroll.profile.hardness import ContactModel, FdReadout, NipSpec, predict_profile
 
     if setup is not None and setup.roll_spring is not None:
         raise InputError(
@@ -457,6 +457,11 @@ def _run_profile(
         workers=spec.workers,
         progress=progress,
     )
+    # the FD model per sector (the paper's "FD optional"), a few ms for the whole profile
+    fd_setup = setup if setup is not None else tester_from_spec({"instrument": "rho-meter"})
+    w = profile.winding
+    fd = FdReadout(fd_setup, w.build_radius - w.core_radius, web.density)
+    profile = replace(profile, rho_fd=fd(profile.alpha, profile.beta))
     measured = case.measured_profile()
     if measured is not None:
         profile = profile.compare(measured)

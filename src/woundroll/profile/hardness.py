@@ -118,6 +118,36 @@ class EnergyReadout:
 
 
 @dataclass(frozen=True)
+class FdReadout:
+    """The finite-difference model {4}-{13} per sector, the paper's "FD optional" readout.
+
+    The roll's active mass {14}-{18} of sector ``j`` uses its pile height ``H_j`` (build
+    radius minus core radius), the roll density, and the tester's semi-contact width a
+    (default 0.6 cm, the paper's accepted value: the per-sector contact callable returns
+    only alpha and beta). Reads the striker's total deceleration in the instrument's units.
+    """
+
+    setup: Any
+    pile_height: FloatArray
+    density: float
+
+    def __call__(self, alpha: FloatArray, beta: FloatArray) -> FloatArray:
+        from woundroll.instruments import hardness_from_spring
+
+        out = np.empty(np.size(alpha))
+        for j, (a, b) in enumerate(zip(np.ravel(alpha), np.ravel(beta), strict=True)):
+            h = hardness_from_spring(
+                self.setup,
+                float(a),
+                float(b),
+                pile_height=float(self.pile_height[j]),
+                density=self.density,
+            )
+            out[j] = h.fd.rho
+        return out
+
+
+@dataclass(frozen=True)
 class NipSpec:
     """A nip on the roll during winding.
 
@@ -174,6 +204,7 @@ class ProfileResult:
     nip_load : ndarray or None [N/m]  nip load per width of the last increment.
     nip_foundation_depth : float or None [m]  depth range of the nip foundation's fit.
     comparison : ProfileComparison or None    a measured profile beside this one.
+    rho_fd : ndarray or None      the FD model's reading per sector (:class:`FdReadout`).
     winding : AxisymmetricResult
     rho_stats, thickness_stats : ProfileStats
     timings : dict            seconds per stage.
@@ -194,6 +225,7 @@ class ProfileResult:
     timings: dict[str, float] = field(default_factory=dict)
     nip_foundation_depth: float | None = None
     comparison: ProfileComparison | None = None
+    rho_fd: FloatArray | None = None
 
     @property
     def slack(self) -> NDArray[np.bool_]:
@@ -222,6 +254,7 @@ class ProfileResult:
             "beta_N_per_m": lst(self.beta),
             "stats": {"rho": self.rho_stats.to_dict(), "thickness": self.thickness_stats.to_dict()},
             "slack": [bool(x) for x in self.slack],
+            "rho_fd": None if self.rho_fd is None else lst(self.rho_fd),
             "n_layers": self.winding.n_layers,
             "n_groups": int(self.winding.layers_per_group.size),
             "timings_s": dict(self.timings),
@@ -253,6 +286,9 @@ class ProfileResult:
         ax.set_ylabel("thickness (MD average) [um]", color="tab:blue")
         ax2 = ax.twinx()
         ax2.plot(zc, self.rho, color="tab:red", marker="o", ms=3, label="Rho (model)")
+        if self.rho_fd is not None:
+            ax2.plot(zc, self.rho_fd, color="tab:orange", ls="--", lw=1, label="Rho (FD model)")
+            ax2.legend(loc="best")
         if np.any(self.slack):
             ax2.plot(
                 zc[self.slack],
@@ -571,6 +607,7 @@ def predict_profile(
 __all__ = [
     "ContactModel",
     "EnergyReadout",
+    "FdReadout",
     "NipSpec",
     "ProfileResult",
     "map_sectors",
