@@ -285,7 +285,7 @@ class ProfileResult:
         ax.set_xlabel("CMD position [cm]")
         ax.set_ylabel("thickness (MD average) [um]", color="tab:blue")
         ax2 = ax.twinx()
-        ax2.plot(zc, self.rho, color="tab:red", marker="o", ms=3, label="Rho (model)")
+        ax2.plot(zc, self.rho, color="tab:red", marker="o", ms=3, label="Rho (energy model)")
         if self.rho_fd is not None:
             ax2.plot(zc, self.rho_fd, color="tab:orange", ls="--", lw=1, label="Rho (FD model)")
             ax2.legend(loc="best")
@@ -321,10 +321,20 @@ class ProfileResult:
         f2 = Figure(figsize=(8, 4.2), layout="constrained")
         bx = f2.subplots()
         zz = np.broadcast_to(zc[None, :], w.radius.shape)
+        from matplotlib.colors import LogNorm
+
+        # log scale: thick lanes carry MPa while slack ones carry almost nothing
+        pk = np.maximum(-w.sigma_r / 1e3, 0.0)
+        top = max(float(pk.max()), 1e-9)
         pcm = bx.pcolormesh(
-            zz, w.radius * 100.0, -w.sigma_r / 1e3, shading="nearest", cmap="viridis"
+            zz,
+            w.radius * 100.0,
+            np.maximum(pk, 1e-3 * top),
+            shading="nearest",
+            cmap="viridis",
+            norm=LogNorm(1e-3 * top, top),
         )
-        f2.colorbar(pcm, ax=bx, label="interlayer pressure -sigma_r [kPa]")
+        f2.colorbar(pcm, ax=bx, label="interlayer pressure -sigma_r [kPa] (log)")
         bx.set_xlabel("CMD position [cm]")
         bx.set_ylabel("radius [cm]")
         bx.set_title("radial stress over (r, z)")
