@@ -107,20 +107,6 @@ def _report(progress: Progress | None, stage: str, fraction: float) -> None:
         progress(stage, min(max(float(fraction), 0.0), 1.0))
 
 
-def _impact_depth_fields(contact: Any, depth: float) -> tuple[Any, str]:
-    """The contact fields at the impact's maximum depth, and where they come from.
-
-    Uses ``ContactResult.at_depth`` when the contact package provides it; otherwise the
-    fields at the solve's largest depth ``delta[-1]``, which is at or beyond the impact's
-    maximum depth (:func:`woundroll.pipeline.roll_stiffness` deepens the solve until the
-    striker's depth is covered).
-    """
-    at_depth = getattr(contact, "at_depth", None)
-    if callable(at_depth):
-        return at_depth(depth), "at_depth"
-    return contact, "depth_max"
-
-
 def _measure(name: str, overrides: Sequence[str], keep: Sequence[str] = ()) -> dict[str, Any]:
     """Run one case and return its row (plain floats) plus the arrays named in ``keep``.
 
@@ -140,7 +126,7 @@ def _measure(name: str, overrides: Sequence[str], keep: Sequence[str] = ()) -> d
     web = case.web.build()
     h = res.hardness.to_dict()
     stiffness = res.contact  # the spring used (alpha, beta) ...
-    c = _contact_of(stiffness)  # ... and the contact solution under it
+    c = stiffness.contact  # ... and the contact solution under it
     d_fd = h["delta_max_m"]
     row: dict[str, Any] = {
         "case": name,
@@ -182,13 +168,6 @@ def _measure(name: str, overrides: Sequence[str], keep: Sequence[str] = ()) -> d
     if "contact" in keep:
         out["contact"] = c
     return out
-
-
-def _contact_of(stiffness: Any) -> Any:
-    """The :class:`~woundroll.contact.ContactResult` of ``RunResult.contact`` (which is the
-    contact result itself, or a wrapper holding it as ``.contact`` with the spring used)."""
-    inner = getattr(stiffness, "contact", None)
-    return stiffness if inner is None else inner
 
 
 def _map(
@@ -854,62 +833,30 @@ class SlipStudy:
         return [SummaryTable("Slip factor {23} near the head (Figure 18)", header, rows)]
 
     def notes(self) -> list[str]:
-        src = (
-            "ContactResult.at_depth at the FD maximum depth"
-            if self.fields_source == "at_depth"
-            else "the contact solve's largest depth (>= the impact's maximum depth)"
-        )
-        return [f"Fields from {src}; in-plane part of {{23}} (no tau_rz in plane strain)."]
+        return [
+            "Fields from ContactResult.at_depth at the FD maximum depth; in-plane part of "
+            "{23} (no tau_rz in plane strain)."
+        ]
 
     def plot(self, prefix: str | Path) -> list[Path]:
         """Write ``slip_factor.png``: SF {23} within 4 a of the head, SF = 1 contour."""
         if self.contact is None:
             return []
         path = Path(f"{_prefix(prefix, 'slip')}_factor.png")
-        _savefig(
-            _slip_map(
-                self.contact, self.row["semi_contact_width_m"], self.fields_depth_m, self.case
-            ),
-            path,
+        from woundroll.contact import plot_slip_factor
+
+        fig = plot_slip_factor(self.contact)
+        fig.axes[0].set_title(
+            f"{self.case}: slip factor at head depth {self.fields_depth_m * 1e3:.3g} mm "
+            "(white: SF = 1; cf. Figure 18)",
+            fontsize=9,
         )
+        _savefig(fig, path)
         return [path]
 
     def write(self, out_dir: str | Path) -> list[Path]:
         """Write ``study.json`` and the PNG into ``out_dir``; return the paths."""
         return _write(self, out_dir)
-
-
-def _slip_map(fields: Any, a: float, head_depth: float, title: str) -> Figure:
-    """The SF map near the head: elements within 4 a of the axis and 4 a deep."""
-    from matplotlib.colors import LogNorm
-    from matplotlib.figure import Figure
-
-    a = max(a, 1e-6)
-    s = fields.outer_radius * np.asarray(fields.element_theta)
-    z = fields.outer_radius - np.asarray(fields.element_r)
-    m = (np.abs(s) <= 4.0 * a) & (z <= 4.0 * a)
-    sf = np.clip(np.asarray(fields.slip_factor)[m], 1e-3, 1e3)
-    fig = Figure(figsize=(7, 3.8), layout="constrained")
-    ax = fig.subplots()
-    tri = ax.tricontourf(
-        s[m] * 1e3,
-        -z[m] * 1e3,
-        sf,
-        levels=np.logspace(-3, 3, 25),
-        norm=LogNorm(1e-3, 1e3),
-        cmap="viridis",
-    )
-    if sf.min() < 1.0 < sf.max():
-        ax.tricontour(s[m] * 1e3, -z[m] * 1e3, sf, levels=[1.0], colors="w", linewidths=1.2)
-    fig.colorbar(tri, ax=ax, label=rf"slip factor SF, $\mu$ = {fields.friction:g}")
-    ax.set_xlabel("arc from the contact axis [mm]")
-    ax.set_ylabel("depth below surface [mm]")
-    ax.set_title(
-        f"{title}: slip factor at head depth {head_depth * 1e3:.3g} mm "
-        "(white: SF = 1; cf. Figure 18)",
-        fontsize=9,
-    )
-    return fig
 
 
 def slip_factor_study(
@@ -918,8 +865,7 @@ def slip_factor_study(
     """Figure 18: run ``case`` with interlayer friction ``friction`` and map SF >= 1.
 
     The no-update solve is switched off. The fields are those at the impact's maximum
-    depth (FD model) via ``ContactResult.at_depth`` when the contact package has it,
-    otherwise those at the contact solve's largest depth (``fields_source`` says which).
+    depth (FD model), from ``ContactResult.at_depth``.
     """
     if (
         isinstance(friction, bool)
@@ -935,11 +881,8 @@ def slip_factor_study(
     )
     row = out["row"]
     contact = out["contact"]
-    fields, source = _impact_depth_fields(contact, row["delta_max_m"])
-    if source == "at_depth":
-        depth_at, a = row["delta_max_m"], row["semi_contact_width_m"]
-    else:
-        depth_at, a = float(contact.delta[-1]), float(contact.half_width[-1])
+    depth_at, a = row["delta_max_m"], row["semi_contact_width_m"]
+    fields, source = contact.at_depth(min(depth_at, float(contact.delta[-1]))), "at_depth"
     near = fields.outer_radius * np.abs(np.asarray(fields.element_theta)) <= 3.0 * a
     sf = np.asarray(fields.slip_factor)[near]
     d, w = fields.slip_extent(3.0 * a)
