@@ -13,9 +13,9 @@ import os
 from pathlib import Path
 
 import woundroll
-from woundroll.contact import indent
+from woundroll.contact import fit_roll_spring, indent
 from woundroll.instruments import get_instrument, impact_energy, impact_fd
-from woundroll.instruments.roll_side import RollSpring, fit_roll_spring
+from woundroll.instruments.roll_side import RollSpring
 from woundroll.winding.hakiel import wind
 
 # 1. the whole chain

@@ -134,6 +134,7 @@ def test_head_length_override_scales_the_force():
         (["contact.depth_max='10 um'", "contact.no_update=false"], "contact.depth_max"),
         (["contact.options.bogus=1"], "contact.options.bogus"),
         (["contact.friction=-1"], "contact.friction"),
+        (["tester.natural_frequency='0 rad/s'"], "tester.natural_frequency"),
     ],
 )
 def test_coupled_path_errors_name_the_field(overrides, field):

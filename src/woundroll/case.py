@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 import tomllib
-from functools import partial
+from functools import cached_property, partial
 from importlib import resources
 from pathlib import Path
 from typing import Annotated, Any, Literal
@@ -335,6 +335,7 @@ class Case(_Section):
     profile: ProfileSpec = ProfileSpec()
     base_dir: Path | None = Field(default=None, exclude=True)
 
+    @cached_property
     def thickness_profile(self) -> Any:
         """The CMD :class:`~woundroll.profile.ThicknessProfile` of
         ``winding.thickness_profile`` (path relative to the case file), or None."""
@@ -344,6 +345,7 @@ class Case(_Section):
 
         return load_thickness(self._path(self.winding.thickness_profile), width=self.web.width)
 
+    @cached_property
     def measured_profile(self) -> Any:
         """The measured :class:`~woundroll.profile.compare.MeasuredProfile`, or None."""
         if self.profile.measured is None:
@@ -358,6 +360,7 @@ class Case(_Section):
             path = self.base_dir / path
         return path
 
+    @cached_property
     def tester_setup(self) -> Any:
         """The :class:`~woundroll.instruments.TesterSetup` of ``[tester]``, or None."""
         if self.tester is None:
@@ -418,10 +421,11 @@ def _check_options(case: Case) -> None:
     from woundroll.winding.hakiel import WindingOptions
 
     WindingOptions.from_dict(case.winding.options, "winding.options")
-    case.tester_setup()
+    # read and validated once here (cached on the case): files and tables fail at load time
+    _ = case.tester_setup
     if case.tester is not None:
         case.contact.contact_options()
-    case.thickness_profile()
+    _ = case.thickness_profile
     if case.profile.measured is not None:
         if case.winding.thickness_profile is None:
             raise InputError(
@@ -429,7 +433,7 @@ def _check_options(case: Case) -> None:
                 "winding.thickness_profile too",
                 "profile.measured",
             )
-        case.measured_profile()
+        _ = case.measured_profile
     if case.winding.nip_roller is not None:
         if case.winding.thickness_profile is None:
             raise InputError(

@@ -7,9 +7,8 @@ typed results into :class:`RunResult`:
 1. winder settings -> stresses in the roll: :func:`woundroll.winding.hakiel.wind` (1D), or
    with ``winding.thickness_profile`` :func:`woundroll.profile.predict_profile` (axisymmetric
    winding, per-sector contact and reading across the CMD);
-2. roll stiffness under the striker: :func:`roll_stiffness` (the 2D contact model
-   :func:`woundroll.contact.indent`, and the spring {3} fitted over the depths the striker
-   reaches, :func:`woundroll.instruments.roll_side.fit_roll_spring`);
+2. roll stiffness under the striker: :func:`woundroll.contact.roll_stiffness` (the 2D
+   contact model, and the spring {3} fitted over the depths the striker reaches);
 3. striker motion and reading: :func:`woundroll.instruments.hardness_from_spring` (FD
    {4}-{13} and energy {19}-{22} models).
 """
@@ -24,93 +23,18 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from woundroll.case import Case, ContactSpec, load_case
-from woundroll.errors import ConvergenceError, InputError
+from woundroll.case import Case, load_case
+from woundroll.errors import InputError
 
 if TYPE_CHECKING:
-    from woundroll.contact import ContactResult
-    from woundroll.contact.result import ContactState
-    from woundroll.instruments import HardnessResult, Instrument, TesterSetup
-    from woundroll.instruments.roll_side import SpringFit
+    from woundroll.contact import RollStiffness
+    from woundroll.instruments import HardnessResult, TesterSetup
     from woundroll.materials.web import Core, Web
     from woundroll.profile.hardness import ProfileResult
     from woundroll.winding.result import WindingResult
 
 #: ``progress(stage, fraction)``; stages "winding", "contact", "impact", "foundation".
 Progress = Callable[[str, float], None]
-
-#: Depth of the first contact solution [m]; deepened when the striker goes further.
-FIRST_DEPTH = 1e-3
-
-
-@dataclass(frozen=True, eq=False)
-class RollStiffness:
-    """Roll stiffness under the striker: the contact solution and the spring {3} used.
-
-    Attributes
-    ----------
-    contact : ContactResult
-        The 2D contact model's F(d), a(d) and fields (at its largest depth).
-    spring : SpringFit
-        ``alpha``, ``beta`` fitted over the depths the striker reaches, with the impact's
-        maximum depth by the energy model {21}.
-    """
-
-    contact: ContactResult
-    spring: SpringFit
-
-    @property
-    def alpha(self) -> float:
-        return self.spring.alpha
-
-    @property
-    def beta(self) -> float:
-        return self.spring.beta
-
-    @property
-    def impact_depth(self) -> float:
-        """Maximum depth of the impact by the energy model {21} [m]."""
-        return float(self.spring.max_depth)  # type: ignore[arg-type]
-
-    @property
-    def at_impact(self) -> ContactState:
-        """Fields, slip factor {23} and a at the impact's maximum depth (interpolated)."""
-        return self.contact.at_depth(min(self.impact_depth, float(self.contact.delta[-1])))
-
-    @property
-    def semi_contact_width(self) -> float:
-        """Semi-contact width a at the impact's maximum depth [m]."""
-        return self.at_impact.semi_contact_width
-
-    def to_dict(self) -> dict[str, Any]:
-        """The contact model's JSON (arrays over depth), with the spring actually used.
-
-        ``alpha_N_per_m2`` / ``beta_N_per_m`` are the fit over the striker's reach;
-        ``full_range_fit`` is the unconstrained fit over the whole computed curve.
-        """
-        out = self.contact.to_dict()
-        out["full_range_fit"] = {
-            "alpha_N_per_m2": out.pop("alpha_N_per_m2"),
-            "beta_N_per_m": out.pop("beta_N_per_m"),
-            "fit_r2": out.pop("fit_r2"),
-            "fit_max_rel_residual": out.pop("fit_max_rel_residual"),
-        }
-        out.update(self.spring.to_dict())
-        at = self.at_impact
-        out["semi_contact_width_m"] = at.semi_contact_width
-        out["depth_max_m"] = float(self.contact.delta[-1])
-        out["at_impact_depth"] = at.to_dict()
-        return out
-
-    def plot(self, path: str | Path | None = None) -> list[Any]:
-        """F(d) with the fit and a(d), and the slip-factor map {23} at the impact's depth.
-
-        With ``path`` (``contact.png``) the second figure goes to ``contact_slip.png``.
-        """
-        from woundroll.contact import plot_slip_factor
-
-        slip_path = None if path is None else str(path).removesuffix(".png") + "_slip.png"
-        return [self.contact.plot(path), plot_slip_factor(self.at_impact, slip_path)]
 
 
 @dataclass(frozen=True)
@@ -215,78 +139,6 @@ def _json_default(obj: Any) -> Any:
     raise TypeError(f"not JSON serialisable: {type(obj).__name__}")
 
 
-def _check_head(instrument: Instrument) -> float:
-    """The head length of a cylindrical head [m]; other heads are not in the 2D model."""
-    if instrument.head_shape != "cylinder":
-        raise InputError(
-            f"the {instrument.name} has a {instrument.head_shape} head, but the 2D "
-            "(plane-strain) contact model takes a cylindrical head with its axis along the "
-            "CMD: give [tester.roll_spring] for this instrument",
-            "tester.instrument",
-        )
-    # a cylinder without a length: the paper's plane-strain model per unit length would
-    # need one; 2 R is the assumption (docs/contact.md)
-    return instrument.head_length or 2.0 * instrument.head_radius
-
-
-def roll_stiffness(
-    web: Web,
-    core: Core,
-    radius: np.ndarray,
-    sigma_r: np.ndarray,
-    instrument: Instrument,
-    spec: ContactSpec,
-    *,
-    update_modulus: bool = True,
-) -> RollStiffness:
-    """The 2D contact solve that gives the roll spring {3} under the instrument's head.
-
-    The contact is solved to ``[contact] depth_max`` (default 1 mm) and the spring fitted
-    over the depths the striker reaches (:func:`~woundroll.instruments.roll_side.fit_roll_spring`).
-    Without an explicit ``depth_max``, a striker that goes deeper than the computed curve
-    (extrapolation) makes the contact be solved again to 1.25 times its depth (at most
-    three times); with one, that is an error.
-
-    Parameters
-    ----------
-    radius, sigma_r : array [m], [Pa]
-        The roll's pre-impact radial stress profile (core to surface).
-    """
-    from woundroll.contact import indent
-    from woundroll.instruments.roll_side import fit_roll_spring
-
-    head_length = _check_head(instrument)
-    options = spec.contact_options()
-    depth = spec.depth_max if spec.depth_max is not None else FIRST_DEPTH
-    for _ in range(4):
-        contact = indent(
-            web,
-            core,
-            radius,
-            sigma_r,
-            head_radius=instrument.head_radius,
-            head_length=head_length,
-            depth_max=depth,
-            friction=spec.friction,
-            update_modulus=update_modulus,
-            options=options,
-        )
-        spring = fit_roll_spring(contact.delta, contact.force, instrument)
-        if not spring.extrapolated:
-            return RollStiffness(contact, spring)
-        if spec.depth_max is not None:
-            raise InputError(
-                f"the striker reaches {spring.max_depth * 1e3:.3g} mm, deeper than the "
-                f"contact solution ({depth * 1e3:.3g} mm): raise it or leave it unset",
-                "contact.depth_max",
-            )
-        depth = 1.25 * float(spring.max_depth)  # type: ignore[arg-type]
-    raise ConvergenceError(
-        f"the striker's depth kept growing past the contact solution ({depth * 1e3:.3g} mm) "
-        "after 4 solutions"
-    )
-
-
 def hardness_on_roll(
     setup: TesterSetup,
     stiffness: RollStiffness,
@@ -343,7 +195,7 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     winding = wind(
         web, core, r_out, schedule, options=options, progress=lambda f: report("winding", f)
     )
-    setup = case.tester_setup()
+    setup = case.tester_setup
     if case.winding.thickness_profile is not None:
         return _run_profile(case, web, core, r_out, schedule, winding, setup, report)
     if setup is None:
@@ -364,24 +216,32 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
             notes=("roll spring given explicitly: contact model bypassed",),
         )
 
+    from woundroll.contact import roll_stiffness
+
     H = r_out - core.outer_radius
     a_given = "semi_contact_width" in (case.tester or {})
+    spec = case.contact
+    args = {
+        "depth_max": spec.depth_max,
+        "friction": spec.friction,
+        "options": spec.contact_options(),
+    }
     report("contact", 0.0)
-    stiff = roll_stiffness(
-        web, core, winding.radius, winding.sigma_r, setup.instrument, case.contact
-    )
+    stiff = roll_stiffness(web, core, winding.radius, winding.sigma_r, setup.instrument, **args)
     hardness = hardness_on_roll(setup, stiff, H, web.density, semi_contact_width_given=a_given)
     no_update = None
-    if case.contact.no_update:
+    if spec.no_update:
         report("contact", 0.5)
+        # E_r frozen is softer: the striker goes at least as deep, start where that ended
         frozen = roll_stiffness(
             web,
             core,
             winding.radius,
             winding.sigma_r,
             setup.instrument,
-            case.contact,
             update_modulus=False,
+            start_depth=float(stiff.contact.delta[-1]),
+            **args,
         )
         no_update = NoUpdate(
             frozen,
@@ -404,6 +264,7 @@ def _run_profile(
     report: Callable[[str, float], None],
 ) -> RunResult:
     """The CMD hardness profile: axisymmetric winding -> per-sector contact -> reading."""
+    from woundroll.contact.spring import head_length_of
     from woundroll.instruments import get_instrument, tester_from_spec
     from woundroll.profile.hardness import ContactModel, FdReadout, NipSpec, predict_profile
 
@@ -433,7 +294,7 @@ def _run_profile(
         web,
         core,
         instrument.head_radius,
-        _check_head(instrument),
+        head_length_of(instrument),
         spec.depth_max,
         instrument=instrument,
         options=case.contact.contact_options(),
@@ -446,7 +307,7 @@ def _run_profile(
         web,
         core,
         schedule,
-        case.thickness_profile(),
+        case.thickness_profile,
         outer_radius=r_out,
         contact=contact,
         instrument=instrument,
@@ -462,7 +323,7 @@ def _run_profile(
     w = profile.winding
     fd = FdReadout(fd_setup, w.build_radius - w.core_radius, web.density)
     profile = replace(profile, rho_fd=fd(profile.alpha, profile.beta))
-    measured = case.measured_profile()
+    measured = case.measured_profile
     if measured is not None:
         profile = profile.compare(measured)
     return RunResult(case=case, winding=winding, profile=profile, notes=tuple(notes))

@@ -571,8 +571,8 @@ def _axis_locality(contact: Any, web: Any) -> dict[str, float]:
     from the stress fields alone (at the solve's largest depth). ``axis_approach_m`` checks
     it against that depth; the shares say how much of it comes from deeper than 1 and 2 cm.
     """
-    theta = np.asarray(contact.element_theta)
-    on_axis = theta <= theta.min() * (1.0 + 1e-9)
+    theta = np.abs(np.asarray(contact.element_theta))  # half or whole-annulus mesh
+    on_axis = np.isclose(theta, theta.min(), rtol=1e-9, atol=0.0)
     r = np.asarray(contact.element_r)[on_axis]
     p_pre = np.maximum(-np.asarray(contact.sigma_r_pre)[on_axis], 0.0)
     p_end = np.maximum(-np.asarray(contact.sigma_r)[on_axis], 0.0)
@@ -609,7 +609,7 @@ def _pile_height_job(
     ``depth_max`` [m], the common indentation range of the like-for-like solves.
     """
     from woundroll.case import load_case
-    from woundroll.contact import indent
+    from woundroll.contact import roll_stiffness
     from woundroll.instruments import hardness_from_spring
 
     out = _measure(name, overrides, keep=("winding", "contact"))
@@ -618,7 +618,7 @@ def _pile_height_job(
     case = load_case(name, list(overrides))
     web, core = case.web.build(), case.core.build()
     row.update(_axis_locality(out.pop("contact"), web))
-    setup = case.tester_setup()
+    setup = case.tester_setup
     ins = setup.instrument
     depth = radius[-1] - radius
     if ref is None:
@@ -635,21 +635,20 @@ def _pile_height_job(
     ).fd.rho
     # the reference roll's pre-impact sigma_r, by depth below the surface
     sigma_ref = np.interp(depth, ref["depth"], ref["sigma_r"])
-    contact = indent(
+    stiff = roll_stiffness(
         web,
         core,
         radius,
         sigma_ref,
-        head_radius=ins.head_radius,
-        head_length=ins.head_length or 2.0 * ins.head_radius,
-        depth_max=ref["depth_max"],
+        ins,
+        start_depth=ref["depth_max"],
         friction=case.contact.friction,
         options=case.contact.contact_options(),
     )
-    row["alpha_ref_prestress_N_per_m2"] = float(contact.alpha)
-    row["beta_ref_prestress_N_per_m"] = float(contact.beta)
+    row["alpha_ref_prestress_N_per_m2"] = stiff.alpha
+    row["beta_ref_prestress_N_per_m"] = stiff.beta
     row["rho_fd_ref_prestress_mass"] = hardness_from_spring(
-        setup, float(contact.alpha), float(contact.beta), m_ref
+        setup, stiff.alpha, stiff.beta, m_ref
     ).fd.rho
     return out
 
@@ -881,8 +880,9 @@ def slip_factor_study(
     )
     row = out["row"]
     contact = out["contact"]
-    depth_at, a = row["delta_max_m"], row["semi_contact_width_m"]
-    fields, source = contact.at_depth(min(depth_at, float(contact.delta[-1]))), "at_depth"
+    depth_at = min(row["delta_max_m"], float(contact.delta[-1]))
+    fields, source = contact.at_depth(depth_at), "at_depth"
+    a = fields.semi_contact_width
     near = fields.outer_radius * np.abs(np.asarray(fields.element_theta)) <= 3.0 * a
     sf = np.asarray(fields.slip_factor)[near]
     d, w = fields.slip_extent(3.0 * a)

@@ -62,3 +62,11 @@ def test_positions_outside_the_roll_are_rejected() -> None:
             [0.0, 0.1], [1.0, 2.0], MeasuredProfile(np.array([0.0, 0.5]), np.array([1.0, 1.0]))
         )
     assert exc.value.field == "profile.measured"
+
+
+def test_undecodable_file_is_an_input_error(tmp_path: Path) -> None:
+    f = tmp_path / "m.csv"
+    f.write_bytes(b"position [in],rho\n1,\xff\xfe40\n")
+    with pytest.raises(InputError) as exc:
+        read_measured_profile(f)
+    assert exc.value.field == "profile.measured"

@@ -349,9 +349,7 @@ class ContactResult:
         Slip-factor entries cover the elements within 3 a of the contact axis; the maximum is
         over finite values, and elements sheared without any pressure (SF = inf) are counted.
         """
-        depth, width = self.slip_extent()
-        near = self.outer_radius * np.abs(self.element_theta) <= 3.0 * self.semi_contact_width
-        sf_near = self.slip_factor[near]
+        last = self.at_depth(float(self.delta[-1])).to_dict()  # the fields at depth_max
         return {
             "delta_m": self.delta.tolist(),
             "force_N": self.force.tolist(),
@@ -364,13 +362,16 @@ class ContactResult:
             "fit_max_rel_residual": self.fit_max_rel_residual,
             "semi_contact_width_m": self.semi_contact_width,
             "max_force_N": float(self.force[-1]),
-            "friction": self.friction,
-            "slip_region_depth_m": depth,
-            "slip_region_halfwidth_m": width,
-            "max_slip_factor_near_contact": float(
-                np.max(sf_near[np.isfinite(sf_near)], initial=0.0)
-            ),
-            "unbounded_slip_elements_near_contact": int(np.sum(np.isinf(sf_near))),
+            **{
+                key: last[key]
+                for key in (
+                    "friction",
+                    "slip_region_depth_m",
+                    "slip_region_halfwidth_m",
+                    "max_slip_factor_near_contact",
+                    "unbounded_slip_elements_near_contact",
+                )
+            },
             "head_radius_m": self.head_radius,
             "head_length_m": self.head_length,
             "outer_radius_m": self.outer_radius,

@@ -215,6 +215,11 @@ class Instrument:
             new[key] = _convert(key, value, fld)
         # keep mass, stiffness and natural frequency consistent with {1} (module docstring)
         omega_given = new.get("natural_frequency") is not None
+        if omega_given and not new["natural_frequency"] > 0:
+            raise InputError(
+                f"must be positive, got {new['natural_frequency']!r} rad/s",
+                f"{field_prefix}.natural_frequency",
+            )
         if omega_given and "mass" not in new:
             new["mass"] = (
                 new.get("spring_stiffness", self.spring_stiffness) / new["natural_frequency"] ** 2

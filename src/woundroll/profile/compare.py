@@ -18,6 +18,7 @@ sector centres, held flat beyond the outermost centres):
 
 from __future__ import annotations
 
+import csv
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -81,14 +82,19 @@ def read_measured_profile(path: Path | str, field: str = FIELD) -> MeasuredProfi
     path = Path(path)
     if not path.is_file():
         raise InputError(f"file not found: {path}", field)
-    with path.open(newline="", encoding="utf-8-sig") as fh:
-        header = next((ln for ln in fh if ln.strip() and not ln.lstrip().startswith("#")), "")
-    names = [parse_header(h)[0] for h in header.strip().split(",")]
+    try:
+        with path.open(newline="", encoding="utf-8-sig") as fh:
+            header = next(
+                (r for r in csv.reader(fh) if r and not r[0].lstrip().startswith("#")), []
+            )
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"cannot read {path}: {exc}", field) from None
+    names = [parse_header(h)[0] for h in header]
     col = next((c for c in READING_COLUMNS if c in names), None)
     if col is None:
         raise InputError(
             f"{path.name}: no reading column (one of {', '.join(READING_COLUMNS)}); "
-            f"columns: {header.strip()}",
+            f"columns: {', '.join(header)}",
             field,
         )
     cols = read_columns(path, {"position": "length", col: "dimensionless"}, field)

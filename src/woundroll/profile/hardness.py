@@ -40,7 +40,6 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from woundroll.errors import InputError
-from woundroll.instruments.roll_side import fit_roll_spring
 from woundroll.materials.web import Core, Web
 from woundroll.profile.compare import MeasuredProfile, ProfileComparison, compare_profiles
 from woundroll.profile.nip import NipRoller, nip_hook, solve_nip
@@ -61,22 +60,24 @@ ProgressFn = Callable[[str, int, int], None]
 
 @dataclass(frozen=True)
 class ContactModel:
-    """The default contact callable: :func:`woundroll.contact.indent` on one sector.
+    """The default contact callable on one sector: the roll spring {3} from the 2D model.
 
-    The roll spring {3} is fitted to the computed F(d) by
-    :func:`woundroll.instruments.roll_side.fit_roll_spring` (``alpha, beta >= 0``; with
-    ``instrument`` set, over the depths the striker reaches). A striker depth beyond
-    ``depth_max`` means extrapolation (raise ``depth_max``).
+    With an ``instrument``: :func:`woundroll.contact.roll_stiffness` with the instrument's
+    head, starting at ``depth_max`` and deepened while the striker goes further (no
+    extrapolation of the fit), the spring fitted over the striker's reach. Without one (the
+    nip roller as a foundation): :func:`woundroll.contact.indent` with ``head_radius`` and
+    ``head_length`` to ``depth_max``, the spring fitted over the whole curve. Both fits by
+    :func:`woundroll.contact.fit_roll_spring` (``alpha, beta >= 0``).
 
     Attributes
     ----------
     web, core : Web, Core
     head_radius, head_length : float [m]
-        Cylindrical head (``head_length = 1`` gives the force per unit CMD length).
+        Cylindrical head without an instrument (``head_length = 1``: force per unit length).
     depth_max : float [m]
-        Largest depth of the indentation.
+        Depth of the (first) contact solution.
     instrument : Instrument, optional
-        Striker used to narrow the fit range.
+        Striker (head and reach).
     options : ContactOptions, optional
     """
 
@@ -89,8 +90,20 @@ class ContactModel:
     options: Any = None
 
     def __call__(self, radius: FloatArray, sigma_r: FloatArray) -> tuple[float, float]:
-        from woundroll.contact import indent
+        from woundroll.contact import fit_roll_spring, indent, roll_stiffness
 
+        if self.instrument is not None:
+            rs = roll_stiffness(
+                self.web,
+                self.core,
+                radius,
+                sigma_r,
+                self.instrument,
+                start_depth=self.depth_max,
+                options=self.options,
+                field="profile",
+            )
+            return rs.alpha, rs.beta
         res = indent(
             self.web,
             self.core,
@@ -101,7 +114,7 @@ class ContactModel:
             depth_max=self.depth_max,
             options=self.options,
         )
-        fit = fit_roll_spring(res.delta, res.force, self.instrument)
+        fit = fit_roll_spring(res.delta, res.force)
         return fit.alpha, fit.beta
 
 
@@ -547,7 +560,7 @@ def predict_profile(
         )
         gap = float(np.max(pre.outer_radius)) - pre.outer_radius
         f_depth = nip.foundation_depth
-        for _ in range(3):
+        for attempt in range(3):
             found = nip.foundation or ContactModel(web, core, roller.radius, 1.0, f_depth)
             fa, fb = map_sectors(
                 found,
@@ -558,10 +571,11 @@ def predict_profile(
             alpha_n = np.interp(pre.z, pre.z[picks], fa)
             beta_n = np.interp(pre.z, pre.z[picks], fb)
             if nip.foundation is not None:
+                f_depth = None  # the caller's foundation: no depth range of ours
                 break
             reach = float(np.max(solve_nip(edges, alpha_n, beta_n, roller, gap=gap).indentation))
-            if reach <= 0 or 0.25 * f_depth <= reach <= f_depth:
-                break
+            if reach <= 0 or 0.25 * f_depth <= reach <= f_depth or attempt == 2:
+                break  # f_depth stays the depth the laws were fitted over
             f_depth = 1.25 * reach
         hook = nip_hook(edges, alpha_n, beta_n, roller)
 

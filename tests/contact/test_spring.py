@@ -3,9 +3,10 @@
 import numpy as np
 import pytest
 
+from woundroll.contact import fit_roll_spring
 from woundroll.errors import InputError
 from woundroll.instruments import get_instrument, impact_energy
-from woundroll.instruments.roll_side import RollSpring, TabulatedLaw, fit_roll_spring
+from woundroll.instruments.roll_side import RollSpring, TabulatedLaw
 
 
 def test_exact_quadratic_is_recovered() -> None:

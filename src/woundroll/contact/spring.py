@@ -1,0 +1,334 @@
+"""Roll stiffness under the striker: the 2D contact model's F(d) -> the roll spring {3}.
+
+The step between the stresses in the roll and the striker's motion. :func:`roll_stiffness`
+presses the instrument's head into the roll (:func:`woundroll.contact.indent`) and fits
+``F = alpha d^2 + beta d`` {3} over the depths the striker reaches
+(:func:`fit_roll_spring`); the result, :class:`RollStiffness`, also gives the fields and the
+slip factor {23} at the impact's maximum depth. The single-point pipeline and every CMD
+sector of the hardness profile go through here; the nip foundation uses
+:func:`fit_roll_spring` alone.
+
+Choices the paper leaves open (docs/contact.md, "Coupling"):
+
+* the fit range: the striker's reach, ``d <= 1.25 d_max`` of the energy model {21};
+* alpha, beta >= 0 (non-negative least squares);
+* the depth of the contact solution: ``min(1 mm, H / 5)`` first (H the wound thickness),
+  deepened to 1.25 d_max while the striker goes further than the computed curve.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from woundroll.contact.result import ContactResult, ContactState
+from woundroll.errors import ConvergenceError, InputError
+
+if TYPE_CHECKING:
+    from woundroll.instruments import Instrument
+    from woundroll.materials.web import Core, Web
+
+#: Depth of the first contact solution [m] (capped at a fifth of the wound thickness).
+FIRST_DEPTH = 1e-3
+
+
+@dataclass(frozen=True)
+class SpringFit:
+    """The roll spring {3} fitted to a computed force-depth curve (:func:`fit_roll_spring`).
+
+    Attributes
+    ----------
+    alpha : float [N/m^2]
+    beta : float [N/m]
+    r2 : float [-]
+        Coefficient of determination over the points used.
+    max_rel_residual : float [-]
+        Largest |F_fit - F| over the points used, divided by the largest |F| among them.
+    fit_depth : float [m]
+        Deepest point used in the fit.
+    max_depth : float or None [m]
+        The energy model's maximum depth {21} with this spring (None without an instrument).
+    n_points : int
+        Points used.
+    extrapolated : bool
+        ``max_depth`` lies beyond the deepest computed point: the curve must be computed deeper.
+    """
+
+    alpha: float
+    beta: float
+    r2: float
+    max_rel_residual: float
+    fit_depth: float
+    max_depth: float | None
+    n_points: int
+    extrapolated: bool
+
+    def to_dict(self) -> dict[str, float | int | bool | None]:
+        return {
+            "alpha_N_per_m2": self.alpha,
+            "beta_N_per_m": self.beta,
+            "fit_r2": self.r2,
+            "fit_max_rel_residual": self.max_rel_residual,
+            "fit_depth_m": self.fit_depth,
+            "fit_points": self.n_points,
+            "impact_depth_m": self.max_depth,
+        }
+
+
+def _nnls_quadratic(d: NDArray[np.float64], f: NDArray[np.float64]) -> tuple[float, float]:
+    from scipy.optimize import nnls
+
+    dm = max(float(d.max()), 1e-300)
+    coef, _ = nnls(np.stack([(d / dm) ** 2, d / dm], axis=1), f)
+    return float(coef[0] / dm**2), float(coef[1] / dm)
+
+
+def fit_roll_spring(
+    delta: ArrayLike,
+    force: ArrayLike,
+    instrument: object | None = None,
+    *,
+    reach: float = 1.25,
+    min_points: int = 4,
+    passes: int = 3,
+) -> SpringFit:
+    """Fit the roll spring ``F = alpha d^2 + beta d`` {3} to a force-depth curve.
+
+    The one place where a computed F(d) (the contact model's, for an instrument head or a
+    nip roller) becomes the spring of the 1.5D impact models.
+
+    * Least squares with ``alpha, beta >= 0`` (NNLS): the energy model {21} needs a spring
+      that stiffens from zero, and an unconstrained fit of a curve that stiffens faster
+      than quadratic returns ``beta < 0`` (seen on hard rolls and with spherical tips).
+    * With an ``instrument``, the fit is narrowed to the depths the striker reaches (the
+      paper does not say over which range its quadratic was fitted; F(d) is not exactly
+      quadratic, so the range matters): the energy model's maximum depth ``d_max`` {21} is
+      computed with the fit, and the fit is repeated on the points with
+      ``d <= reach * d_max`` (at least ``min_points``), ``passes`` times.
+
+    Parameters
+    ----------
+    delta, force : array [m], [N]
+        The computed curve (depths increasing, without the origin or with it).
+    instrument : Instrument, optional
+        Striker whose reach narrows the fit.
+    """
+    d = np.asarray(delta, dtype=float).ravel()
+    f = np.asarray(force, dtype=float).ravel()
+    if d.shape != f.shape or d.size < 2:
+        raise InputError("need matching depth and force arrays of >= 2 points", "roll_spring")
+    if not (np.all(np.isfinite(d)) and np.all(np.isfinite(f))):
+        raise InputError("the force-depth curve has non-finite values", "roll_spring")
+    keep = d > 0
+    d, f = d[keep], f[keep]
+    if d.size < 2 or not np.any(f > 0):
+        raise InputError("the force-depth curve carries no load", "roll_spring")
+    sel = np.ones(d.size, dtype=bool)
+    alpha, beta = _nnls_quadratic(d, f)
+    d_max = None
+    if instrument is not None:
+        from woundroll.instruments.impact import energy_max_depth  # the striker's reach
+
+        def impact_depth(a: float, b: float) -> float:
+            return float(
+                energy_max_depth(
+                    a,
+                    b,
+                    instrument.spring_stiffness,  # type: ignore[attr-defined]
+                    instrument.release_position,  # type: ignore[attr-defined]
+                    instrument.contact_position,  # type: ignore[attr-defined]
+                )
+            )
+
+        for _ in range(passes):
+            sel = d <= reach * impact_depth(alpha, beta)
+            if np.count_nonzero(sel) < min_points:
+                sel = np.zeros(d.size, dtype=bool)
+                sel[: min(min_points, d.size)] = True
+            alpha, beta = _nnls_quadratic(d[sel], f[sel])
+        d_max = impact_depth(alpha, beta)
+    ds, fs = d[sel], f[sel]
+    fit = (alpha * ds + beta) * ds
+    ss_tot = float(np.sum((fs - fs.mean()) ** 2))
+    r2 = 1.0 - float(np.sum((fs - fit) ** 2)) / ss_tot if ss_tot > 0 else 1.0
+    return SpringFit(
+        alpha=alpha,
+        beta=beta,
+        r2=r2,
+        max_rel_residual=float(np.max(np.abs(fit - fs)) / max(float(np.max(np.abs(fs))), 1e-300)),
+        fit_depth=float(ds.max()),
+        max_depth=d_max,
+        n_points=int(ds.size),
+        extrapolated=bool(d_max is not None and d_max > float(d.max()) * (1 + 1e-9)),
+    )
+
+
+@dataclass(eq=False)
+class RollStiffness:
+    """Roll stiffness under the striker: the contact solution and the spring {3} used.
+
+    Attributes
+    ----------
+    contact : ContactResult
+        The 2D contact model's F(d), a(d) and fields (at its largest depth).
+    spring : SpringFit
+        ``alpha``, ``beta`` fitted over the depths the striker reaches, with the impact's
+        maximum depth by the energy model {21}.
+    """
+
+    contact: ContactResult
+    spring: SpringFit
+
+    @property
+    def alpha(self) -> float:
+        return self.spring.alpha
+
+    @property
+    def beta(self) -> float:
+        return self.spring.beta
+
+    @property
+    def impact_depth(self) -> float:
+        """Maximum depth of the impact by the energy model {21} [m]."""
+        return float(self.spring.max_depth)  # type: ignore[arg-type]
+
+    @cached_property
+    def at_impact(self) -> ContactState:
+        """Fields, slip factor {23} and a at the impact's maximum depth (interpolated)."""
+        return self.contact.at_depth(min(self.impact_depth, float(self.contact.delta[-1])))
+
+    @property
+    def semi_contact_width(self) -> float:
+        """Semi-contact width a at the impact's maximum depth [m]."""
+        return self.at_impact.semi_contact_width
+
+    def to_dict(self) -> dict[str, Any]:
+        """The contact model's JSON (arrays over depth), with the spring actually used.
+
+        ``alpha_N_per_m2`` / ``beta_N_per_m`` are the fit over the striker's reach;
+        ``full_range_fit`` is the unconstrained fit over the whole computed curve.
+        """
+        out = self.contact.to_dict()
+        out["full_range_fit"] = {
+            "alpha_N_per_m2": out.pop("alpha_N_per_m2"),
+            "beta_N_per_m": out.pop("beta_N_per_m"),
+            "fit_r2": out.pop("fit_r2"),
+            "fit_max_rel_residual": out.pop("fit_max_rel_residual"),
+        }
+        out.update(self.spring.to_dict())
+        at = self.at_impact
+        out["semi_contact_width_m"] = at.semi_contact_width
+        out["depth_max_m"] = float(self.contact.delta[-1])
+        out["at_impact_depth"] = at.to_dict()
+        return out
+
+    def plot(self, path: str | Path | None = None) -> list[Any]:
+        """F(d) with the fit and a(d), and the slip-factor map {23} at the impact's depth.
+
+        With ``path`` (``contact.png``) the second figure goes to ``contact_slip.png``.
+        """
+        from woundroll.contact.result import plot_slip_factor
+
+        slip_path = None if path is None else str(path).removesuffix(".png") + "_slip.png"
+        return [self.contact.plot(path), plot_slip_factor(self.at_impact, slip_path)]
+
+
+def head_length_of(instrument: Instrument) -> float:
+    """The head length [m] of a cylindrical head; other heads are not in the 2D model."""
+    if instrument.head_shape != "cylinder" or instrument.head_length is None:
+        raise InputError(
+            f"the {instrument.name} has a {instrument.head_shape} head, but the 2D "
+            "(plane-strain) contact model takes a cylindrical head with its axis along the "
+            "CMD: give [tester.roll_spring] for this instrument",
+            "tester.instrument",
+        )
+    return float(instrument.head_length)
+
+
+def roll_stiffness(
+    web: Web,
+    core: Core,
+    radius: ArrayLike,
+    sigma_r: ArrayLike,
+    instrument: Instrument,
+    *,
+    depth_max: float | None = None,
+    start_depth: float | None = None,
+    friction: float = 0.3,
+    update_modulus: bool = True,
+    options: Any = None,
+    field: str = "contact",
+) -> RollStiffness:
+    """The 2D contact solve that gives the roll spring {3} under the instrument's head.
+
+    Parameters
+    ----------
+    web, core : Web, Core
+    radius, sigma_r : array [m], [Pa]
+        The roll's pre-impact radial stress profile (core to surface).
+    instrument : Instrument
+        Cylindrical head (radius, length) and striker (its reach).
+    depth_max : float, optional [m]
+        Fixed depth of the contact solution; a striker going deeper is an error. Default:
+        ``start_depth`` (or ``min(1 mm, H / 5)``), deepened to 1.25 times the striker's
+        depth while it goes further than the computed curve (at most three times).
+    start_depth : float, optional [m]
+        First depth when ``depth_max`` is not given (a softer variant of a roll already
+        solved starts where that one ended).
+    friction, update_modulus, options
+        As :func:`woundroll.contact.indent`.
+    field : str
+        Table named in error messages (``"contact"``, ``"profile"``).
+
+    Raises
+    ------
+    InputError
+        A non-cylindrical head; bad options or depths (fields under ``field``).
+    ConvergenceError
+        The striker's depth kept growing past four solutions.
+    """
+    from woundroll.contact.solver import indent
+
+    head_length = head_length_of(instrument)
+    r = np.asarray(radius, dtype=float)
+    if depth_max is not None:
+        depth = depth_max
+    elif start_depth is not None:
+        depth = start_depth
+    else:
+        depth = min(FIRST_DEPTH, 0.2 * float(r[-1] - r[0]))
+    for _ in range(4):
+        try:
+            contact = indent(
+                web,
+                core,
+                r,
+                sigma_r,
+                head_radius=instrument.head_radius,
+                head_length=head_length,
+                depth_max=depth,
+                friction=friction,
+                update_modulus=update_modulus,
+                options=options,
+            )
+        except InputError as exc:
+            raise exc.at(field) from None
+        spring = fit_roll_spring(contact.delta, contact.force, instrument)
+        if not spring.extrapolated:
+            return RollStiffness(contact, spring)
+        if depth_max is not None:
+            raise InputError(
+                f"the striker reaches {spring.max_depth * 1e3:.3g} mm, deeper than the "
+                f"contact solution ({depth * 1e3:.3g} mm): raise it or leave it unset",
+                f"{field}.depth_max",
+            )
+        depth = 1.25 * float(spring.max_depth)  # type: ignore[arg-type]
+    raise ConvergenceError(
+        f"the striker's depth kept growing past the contact solution ({depth * 1e3:.3g} mm) "
+        "after 4 solutions"
+    )
