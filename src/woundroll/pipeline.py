@@ -248,8 +248,19 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
             hardness_on_roll(setup, frozen, H, web.density, semi_contact_width_given=a_given),
         )
     report("contact", 1.0)
+    notes = tuple(
+        f"{label}: the striker reaches {rs.impact_depth * 1e3:.3g} mm, beyond the contact "
+        f"model's range ({rs.contact.delta[-1] * 1e3:.3g} mm): its spring is extrapolated"
+        for label, rs in (("contact", stiff), ("no update", no_update and no_update.stiffness))
+        if rs is not None and rs.extrapolated
+    )
     return RunResult(
-        case=case, winding=winding, contact=stiff, hardness=hardness, no_update=no_update
+        case=case,
+        winding=winding,
+        contact=stiff,
+        hardness=hardness,
+        no_update=no_update,
+        notes=notes,
     )
 
 

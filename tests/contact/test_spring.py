@@ -65,3 +65,20 @@ def test_extrapolation_is_flagged() -> None:
 def test_bad_curves_are_input_errors(delta: list[float], force: list[float]) -> None:
     with pytest.raises(InputError):
         fit_roll_spring(delta, force)
+
+
+def test_a_floor_soft_roll_is_flagged_not_failed() -> None:
+    # a slack roll (K1 = 0, no interlayer pressure: E_r at its floor) lets the striker go
+    # deeper than the 2D model can be solved (half the head radius): the solve stops at
+    # that reach and the spring is flagged as extrapolated instead of raising
+    from woundroll.case import load_case
+    from woundroll.contact import roll_stiffness
+
+    case = load_case("pet3-2.3MPa")
+    web, core = case.web.build(), case.core.build()
+    radius = np.linspace(core.outer_radius, core.outer_radius + 0.02, 50)
+    ins = get_instrument("rho-meter")
+    rs = roll_stiffness(web, core, radius, np.zeros(radius.size), ins)
+    assert rs.extrapolated
+    assert rs.contact.delta[-1] < 0.5 * ins.head_radius
+    assert rs.contact.delta[-1] > 0.9 * 0.5 * ins.head_radius  # it did go to the reach

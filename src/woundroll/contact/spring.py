@@ -193,6 +193,12 @@ class RollStiffness:
         return self.spring.beta
 
     @property
+    def extrapolated(self) -> bool:
+        """The striker goes deeper than the contact model could be solved (half the head
+        radius, a quarter of the wound thickness): the spring is extrapolated there."""
+        return self.spring.extrapolated
+
+    @property
     def impact_depth(self) -> float:
         """Maximum depth of the impact by the energy model {21} [m]."""
         return float(self.spring.max_depth)  # type: ignore[arg-type]
@@ -276,7 +282,10 @@ def roll_stiffness(
     depth_max : float, optional [m]
         Fixed depth of the contact solution; a striker going deeper is an error. Default:
         ``start_depth`` (or ``min(1 mm, H / 5)``), deepened to 1.25 times the striker's
-        depth while it goes further than the computed curve (at most three times).
+        depth while it goes further than the computed curve (at most three times), up to
+        the model's reach (just below half the head radius and a quarter of the wound
+        thickness H); a striker going deeper still gets the extrapolated fit, flagged by
+        :attr:`RollStiffness.extrapolated`.
     start_depth : float, optional [m]
         First depth when ``depth_max`` is not given (a softer variant of a roll already
         solved starts where that one ended).
@@ -296,12 +305,14 @@ def roll_stiffness(
 
     head_length = head_length_of(instrument)
     r = np.asarray(radius, dtype=float)
+    # the model's reach: below half the head radius and a quarter of the wound thickness
+    reach = 0.98 * min(0.5 * instrument.head_radius, 0.25 * float(r[-1] - r[0]))
     if depth_max is not None:
         depth = depth_max
     elif start_depth is not None:
-        depth = start_depth
+        depth = min(start_depth, reach)
     else:
-        depth = min(FIRST_DEPTH, 0.2 * float(r[-1] - r[0]))
+        depth = min(FIRST_DEPTH, 0.8 * reach)
     for _ in range(4):
         try:
             contact = indent(
@@ -319,7 +330,9 @@ def roll_stiffness(
         except InputError as exc:
             raise exc.at(field) from None
         spring = fit_roll_spring(contact.delta, contact.force, instrument)
-        if not spring.extrapolated:
+        if not spring.extrapolated or (depth_max is None and depth >= reach):
+            # beyond the model's reach (a slack, floor-soft roll) the fit is extrapolated:
+            # RollStiffness.extrapolated says so
             return RollStiffness(contact, spring)
         if depth_max is not None:
             raise InputError(
@@ -327,7 +340,7 @@ def roll_stiffness(
                 f"contact solution ({depth * 1e3:.3g} mm): raise it or leave it unset",
                 f"{field}.depth_max",
             )
-        depth = 1.25 * float(spring.max_depth)  # type: ignore[arg-type]
+        depth = min(1.25 * float(spring.max_depth), reach)  # type: ignore[arg-type]
     raise ConvergenceError(
         f"the striker's depth kept growing past the contact solution ({depth * 1e3:.3g} mm) "
         "after 4 solutions"
