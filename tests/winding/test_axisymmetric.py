@@ -344,7 +344,8 @@ def test_rigid_core_with_lazy_deep_part_and_corrections() -> None:
 
 def test_single_first_layer_on_a_rigid_core() -> None:
     # with as many groups as layers the first increment is one layer on the bare core: with a
-    # rigid core nothing moves (an empty stack), and the layer keeps its wound-on tension
+    # rigid core the stack to solve is empty; the run must handle that and end with finite,
+    # compressive interlayer pressure everywhere
     res = wind_axisymmetric(
         table3_web(),
         Core(R_CORE),
