@@ -47,6 +47,21 @@ def parse_header(name: str) -> tuple[str, str | None]:
     return name.strip().lower(), None
 
 
+def read_header_row(path: Path | str, field: str = "file") -> list[str]:
+    """The first non-comment row of a CSV (its header), or ``[]`` for an empty file.
+
+    Raises :class:`InputError` naming ``field`` when the file is missing or unreadable.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"file not found: {path}", field)
+    try:
+        with path.open(newline="", encoding="utf-8-sig") as fh:
+            return next((r for r in csv.reader(fh) if r and not r[0].lstrip().startswith("#")), [])
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"cannot read {path}: {exc}", field) from None
+
+
 def read_columns(
     path: Path | str, wanted: dict[str, str], field: str = "file"
 ) -> dict[str, NDArray[np.float64]]:

@@ -18,7 +18,6 @@ sector centres, held flat beyond the outermost centres):
 
 from __future__ import annotations
 
-import csv
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -27,7 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from woundroll.errors import InputError
-from woundroll.io_tables import parse_header, read_columns
+from woundroll.io_tables import parse_header, read_columns, read_header_row
 from woundroll.profile.stats import ProfileStats, profile_stats
 
 FloatArray = NDArray[np.float64]
@@ -80,15 +79,7 @@ class ProfileComparison:
 def read_measured_profile(path: Path | str, field: str = FIELD) -> MeasuredProfile:
     """Read a measured CMD hardness profile CSV (module docstring); SI positions."""
     path = Path(path)
-    if not path.is_file():
-        raise InputError(f"file not found: {path}", field)
-    try:
-        with path.open(newline="", encoding="utf-8-sig") as fh:
-            header = next(
-                (r for r in csv.reader(fh) if r and not r[0].lstrip().startswith("#")), []
-            )
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"cannot read {path}: {exc}", field) from None
+    header = read_header_row(path, field)
     names = [parse_header(h)[0] for h in header]
     col = next((c for c in READING_COLUMNS if c in names), None)
     if col is None:

@@ -42,7 +42,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from woundroll.errors import InputError
-from woundroll.io_tables import parse_header, read_columns
+from woundroll.io_tables import parse_header, read_columns, read_header_row
 from woundroll.units import to_si
 
 FloatArray = NDArray[np.float64]
@@ -305,13 +305,7 @@ def load_thickness(
     if path.suffix.lower() == ".npy":
         prof = read_thickness_map(path, width=width, field=field)
     else:
-        try:
-            with path.open(newline="", encoding="utf-8-sig") as fh:
-                first = next(
-                    (r for r in csv.reader(fh) if r and not r[0].lstrip().startswith("#")), []
-                )
-        except (OSError, UnicodeDecodeError) as exc:
-            raise InputError(f"cannot read {path}: {exc}", field) from None
+        first = read_header_row(path, field)
         is_profile = bool(first) and parse_header(first[0])[0].lower().startswith("position")
         if is_profile:
             prof = read_thickness_profile(path, field)
