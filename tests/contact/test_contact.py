@@ -47,13 +47,9 @@ def pet_default() -> ContactResult:
     return indent(PET1, RIGID, r, s, depth_max=1e-3, **HEAD)
 
 
-# ---------------------------------------------------------------- constitutive law and mesh
-
-
-def test_plane_strain_moduli_isotropic_limit() -> None:
-    # isotropic plane strain: C11 = C22 = E (1-nu) / ((1+nu)(1-2nu)), C12 = E nu / ((1+nu)(1-2nu))
-    E, nu = 7.0e6, 0.3
-    web = Web(
+def isotropic_web(E: float, nu: float) -> Web:
+    """The linear isotropic limit: E_r = E_theta = E_z, one Poisson ratio, G = E / (2 (1 + nu))."""
+    return Web(
         thickness=H,
         width=0.1,
         E_theta=E,
@@ -64,6 +60,15 @@ def test_plane_strain_moduli_isotropic_limit() -> None:
         nu_theta_z=nu,
         G_r_theta=E / (2 * (1 + nu)),
     )
+
+
+# ---------------------------------------------------------------- constitutive law and mesh
+
+
+def test_plane_strain_moduli_isotropic_limit() -> None:
+    # isotropic plane strain: C11 = C22 = E (1-nu) / ((1+nu)(1-2nu)), C12 = E nu / ((1+nu)(1-2nu))
+    E, nu = 7.0e6, 0.3
+    web = isotropic_web(E, nu)
     C11, C12, C22, G = plane_strain_moduli(web, np.array([E]))
     lam = E / ((1 + nu) * (1 - 2 * nu))
     # exact algebra: only round-off allowed
@@ -278,17 +283,7 @@ HERTZ_E, HERTZ_NU, HERTZ_R, HERTZ_ROLL = 10e6, 0.3, 0.01, 0.5
 @pytest.fixture(scope="module")
 def hertz() -> ContactResult:
     E, nu = HERTZ_E, HERTZ_NU
-    web = Web(
-        thickness=H,
-        width=0.1,
-        E_theta=E,
-        E_z=E,
-        radial_modulus=Constant(E),
-        nu_theta_r=nu,
-        nu_z_r=nu,
-        nu_theta_z=nu,
-        G_r_theta=E / (2 * (1 + nu)),
-    )
+    web = isotropic_web(E, nu)
     opts = ContactOptions(
         n_steps=4, step_exponent=1.0, tangential_size=5e-5, surface_size=5e-5, fine_halfwidth=2e-3
     )
