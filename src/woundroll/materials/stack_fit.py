@@ -91,7 +91,29 @@ def _check(strain: ArrayLike, pressure: ArrayLike) -> tuple[np.ndarray, np.ndarr
         raise InputError("strain and pressure must be >= 0 (compression positive)", "stack")
     if np.count_nonzero(p > 0) < 3:
         raise InputError("needs at least 3 points with positive pressure", "stack")
+    order = np.argsort(eps, kind="stable")
+    e_s, p_s = eps[order], p[order]
+    if not p_s[-1] > p_s[0]:
+        raise InputError(
+            "the pressure does not rise with the strain (constant or falling): a stack test's "
+            "pressure rises as the stack is compressed; check the columns and their order",
+            "stack",
+        )
+    if np.any(np.diff(p_s) < -1e-3 * p_s.max()):
+        i = int(np.argmax(np.diff(p_s) < -1e-3 * p_s.max()))
+        raise InputError(
+            f"the pressure falls from {p_s[i]:.4g} Pa to {p_s[i + 1]:.4g} Pa between strains "
+            f"{e_s[i]:.4g} and {e_s[i + 1]:.4g}: a loading curve rises monotonically (give the "
+            "loading branch only)",
+            "stack",
+        )
     return eps, p
+
+
+def check_stack_data(strain: ArrayLike, pressure: ArrayLike) -> None:
+    """Raise :class:`InputError` (field ``stack``) unless the data can be fitted: at least 3
+    finite points, non-negative, pressure rising with strain (every law's curve rises)."""
+    _check(strain, pressure)
 
 
 def _quality(law: RadialModulusLaw, eps: np.ndarray, p: np.ndarray) -> StackFit:
