@@ -7,6 +7,7 @@ numpy-heavy modules happen inside the commands (``woundroll --help`` stays light
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 from typing import Annotated
 
 import typer
@@ -82,6 +83,116 @@ def readings_cmd(
         out.print("no repeated readings: the scatter must come from the instrument's repeatability")
 
 
+def diagnose_cmd(
+    case: Annotated[
+        str, typer.Argument(help="Case file (TOML) or bundled case name (see `woundroll cases`).")
+    ],
+    readings: Annotated[
+        str | None,
+        typer.Option("--readings", help="Readings CSV (default: the case's [readings] file)."),
+    ] = None,
+    lane_width: Annotated[
+        str | None, typer.Option("--lane-width", help="Lane width for lane numbers ('6 in').")
+    ] = None,
+    confidence: Annotated[
+        float, typer.Option(help="Two-sided confidence of the intervals.")
+    ] = 0.95,
+    set_: Annotated[
+        list[str] | None,
+        typer.Option("--set", help="Override a case key: dotted.key=value (repeatable)."),
+    ] = None,
+    out_dir: Annotated[
+        Path | None, typer.Option("--out", help="Write diagnosis.json and PNG plots here.")
+    ] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
+    quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress or table.")] = False,
+) -> None:
+    """Readings -> the effective wound-on tension and near-surface pressure at each position."""
+    from woundroll.case import load_case
+    from woundroll.cli import _fail, _with_progress, out
+    from woundroll.diagnosis import diagnose
+    from woundroll.readings import read_readings
+
+    try:
+        c = load_case(case, set_ or [])
+        lw = _length(lane_width, "--lane-width")
+        if lw is None and c.readings is not None:
+            lw = c.readings.lane_width
+        r = None
+        if readings is not None:
+            r = read_readings(readings, width=c.web.width, lane_width=lw, field="--readings")
+        if quiet or as_json or not sys.stderr.isatty():
+            d = diagnose(c, r, confidence=confidence)
+        else:
+            d = _with_progress(
+                lambda progress: diagnose(c, r, confidence=confidence, progress=progress)
+            )
+        payload = {
+            "case": {"title": c.title},
+            "readings": d.readings.to_dict(),
+            "diagnosis": d.to_dict(),
+        }
+        written = _write(out_dir, payload, d) if out_dir is not None else []
+    except InputError as exc:
+        _fail(exc, 2)
+    except ConvergenceError as exc:
+        _fail(exc, 1)
+    if as_json:
+        import json
+
+        sys.stdout.write(json.dumps(payload) + "\n")
+        return
+    if quiet:
+        return
+    t = Table(
+        "position [in]",
+        f"reading [{d.curve.scale}]",
+        "wound-on tension [MPa]",
+        f"P at {d.pressure_depth * 1e3:.1f} mm [kPa]",
+        "status",
+        title=escape(
+            f"{c.title or case}: diagnosis ({100 * d.confidence:.0f} % intervals in brackets)"
+        ),
+    )
+    for row in d.summary():
+        t.add_row(*[escape(v) for v in row])
+    out.print(t)
+    v = d.verification
+    if v:
+        out.print(
+            f"check: full forward run at {v['web_tension_Pa'] / 1e6:.3g} MPa reads "
+            f"{v['full_forward_reading']:.2f} (target {v['target_reading']:.2f})",
+            highlight=False,
+        )
+    for note in d.notes:
+        out.print(f"note: {escape(note)}", highlight=False)
+    for p in written:
+        out.print(f"wrote {p}")
+
+
+def _write(out_dir: Path, payload: dict, d) -> list[Path]:  # type: ignore[no-untyped-def]
+    import json
+
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+        paths = [out_dir / "diagnosis.json"]
+        paths[0].write_text(json.dumps(payload, indent=1), encoding="utf-8")
+        plt.close(d.readings.plot(out_dir / "readings.png"))
+        for fig in d.plot(out_dir / "diagnosis"):
+            plt.close(fig)
+    except OSError as exc:
+        raise InputError(f"cannot write to {out_dir}: {exc.strerror or exc}", "--out") from None
+    return paths + [
+        out_dir / n for n in ("readings.png", "diagnosis_curve.png", "diagnosis_cmd.png")
+    ]
+
+
 def register(app: typer.Typer) -> None:
     """Add the reverse-road commands to the ``woundroll`` app."""
     app.command("readings")(readings_cmd)
+    app.command("diagnose")(diagnose_cmd)
