@@ -287,6 +287,9 @@ def fit_stack_cmd(
     for name, f in fits.items():
         t.add_row(name, f"{f.r2:.5f}", f"{f.rms_rel_error:.2%}", f"{f.max_rel_error:.2%}", f.toml())
     out.print(t)
+    for name, f in fits.items():  # the fit's covariance, ready for the case's [uncertainty]
+        if f.uncertainty_toml():
+            out.print(escape(f"{name}: [uncertainty] (1 SD)\n{f.uncertainty_toml()}"))
 
 
 # the reverse road (readings -> stresses): commands in their own module
