@@ -54,6 +54,14 @@ def run(
     quiet: Annotated[
         bool, typer.Option("--quiet", "-q", help="No progress bar or summary.")
     ] = False,
+    uncertainty: Annotated[
+        int,
+        typer.Option(
+            "--uncertainty",
+            help="Monte Carlo samples of the case's [uncertainty] (0: none).",
+            min=0,
+        ),
+    ] = 0,
 ) -> None:
     """Run the models a case asks for: winding, and with a tester section the hardness reading."""
     from woundroll.case import load_case
@@ -66,15 +74,17 @@ def run(
         else:
             result = _with_progress(lambda progress: run_case(c, progress=progress))
         written = result.write(out_dir) if out_dir is not None else []
+        uq = _cli_diagnose.run_uncertainty(c, uncertainty, out_dir, written, quiet or as_json)
     except InputError as exc:
         _fail(exc, 2)
     except ConvergenceError as exc:
         _fail(exc, 1)
     if as_json:
-        sys.stdout.write(result.to_json() + "\n")
+        sys.stdout.write(_cli_diagnose.json_with_uncertainty(result, uq) + "\n")
         return
     if not quiet:
         _summary(result)
+        _cli_diagnose.print_uncertainty(uq)
         for p in written:
             out.print(f"wrote {p}")
 

@@ -192,6 +192,47 @@ def _write(out_dir: Path, payload: dict, d) -> list[Path]:  # type: ignore[no-un
     ]
 
 
+def run_uncertainty(case, n: int, out_dir: Path | None, written: list, quiet: bool):  # type: ignore[no-untyped-def]
+    """``woundroll run --uncertainty N``: the Monte Carlo bands (None for N = 0); adds its
+    files to ``written`` when ``out_dir`` is given."""
+    if not n:
+        return None
+    from woundroll.cli import _with_progress
+    from woundroll.uncertainty import propagate
+
+    if quiet or not sys.stderr.isatty():
+        uq = propagate(case, n)
+    else:
+        uq = _with_progress(lambda progress: propagate(case, n, progress=progress))
+    if out_dir is not None:
+        written.extend(uq.write(out_dir))
+    return uq
+
+
+def json_with_uncertainty(result, uq) -> str:  # type: ignore[no-untyped-def]
+    """The run's JSON, with ``uncertainty`` added when it was propagated."""
+    if uq is None:
+        return result.to_json()
+    import json
+
+    from woundroll.pipeline import _json_default
+
+    return json.dumps({**result.to_dict(), "uncertainty": uq.to_dict()}, default=_json_default)
+
+
+def print_uncertainty(uq) -> None:  # type: ignore[no-untyped-def]
+    if uq is None:
+        return
+    from woundroll.cli import out
+
+    t = Table("quantity", "value", title="uncertainty (Monte Carlo)")
+    for name, value in uq.summary():
+        t.add_row(escape(name), escape(value))
+    out.print(t)
+    for note in uq.notes:
+        out.print(f"note: {escape(note)}", highlight=False)
+
+
 def register(app: typer.Typer) -> None:
     """Add the reverse-road commands to the ``woundroll`` app."""
     app.command("readings")(readings_cmd)
