@@ -373,6 +373,25 @@ class UncertaintySpec(_Section):
         return v * thickness if kind == "relative" else v
 
 
+class DefectsSpec(_Section):
+    """``[defects]``: limits for the defect-risk criteria (docs/diagnosis.md, "Defect risk").
+
+    ``core_strength`` (radial pressure the core carries), ``blocking_pressure`` (layers
+    stick above it), ``friction`` (interlayer mu; default ``contact.friction``),
+    ``axial_acceleration_g`` (axial handling load, in g) and ``torque`` (through the roll)
+    for slip and telescoping, ``slack_pressure`` (default 1 kPa) and ``slack_fraction``
+    (default 0.7 of the lanes' median wound-on tension).
+    """
+
+    core_strength: Q("pressure") | None = None
+    blocking_pressure: Q("pressure") | None = None
+    friction: Q("dimensionless") | None = None
+    axial_acceleration_g: Q("dimensionless", "nonnegative") | None = None
+    torque: Q("energy", "nonnegative") | None = None
+    slack_pressure: Q("pressure") = 1e3
+    slack_fraction: float = Field(default=0.7, gt=0.0, lt=1.0)
+
+
 class Case(_Section):
     """A whole case: ``title``, ``[web]``, ``[core]``, ``[winding]``, optional ``[tester]``,
     ``[contact]``, ``[profile]`` (their tables are passed to the models that own them)."""
@@ -386,6 +405,7 @@ class Case(_Section):
     profile: ProfileSpec = ProfileSpec()
     readings: ReadingsSpec | None = None
     uncertainty: UncertaintySpec | None = None
+    defects: DefectsSpec | None = None
     base_dir: Path | None = Field(default=None, exclude=True)
 
     @cached_property

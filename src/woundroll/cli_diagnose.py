@@ -127,12 +127,15 @@ def diagnose_cmd(
             d = _with_progress(
                 lambda progress: diagnose(c, r, confidence=confidence, progress=progress)
             )
+        from woundroll.defects import defect_report
+
+        defects = defect_report(c, d)
         payload = {
             "case": {"title": c.title},
             "readings": d.readings.to_dict(),
-            "diagnosis": d.to_dict(),
+            "diagnosis": {**d.to_dict(), "defects": defects.to_dict()},
         }
-        written = _write(out_dir, payload, d) if out_dir is not None else []
+        written = _write(out_dir, payload, d, defects) if out_dir is not None else []
     except InputError as exc:
         _fail(exc, 2)
     except ConvergenceError as exc:
@@ -166,11 +169,69 @@ def diagnose_cmd(
         )
     for note in d.notes:
         out.print(f"note: {escape(note)}", highlight=False)
+    _print_defects(defects)
     for p in written:
         out.print(f"wrote {p}")
 
 
-def _write(out_dir: Path, payload: dict, d) -> list[Path]:  # type: ignore[no-untyped-def]
+def _print_defects(defects) -> None:  # type: ignore[no-untyped-def]
+    from woundroll.cli import out
+
+    t = Table("criterion", "risk", "finding", title=f"defect risk: {defects.risk}")
+    for name, risk, sentence in defects.summary():
+        t.add_row(escape(name), escape(risk), escape(sentence))
+    out.print(t)
+
+
+def defects_cmd(
+    case: Annotated[
+        str, typer.Argument(help="Case file (TOML) or bundled case name (see `woundroll cases`).")
+    ],
+    set_: Annotated[
+        list[str] | None,
+        typer.Option("--set", help="Override a case key: dotted.key=value (repeatable)."),
+    ] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
+    out_dir: Annotated[
+        Path | None, typer.Option("--out", help="Write defects.json and defects.png here.")
+    ] = None,
+) -> None:
+    """Defect risk of a roll from its wound-in stresses: starring, core crush, slip,
+    telescoping, blocking, slack (limits in the case's [defects])."""
+    import json
+
+    from woundroll.case import load_case
+    from woundroll.cli import _fail
+    from woundroll.defects import defect_report
+
+    try:
+        c = load_case(case, set_ or [])
+        rep = defect_report(c)
+        if out_dir is not None:
+            import matplotlib
+
+            matplotlib.use("Agg", force=False)
+            import matplotlib.pyplot as plt
+
+            try:
+                out_dir.mkdir(parents=True, exist_ok=True)
+                (out_dir / "defects.json").write_text(json.dumps(rep.to_dict()), encoding="utf-8")
+                plt.close(rep.plot(out_dir / "defects.png"))
+            except OSError as exc:
+                raise InputError(
+                    f"cannot write to {out_dir}: {exc.strerror or exc}", "--out"
+                ) from None
+    except InputError as exc:
+        _fail(exc, 2)
+    except ConvergenceError as exc:
+        _fail(exc, 1)
+    if as_json:
+        sys.stdout.write(json.dumps({"defects": rep.to_dict()}) + "\n")
+        return
+    _print_defects(rep)
+
+
+def _write(out_dir: Path, payload: dict, d, defects) -> list[Path]:  # type: ignore[no-untyped-def]
     import json
 
     import matplotlib
@@ -185,6 +246,7 @@ def _write(out_dir: Path, payload: dict, d) -> list[Path]:  # type: ignore[no-un
         plt.close(d.readings.plot(out_dir / "readings.png"))
         for fig in d.plot(out_dir / "diagnosis"):
             plt.close(fig)
+        plt.close(defects.plot(out_dir / "defects.png"))
     except OSError as exc:
         raise InputError(f"cannot write to {out_dir}: {exc.strerror or exc}", "--out") from None
     return paths + [
@@ -237,3 +299,4 @@ def register(app: typer.Typer) -> None:
     """Add the reverse-road commands to the ``woundroll`` app."""
     app.command("readings")(readings_cmd)
     app.command("diagnose")(diagnose_cmd)
+    app.command("defects")(defects_cmd)
