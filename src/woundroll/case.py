@@ -355,6 +355,62 @@ class ReadingsSpec(_Section):
     repeatability: Q("dimensionless", "nonnegative") | None = None
 
 
+def _tolerance(value: Any) -> tuple[str, float]:
+    """A tolerance (1 SD): relative (``"2 %"``, ``0.02``) or absolute (``"1.5 um"``)."""
+    q = parse_quantity(value)
+    for kind, tag in (("dimensionless", "relative"), ("length", "absolute")):
+        try:
+            v = to_si(q, kind)
+        except InputError:
+            continue
+        if not (math.isfinite(v) and v >= 0):
+            raise ValueError(f"must be zero or positive, got {value!r}")
+        return tag, v
+    raise ValueError(f"{value!r} is neither relative ('2 %') nor a length ('1.5 um')")
+
+
+class UncertaintySpec(_Section):
+    """``[uncertainty]``: one standard deviation of the inputs the predictions depend on.
+
+    ``K1`` [pressure], ``K2`` [-] and ``K1_K2_correlation`` of the Pfeiffer law {2} (from
+    ``woundroll fit-stack``'s covariance); ``thickness`` (relative ``"2 %"`` or a length
+    ``"1.5 um"``); ``tension`` (relative, of the winder's tension setting). Used by
+    ``woundroll diagnose`` and ``--uncertainty N`` (docs/diagnosis.md).
+    """
+
+    K1: Q("pressure", "nonnegative") | None = None
+    K2: Q("dimensionless", "nonnegative") | None = None
+    K1_K2_correlation: float = Field(default=0.0, ge=-1.0, le=1.0)
+    thickness: Annotated[tuple[str, float], BeforeValidator(_tolerance)] | None = None
+    tension: Q("dimensionless", "nonnegative") | None = None
+
+    def thickness_sd(self, thickness: float) -> float:
+        """SD of the web thickness [m] for a nominal ``thickness`` [m] (0 when not given)."""
+        if self.thickness is None:
+            return 0.0
+        kind, v = self.thickness
+        return v * thickness if kind == "relative" else v
+
+
+class DefectsSpec(_Section):
+    """``[defects]``: limits for the defect-risk criteria (docs/diagnosis.md, "Defect risk").
+
+    ``core_strength`` (radial pressure the core carries), ``blocking_pressure`` (layers
+    stick above it), ``friction`` (interlayer mu; default ``contact.friction``),
+    ``axial_acceleration_g`` (axial handling load, in g) and ``torque`` (through the roll)
+    for slip and telescoping, ``slack_pressure`` (default 1 kPa) and ``slack_fraction``
+    (default 0.7 of the lanes' median wound-on tension).
+    """
+
+    core_strength: Q("pressure") | None = None
+    blocking_pressure: Q("pressure") | None = None
+    friction: Q("dimensionless") | None = None
+    axial_acceleration_g: Q("dimensionless", "nonnegative") | None = None
+    torque: Q("energy", "nonnegative") | None = None
+    slack_pressure: Q("pressure") = 1e3
+    slack_fraction: float = Field(default=0.7, gt=0.0, lt=1.0)
+
+
 class Case(_Section):
     """A whole case: ``title``, ``[web]``, ``[core]``, ``[winding]``, optional ``[tester]``,
     ``[contact]``, ``[profile]`` (their tables are passed to the models that own them)."""
@@ -367,6 +423,8 @@ class Case(_Section):
     contact: ContactSpec = ContactSpec()
     profile: ProfileSpec = ProfileSpec()
     readings: ReadingsSpec | None = None
+    uncertainty: UncertaintySpec | None = None
+    defects: DefectsSpec | None = None
     _base_dir: Path | None = PrivateAttr(default=None)
     _warnings: tuple[str, ...] = PrivateAttr(default=())
 

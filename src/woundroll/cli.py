@@ -82,6 +82,14 @@ def run(
     quiet: Annotated[
         bool, typer.Option("--quiet", "-q", help="No progress bar or summary.")
     ] = False,
+    uncertainty: Annotated[
+        int,
+        typer.Option(
+            "--uncertainty",
+            help="Monte Carlo samples of the case's [uncertainty] (0: none).",
+            min=0,
+        ),
+    ] = 0,
 ) -> None:
     """Run the models a case asks for: winding, and with a tester section the hardness reading."""
     from woundroll._pool import Interrupted, clean_stop
@@ -102,6 +110,7 @@ def run(
             else:
                 result = _with_progress(lambda progress: run_case(c, progress=progress))
             written = result.write(out_dir) if out_dir is not None else []
+            uq = _cli_diagnose.run_uncertainty(c, uncertainty, out_dir, written, quiet or as_json)
         except InputError as exc:
             _fail(exc, 2)
         except ConvergenceError as exc:
@@ -113,10 +122,11 @@ def run(
         if w not in c.warnings:
             _warn(w)
     if as_json:
-        sys.stdout.write(result.to_json() + "\n")
+        sys.stdout.write(_cli_diagnose.json_with_uncertainty(result, uq) + "\n")
         return
     if not quiet:
         _summary(result)
+        _cli_diagnose.print_uncertainty(uq)
         for p in written:
             out.print(f"wrote {p}")
 
@@ -341,6 +351,9 @@ def fit_stack_cmd(
     for name, f in fits.items():
         t.add_row(name, f"{f.r2:.5f}", f"{f.rms_rel_error:.2%}", f"{f.max_rel_error:.2%}", f.toml())
     out.print(t)
+    for name, f in fits.items():  # the fit's covariance, ready for the case's [uncertainty]
+        if f.uncertainty_toml():
+            out.print(escape(f"{name}: [uncertainty] (1 SD)\n{f.uncertainty_toml()}"))
 
 
 # the reverse road (readings -> stresses): commands in their own module
