@@ -28,12 +28,14 @@ from woundroll.errors import InputError
 
 if TYPE_CHECKING:
     from woundroll.contact import RollStiffness
+    from woundroll.contact.dynamic import DynamicImpactResult
     from woundroll.instruments import HardnessResult, TesterSetup
     from woundroll.materials.web import Core, Web
     from woundroll.profile.hardness import ProfileResult
     from woundroll.winding.result import WindingResult
 
-#: ``progress(stage, fraction)``; stages "winding", "contact", "impact", "foundation".
+#: ``progress(stage, fraction)``; stages "winding", "contact", "impact", "foundation",
+#: "dynamic".
 Progress = Callable[[str, float], None]
 
 
@@ -73,6 +75,9 @@ class RunResult:
         The same with E_r frozen at its pre-impact value.
     profile : ProfileResult or None
         CMD profile (runs with ``winding.thickness_profile``).
+    dynamic : DynamicImpactResult or None
+        The impact in time on the FE roll (``contact.dynamic = true``); in the JSON under
+        ``hardness.dynamic``.
     notes : tuple of str
     """
 
@@ -83,6 +88,7 @@ class RunResult:
     no_update: NoUpdate | None = None
     profile: ProfileResult | None = None
     notes: tuple[str, ...] = field(default_factory=tuple)
+    dynamic: DynamicImpactResult | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict: ``{"case": ..., "winding": {...}, "contact": ..., "hardness": ...}``."""
@@ -91,6 +97,8 @@ class RunResult:
             part = getattr(self, name)
             if part is not None:
                 out[name] = part.to_dict()
+        if self.dynamic is not None and "hardness" in out:
+            out["hardness"]["dynamic"] = self.dynamic.to_dict()
         if self.notes:
             out["notes"] = list(self.notes)
         return out
@@ -126,6 +134,10 @@ class RunResult:
             for fig in figs if isinstance(figs, list | tuple) else [figs]:
                 plt.close(fig)
             written.extend(sorted(out.glob(f"{name}*.png")))
+        if self.dynamic is not None:
+            fd = self.hardness.fd if self.hardness is not None else None
+            plt.close(self.dynamic.plot(out / "dynamic.png", fd=fd))
+            written.append(out / "dynamic.png")
         return written
 
 
@@ -248,6 +260,22 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
             hardness_on_roll(setup, frozen, H, web.density, semi_contact_width_given=a_given),
         )
     report("contact", 1.0)
+    dynamic = None
+    if spec.dynamic:
+        from woundroll.contact.dynamic import impact_dynamic
+
+        report("dynamic", 0.0)
+        dynamic = impact_dynamic(
+            web,
+            core,
+            winding.radius,
+            winding.sigma_r,
+            setup.instrument,
+            contact_time=hardness.fd.contact_time,
+            depth_scale=float(stiff.contact.delta[-1]),
+            options=spec.dynamic_settings(),
+        )
+        report("dynamic", 1.0)
     notes = tuple(
         f"{label}: the striker reaches {rs.impact_depth * 1e3:.3g} mm, beyond the contact "
         f"model's range ({rs.contact.delta[-1] * 1e3:.3g} mm): its spring is extrapolated"
@@ -261,6 +289,7 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         hardness=hardness,
         no_update=no_update,
         notes=notes,
+        dynamic=dynamic,
     )
 
 

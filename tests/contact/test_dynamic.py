@@ -149,3 +149,51 @@ def test_bad_options():
         DynamicOptions(steps_per_contact=5)
     with pytest.raises(InputError):
         DynamicOptions(newmark_gamma=0.4)
+
+
+def test_case_with_contact_dynamic_reports_hardness_dynamic(tmp_path):
+    import json
+
+    import woundroll
+    from woundroll.case import load_case
+
+    case = load_case(
+        "pet1-26.7N",
+        ["contact.dynamic=true", "contact.dynamic_options.steps_per_contact=100"],
+    )
+    res = woundroll.run(case)
+    d = json.loads(res.to_json())["hardness"]
+    dyn = d["dynamic"]
+    for key in ("rho", "impulse_Ns", "contact_time_s", "delta_max_m"):
+        assert np.isfinite(dyn[key]) and dyn[key] > 0
+    n = len(dyn["time_s"])
+    assert n > 50
+    for key in ("deceleration_m_per_s2", "position_m", "velocity_m_per_s", "contact_force_N"):
+        assert len(dyn[key]) == n
+    at = dyn["at_peak"]
+    assert len(at["depth_below_surface_m"]) == len(at["radial_pressure_Pa"]) > 10
+    # the rebound is elastic without an unloading law, and the readout says so
+    assert dyn["rebound"].startswith("elastic")
+    # beside the 1.5D models (same striker, same roll): within 25 % of the FD reading
+    assert dyn["rho"] == pytest.approx(d["rho_fd"], rel=0.25)
+    files = res.write(tmp_path)
+    assert tmp_path / "dynamic.png" in files and (tmp_path / "dynamic.png").stat().st_size > 0
+
+
+@pytest.mark.parametrize(
+    ("overrides", "field"),
+    [
+        (["contact.dynamic=true", "contact.dynamic_options.mass='diagonal'"], "mass"),
+        (["contact.dynamic=true", "contact.dynamic_options.colour=1"], "colour"),
+        (
+            ["contact.dynamic=true", "tester.roll_spring.alpha=1e8", "tester.roll_spring.beta=1e5"],
+            "contact.dynamic",
+        ),
+    ],
+)
+def test_case_errors_name_the_field(overrides, field):
+    from woundroll.case import load_case
+
+    with pytest.raises(InputError) as e:
+        load_case("pet1-26.7N", overrides)
+    assert field in e.value.field
