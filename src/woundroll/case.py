@@ -345,6 +345,20 @@ class ProfileSpec(_Section):
     depth_max: Q("length") = 1e-3
 
 
+class ReadingsSpec(_Section):
+    """``[readings]``: hardness readings taken on the roll (:mod:`woundroll.readings`).
+
+    ``file``: the readings CSV (path relative to the case file); ``lane_width``: width of one
+    lane when the file gives lane numbers (TAPPI T 834: ``"6 in"``); ``repeatability``: the
+    instrument's repeatability, one SD in its scale (used where the file has no repeated
+    readings to estimate the scatter from).
+    """
+
+    file: str
+    lane_width: Q("length") | None = None
+    repeatability: Q("dimensionless", "nonnegative") | None = None
+
+
 class Case(_Section):
     """A whole case: ``title``, ``[web]``, ``[core]``, ``[winding]``, optional ``[tester]``,
     ``[contact]``, ``[profile]`` (their tables are passed to the models that own them)."""
@@ -356,6 +370,7 @@ class Case(_Section):
     tester: dict[str, Any] | None = None
     contact: ContactSpec = ContactSpec()
     profile: ProfileSpec = ProfileSpec()
+    readings: ReadingsSpec | None = None
     base_dir: Path | None = Field(default=None, exclude=True)
 
     @cached_property
@@ -376,6 +391,20 @@ class Case(_Section):
         from woundroll.profile.compare import read_measured_profile
 
         return read_measured_profile(self._path(self.profile.measured))
+
+    @cached_property
+    def measured_readings(self) -> Any:
+        """The :class:`~woundroll.readings.Readings` of ``[readings]``, or None."""
+        if self.readings is None:
+            return None
+        from woundroll.readings import read_readings
+
+        return read_readings(
+            self._path(self.readings.file),
+            width=self.web.width,
+            lane_width=self.readings.lane_width,
+            field="readings.file",
+        )
 
     def _path(self, name: str) -> Path:
         path = Path(name).expanduser()
@@ -471,6 +500,7 @@ def _check_options(case: Case) -> None:
                 "profile.measured",
             )
         _ = case.measured_profile
+    _ = case.measured_readings
     if case.winding.nip_roller is not None:
         if case.winding.thickness_profile is None:
             raise InputError(

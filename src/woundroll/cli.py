@@ -299,6 +299,12 @@ def fit_stack_cmd(
     out.print(t)
 
 
+# the reverse road (readings -> stresses): commands in their own module
+from woundroll import cli_diagnose as _cli_diagnose  # noqa: E402
+
+_cli_diagnose.register(app)
+
+
 def main() -> None:
     """Entry point of the ``woundroll`` script."""
     app()
