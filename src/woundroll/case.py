@@ -293,12 +293,35 @@ class ContactSpec(_Section):
     :func:`woundroll.pipeline.roll_stiffness`). ``friction``: interlayer mu of the slip
     factor {23}. ``no_update``: also solve with E_r frozen at its pre-impact value (the
     paper's Figure 8 comparison). ``options``: :class:`woundroll.contact.ContactOptions`.
+    ``dynamic``: also solve the impact in time on the FE roll (the paper's dynamic reference,
+    :func:`woundroll.contact.dynamic.impact_dynamic`); ``dynamic_options``:
+    :class:`woundroll.contact.dynamic.DynamicOptions` (time step, mass matrix, damping).
     """
 
     depth_max: Q("length") | None = None
     friction: Q("dimensionless", "nonnegative") = 0.3
     no_update: bool = True
     options: dict[str, Any] = Field(default_factory=dict)
+    dynamic: bool = False
+    dynamic_options: dict[str, Any] = Field(default_factory=dict)
+
+    def dynamic_settings(self) -> Any:
+        """The :class:`~woundroll.contact.dynamic.DynamicOptions` of this section."""
+        from woundroll.contact.dynamic import DynamicOptions
+
+        known = set(DynamicOptions.__dataclass_fields__) - {"mesh"}
+        unknown = sorted(set(self.dynamic_options) - known)
+        if unknown:
+            raise InputError(
+                f"unknown option(s) {', '.join(unknown)}; known: {', '.join(sorted(known))}",
+                f"contact.dynamic_options.{unknown[0]}",
+            )
+        opts = dict(self.dynamic_options)
+        if "time_step" in opts:
+            opts["time_step"] = to_si(
+                opts["time_step"], "time", "contact.dynamic_options.time_step"
+            )
+        return DynamicOptions(mesh=self.contact_options(), **opts)
 
     def contact_options(self) -> Any:
         """The :class:`~woundroll.contact.ContactOptions` of this section (validated)."""
@@ -553,6 +576,20 @@ def _check_options(case: Case) -> None:
     _ = case.tester_setup
     if case.tester is not None:
         case.contact.contact_options()
+    if case.contact.dynamic or case.contact.dynamic_options:
+        case.contact.dynamic_settings()
+        if case.tester is None or "roll_spring" in case.tester:
+            raise InputError(
+                "the impact in time runs on the FE roll under the tester's head: give [tester] "
+                "without [tester.roll_spring]",
+                "contact.dynamic",
+            )
+        if case.winding.thickness_profile is not None:
+            raise InputError(
+                "the impact in time runs on the single roll, not per CMD sector: remove "
+                "winding.thickness_profile or contact.dynamic",
+                "contact.dynamic",
+            )
     _read_file(case, "thickness_profile", "winding.thickness_profile")
     if case.profile.measured is not None:
         if case.winding.thickness_profile is None:

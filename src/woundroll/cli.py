@@ -204,6 +204,16 @@ def result_summary(result: RunResult) -> list[tuple[str, str]]:
         rows.append(
             ("Rho, no E_r update (FD / energy)", f"{d['rho_fd']:.1f} / {d['rho_energy']:.1f}")
         )
+    dy = getattr(result, "dynamic", None)
+    if dy is not None:
+        rows += [
+            ("Rho, FE impact in time", f"{dy.rho:.1f}"),
+            (
+                "impulse / contact time (FE)",
+                f"{dy.impulse:.4f} N s / {dy.contact_time * 1e3:.2f} ms",
+            ),
+            ("restitution (FE, elastic material)", f"{dy.restitution:.3f}"),
+        ]
     p = result.profile
     if p is not None:
         st, th = p.rho_stats, p.thickness_stats

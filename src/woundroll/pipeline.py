@@ -27,12 +27,14 @@ from woundroll.errors import InputError
 
 if TYPE_CHECKING:
     from woundroll.contact import RollStiffness
+    from woundroll.contact.dynamic import DynamicImpactResult
     from woundroll.instruments import HardnessResult, TesterSetup
     from woundroll.materials.web import Core, Web
     from woundroll.profile.hardness import ProfileResult
     from woundroll.winding.result import WindingResult
 
-#: ``progress(stage, fraction)``; stages "winding", "contact", "impact", "foundation".
+#: ``progress(stage, fraction)``; stages "winding", "contact", "impact", "foundation",
+#: "dynamic".
 Progress = Callable[[str, float], None]
 
 
@@ -72,6 +74,9 @@ class RunResult:
         The same with E_r frozen at its pre-impact value.
     profile : ProfileResult or None
         CMD profile (runs with ``winding.thickness_profile``).
+    dynamic : DynamicImpactResult or None
+        The impact in time on the FE roll (``contact.dynamic = true``); in the JSON under
+        ``hardness.dynamic``.
     notes : tuple of str
     """
 
@@ -84,6 +89,7 @@ class RunResult:
     notes: tuple[str, ...] = field(default_factory=tuple)
     warnings: tuple[str, ...] = field(default_factory=tuple)
     flags: dict[str, bool] = field(default_factory=dict)
+    dynamic: DynamicImpactResult | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict: ``{"case": ..., "winding": {...}, "contact": ..., "hardness": ...,
@@ -93,6 +99,8 @@ class RunResult:
             part = getattr(self, name)
             if part is not None:
                 out[name] = part.to_dict()
+        if self.dynamic is not None and "hardness" in out:
+            out["hardness"]["dynamic"] = self.dynamic.to_dict()
         out["flags"] = dict(self.flags)
         out["warnings"] = list(self.warnings)
         if self.notes:
@@ -141,13 +149,16 @@ class RunResult:
                     figs[0].savefig(first, dpi=120)
                 for fig in figs:
                     plt.close(fig)
+            if self.dynamic is not None:
+                fd = self.hardness.fd if self.hardness is not None else None
+                plt.close(self.dynamic.plot(od.tmp / "dynamic.png", fd=fd))
             names = sorted(p.name for p in od.tmp.glob("*.png")) + ["result.json"]
             data = self.to_dict()
             data["files"] = names
             from woundroll._output import strict_json
 
             (od.tmp / "result.json").write_text(strict_json(data, indent=1), encoding="utf-8")
-            written, stale = od.publish(names, tuple(f"{p}*.png" for p in parts))
+            written, stale = od.publish(names, tuple(f"{p}*.png" for p in (*parts, "dynamic")))
         if stale:
             object.__setattr__(self, "notes", self.notes + tuple(stale))
         return written
@@ -334,6 +345,22 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     report("contact", 1.0)
     springs = [("contact", stiff), ("no update", no_update and no_update.stiffness)]
     flags, warns = result_flags(setup.instrument, hardness.reading, springs, case.warnings, max_p)
+    dynamic = None
+    if spec.dynamic:
+        from woundroll.contact.dynamic import impact_dynamic
+
+        report("dynamic", 0.0)
+        dynamic = impact_dynamic(
+            web,
+            core,
+            winding.radius,
+            winding.sigma_r,
+            setup.instrument,
+            contact_time=hardness.fd.contact_time,
+            depth_scale=float(stiff.contact.delta[-1]),
+            options=spec.dynamic_settings(),
+        )
+        report("dynamic", 1.0)
     return RunResult(
         case=case,
         winding=winding,
@@ -342,6 +369,7 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         no_update=no_update,
         warnings=tuple(warns),
         flags=flags,
+        dynamic=dynamic,
     )
 
 
