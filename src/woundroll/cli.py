@@ -54,18 +54,27 @@ def run(
     quiet: Annotated[
         bool, typer.Option("--quiet", "-q", help="No progress bar or summary.")
     ] = False,
+    report: Annotated[
+        bool, typer.Option("--report", help="With --out: also write the HTML report.html.")
+    ] = False,
 ) -> None:
     """Run the models a case asks for: winding, and with a tester section the hardness reading."""
     from woundroll.case import load_case
     from woundroll.pipeline import run as run_case
 
     try:
+        if report and out_dir is None:
+            raise InputError("the report goes into the --out directory: give --out", "--report")
         c = load_case(case, set_ or [])
         if quiet or as_json or not sys.stderr.isatty():
             result = run_case(c)
         else:
             result = _with_progress(lambda progress: run_case(c, progress=progress))
         written = result.write(out_dir) if out_dir is not None else []
+        if report:
+            from woundroll.report import write_report
+
+            written.append(write_report(result, out_dir))
     except InputError as exc:
         _fail(exc, 2)
     except ConvergenceError as exc:
@@ -287,6 +296,12 @@ def fit_stack_cmd(
     for name, f in fits.items():
         t.add_row(name, f"{f.r2:.5f}", f"{f.rms_rel_error:.2%}", f"{f.max_rel_error:.2%}", f.toml())
     out.print(t)
+
+
+# the shop floor and sweeps: commands in their own modules (woundroll.cli_*)
+from woundroll import cli_report as _cli_report  # noqa: E402
+
+_cli_report.register(app)
 
 
 def main() -> None:
