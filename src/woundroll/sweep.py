@@ -20,8 +20,9 @@
   key's suffix (``winding.core_pressure [Pa]``, ``hardness.reading [rho]``), then ``error``;
 * **where it runs**: serially (``workers=1``), on the machine's cores (a process pool; by
   default when the rolls would take more than 15 s serially), or on a Dask distributed
-  cluster (``scheduler="tcp://host:8786"``, or a ``distributed.Client``). The table does not depend on where it ran (rows in design order;
-  wall-clock timings are left out of the table for that reason).
+  cluster (``scheduler="tcp://host:8786"``, or a ``distributed.Client``). The table does
+  not depend on where it ran (rows in design order; wall-clock timings are left out of the
+  table for that reason).
 """
 
 from __future__ import annotations
