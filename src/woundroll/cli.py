@@ -300,10 +300,12 @@ def fit_stack_cmd(
 
 # the shop floor and sweeps: commands in their own modules (woundroll.cli_*)
 from woundroll import cli_report as _cli_report  # noqa: E402
+from woundroll import cli_serve as _cli_serve  # noqa: E402
 from woundroll import cli_sweep as _cli_sweep  # noqa: E402
 
 _cli_report.register(app)
 _cli_sweep.register(app)
+_cli_serve.register(app)
 
 
 def main() -> None:
