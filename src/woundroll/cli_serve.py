@@ -21,14 +21,21 @@ def serve_cmd(
     from woundroll.cli import _fail, out
 
     try:
+        import fastapi  # noqa: F401
+        import uvicorn  # noqa: F401
+
         from woundroll.web import serve
     except ImportError as exc:
         _fail(InputError(f"the web page needs fastapi and uvicorn ({exc})", "serve"), 2)
-    out.print(f"woundroll web page on http://{host}:{port}/ (Ctrl-C stops it)")
-    try:
-        serve(host, port)
+    import socket
+
+    try:  # say it in one line before uvicorn would log and exit
+        with socket.create_server((host, port)):
+            pass
     except OSError as exc:
         _fail(InputError(f"cannot listen on {host}:{port}: {exc.strerror or exc}", "--port"), 2)
+    out.print(f"woundroll web page on http://{host}:{port}/ (Ctrl-C stops it)")
+    serve(host, port)
 
 
 def register(app: typer.Typer) -> None:

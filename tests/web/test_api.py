@@ -159,3 +159,19 @@ def test_readings_shown_with_prediction(client):
     assert any(p["id"] == "plot-profile" for p in s["result"]["plots"])
     report = client.get(s["report_url"]).text
     assert 'id="readings"' in report and "readings pasted on the web page" in report
+
+
+def test_serve_port_in_use_is_one_line():
+    import socket
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    with socket.create_server(("127.0.0.1", 0)) as s:
+        port = s.getsockname()[1]
+        exe = Path(sys.executable).with_name("woundroll")
+        r = subprocess.run(
+            [str(exe), "serve", "--port", str(port)], capture_output=True, text=True, timeout=60
+        )
+    lines = [ln for ln in (r.stdout + r.stderr).splitlines() if ln.strip()]
+    assert r.returncode == 2 and len(lines) == 1 and "--port: cannot listen" in lines[0]
