@@ -90,6 +90,9 @@ def run(
             min=0,
         ),
     ] = 0,
+    report: Annotated[
+        bool, typer.Option("--report", help="With --out: also write the HTML report.html.")
+    ] = False,
 ) -> None:
     """Run the models a case asks for: winding, and with a tester section the hardness reading."""
     from woundroll._pool import Interrupted, clean_stop
@@ -98,6 +101,8 @@ def run(
 
     with clean_stop():
         try:
+            if report and out_dir is None:
+                raise InputError("the report goes into the --out directory: give --out", "--report")
             c = load_case(case, set_ or [])
             if out_dir is not None:
                 from woundroll._output import check_out_dir
@@ -111,6 +116,10 @@ def run(
                 result = _with_progress(lambda progress: run_case(c, progress=progress))
             written = result.write(out_dir) if out_dir is not None else []
             uq = _cli_diagnose.run_uncertainty(c, uncertainty, out_dir, written, quiet or as_json)
+            if report:
+                from woundroll.report import write_report
+
+                written.append(write_report(result, out_dir))
         except InputError as exc:
             _fail(exc, 2)
         except ConvergenceError as exc:
@@ -370,6 +379,16 @@ def fit_stack_cmd(
 from woundroll import cli_diagnose as _cli_diagnose  # noqa: E402
 
 _cli_diagnose.register(app)
+
+
+# the shop floor and sweeps: commands in their own modules (woundroll.cli_*)
+from woundroll import cli_report as _cli_report  # noqa: E402
+from woundroll import cli_serve as _cli_serve  # noqa: E402
+from woundroll import cli_sweep as _cli_sweep  # noqa: E402
+
+_cli_report.register(app)
+_cli_sweep.register(app)
+_cli_serve.register(app)
 
 
 def main() -> None:
