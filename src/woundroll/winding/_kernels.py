@@ -140,8 +140,31 @@ def _push(P, t, e, hist, thist):
 
 @njit(cache=True)
 def _refresh(
-    t, k, top, wnodes, flush_every, B, S, r, invr, dlog, invd, F, st, hist, thist, w_deep,
-    kp, ke, slope, Et, floor, alpha, beta, c, state_i,
+    t,
+    k,
+    top,
+    wnodes,
+    flush_every,
+    B,
+    S,
+    r,
+    invr,
+    dlog,
+    invd,
+    F,
+    st,
+    hist,
+    thist,
+    w_deep,
+    kp,
+    ke,
+    slope,
+    Et,
+    floor,
+    alpha,
+    beta,
+    c,
+    state_i,
 ):
     """Refresh number ``k`` (at increment ``t``, surface node ``top``): levels 1..L, L = 1 +
     (trailing zero bits of k).
@@ -358,8 +381,31 @@ def run_groups(
         if wnodes >= 0 and count >= flush_every:
             k += 1
             _refresh(
-                g, k, top, wnodes, flush_every, B, S, r, invr, dlog, invd, F, st, hist,
-                thist, w_deep, kp, ke, slope, Et, floor, alpha, beta, c, state_i,
+                g,
+                k,
+                top,
+                wnodes,
+                flush_every,
+                B,
+                S,
+                r,
+                invr,
+                dlog,
+                invd,
+                F,
+                st,
+                hist,
+                thist,
+                w_deep,
+                kp,
+                ke,
+                slope,
+                Et,
+                floor,
+                alpha,
+                beta,
+                c,
+                state_i,
             )
             count = 0
     state_i[0] = count
