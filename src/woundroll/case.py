@@ -468,7 +468,7 @@ class Case(_Section):
         ``winding.thickness_profile`` (path relative to the case file), or None."""
         if self.winding.thickness_profile is None:
             return None
-        from woundroll.profile.thickness import load_thickness
+        from woundroll.materials.thickness_profile import load_thickness
 
         return load_thickness(self._path(self.winding.thickness_profile), width=self.web.width)
 

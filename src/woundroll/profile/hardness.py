@@ -39,11 +39,11 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from woundroll.errors import InputError
+from woundroll.materials.thickness_profile import ThicknessProfile
 from woundroll.materials.web import Core, Web
 from woundroll.profile.compare import MeasuredProfile, ProfileComparison, compare_profiles
 from woundroll.profile.nip import NipRoller, nip_hook, solve_nip
 from woundroll.profile.stats import ProfileStats, profile_stats
-from woundroll.profile.thickness import ThicknessProfile
 from woundroll.winding.axisymmetric import AxisymmetricResult, wind_axisymmetric
 from woundroll.winding.tension import TensionSchedule
 
