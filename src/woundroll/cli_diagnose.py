@@ -275,11 +275,9 @@ def json_with_uncertainty(result, uq) -> str:  # type: ignore[no-untyped-def]
     """The run's JSON, with ``uncertainty`` added when it was propagated."""
     if uq is None:
         return result.to_json()
-    import json
+    from woundroll._output import strict_json
 
-    from woundroll.pipeline import _json_default
-
-    return json.dumps({**result.to_dict(), "uncertainty": uq.to_dict()}, default=_json_default)
+    return strict_json({**result.to_dict(), "uncertainty": uq.to_dict()})
 
 
 def print_uncertainty(uq) -> None:  # type: ignore[no-untyped-def]
