@@ -10,9 +10,12 @@ tension. Asserted for every roll:
 * the behaviours a user relies on: the core pressure and the reading rise with the tension
   (a harder-wound roll reads harder); the wound roll is in radial compression throughout.
 
-Two sizes: the default suite runs the fast road (explicit roll spring from the stresses is not
-used; the 1D winding and impact with [tester.roll_spring]) on many rolls and the contact
-model on a few, within :data:`BUDGET` seconds; ``make test-all`` runs more (slow mark).
+Two sizes: the default suite runs the fast road (1D winding, then the impact on an explicit
+``[tester.roll_spring]``) on many rolls and the contact model on at least one, within
+:data:`BUDGET` seconds; ``make test-all`` runs up to 100 rolls for 10 minutes (slow mark).
+Measured on the loaded 2-core development machine: 13 fast rolls in 13 s; 1 contact roll in
+24 s; the long run 80 rolls (160 runs) in 504 s, the reading rising by 6.3 to 54.9 Rho
+(median 26.2) when the tension rises 1.6 x.
 """
 
 import json
@@ -26,7 +29,7 @@ import woundroll
 from woundroll.case import load_case
 
 #: Wall-clock budget of the default fuzz tests [s] (rolls are drawn until it is spent).
-BUDGET = 25.0
+BUDGET = 16.0
 
 
 def _strict(text: str):
@@ -112,8 +115,9 @@ def _fuzz(seed: int, contact: bool, budget: float, max_rolls: int) -> dict:
             # own scatter between two solutions of the same roll is far below that)
             assert rho2 > rho1 - 0.5, (case, rho1, rho2)
         else:
-            # a given spring: tension changes only the active mass, not the reading's sign
-            assert rho2 == pytest.approx(rho1, rel=0.2)
+            # a given spring and the same tapered-column mass (H, rho, a do not depend on the
+            # tension): the reading must not change at all
+            assert rho2 == pytest.approx(rho1, rel=1e-12)
         rises.append(rho2 - rho1)
         n += 1
     return {"rolls": n, "runs": 2 * n, "seconds": time.monotonic() - t0, "rises": rises}
