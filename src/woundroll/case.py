@@ -94,6 +94,8 @@ def _check_tabulated_types(spec: dict[str, Any]) -> None:
     """Types of a tabulated law's keys, before the law reads them (a clear message, no
     TypeError from deep inside)."""
     f = "web.radial_modulus"
+    if "law" in spec and not isinstance(spec["law"], str):
+        raise InputError(f"must be the name of a law (text), got {spec['law']!r}", f"{f}.law")
     if "file" in spec and not isinstance(spec["file"], str):
         raise InputError(f"must be a file name (text), got {spec['file']!r}", f"{f}.file")
     for key in ("strain", "pressure"):

@@ -15,7 +15,8 @@ typed results into :class:`RunResult`:
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -322,22 +323,24 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         "options": spec.contact_options(),
     }
     report("contact", 0.0)
-    stiff = roll_stiffness(web, core, winding.radius, winding.sigma_r, setup.instrument, **args)
+    with _user_fields(case, H):
+        stiff = roll_stiffness(web, core, winding.radius, winding.sigma_r, setup.instrument, **args)
     hardness = hardness_on_roll(setup, stiff, H, web.density, semi_contact_width_given=a_given)
     no_update = None
     if spec.no_update:
         report("contact", 0.5)
         # E_r frozen is softer: the striker goes at least as deep, start where that ended
-        frozen = roll_stiffness(
-            web,
-            core,
-            winding.radius,
-            winding.sigma_r,
-            setup.instrument,
-            update_modulus=False,
-            start_depth=float(stiff.contact.delta[-1]),
-            **args,
-        )
+        with _user_fields(case, H):
+            frozen = roll_stiffness(
+                web,
+                core,
+                winding.radius,
+                winding.sigma_r,
+                setup.instrument,
+                update_modulus=False,
+                start_depth=float(stiff.contact.delta[-1]),
+                **args,
+            )
         no_update = NoUpdate(
             frozen,
             hardness_on_roll(setup, frozen, H, web.density, semi_contact_width_given=a_given),
@@ -371,6 +374,26 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         flags=flags,
         dynamic=dynamic,
     )
+
+
+@contextmanager
+def _user_fields(case: Case, wound: float) -> Iterator[None]:
+    """Errors of the contact model that name an option the user did not set (its defaults
+    follow the roll: ``surface_size`` is the web thickness) are about the roll being too thin
+    for the model: say so, naming the case's field."""
+    try:
+        yield
+    except InputError as exc:
+        fld = exc.field or ""
+        name = fld.removeprefix("contact.options.")
+        user_set = fld.startswith("contact.options.") and name in case.contact.options
+        if user_set or not (fld.startswith("contact.options.") or fld == "contact.radius"):
+            raise
+        raise InputError(
+            f"the roll is too thin for the contact model under the head: {wound * 1e3:.3g} mm "
+            f"wound ({exc.message}); wind a larger roll",
+            "winding.outer_radius" if case.winding.outer_radius is not None else "winding.length",
+        ) from None
 
 
 def _run_profile(
