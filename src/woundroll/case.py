@@ -272,12 +272,13 @@ class ContactSpec(_Section):
     contact is solved to 1.25 x the impact's maximum depth, see
     :func:`woundroll.pipeline.roll_stiffness`). ``friction``: interlayer mu of the slip
     factor {23}. ``no_update``: also solve with E_r frozen at its pre-impact value (the
-    paper's Figure 8 comparison). ``options``: :class:`woundroll.contact.ContactOptions`.
+    paper's Figure 8 comparison; off by default, it costs a second contact solve).
+    ``options``: :class:`woundroll.contact.ContactOptions`.
     """
 
     depth_max: Q("length") | None = None
     friction: Q("dimensionless", "nonnegative") = 0.3
-    no_update: bool = True
+    no_update: bool = False
     options: dict[str, Any] = Field(default_factory=dict)
 
     def contact_options(self) -> Any:

@@ -54,13 +54,20 @@ def run(
     quiet: Annotated[
         bool, typer.Option("--quiet", "-q", help="No progress bar or summary.")
     ] = False,
+    no_update: Annotated[
+        bool,
+        typer.Option(
+            "--no-update",
+            help="Also solve with E_r frozen at its pre-impact value (contact.no_update).",
+        ),
+    ] = False,
 ) -> None:
     """Run the models a case asks for: winding, and with a tester section the hardness reading."""
     from woundroll.case import load_case
     from woundroll.pipeline import run as run_case
 
     try:
-        c = load_case(case, set_ or [])
+        c = load_case(case, [*(set_ or []), *(["contact.no_update=true"] if no_update else [])])
         if quiet or as_json or not sys.stderr.isatty():
             result = run_case(c)
         else:

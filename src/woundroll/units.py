@@ -73,6 +73,7 @@ DIMENSIONS: dict[str, str] = {
     "force_per_area": "[force] / [length] ** 2",
     "density": "[mass] / [length] ** 3",
     "velocity": "[length] / [time]",
+    "acceleration": "[length] / [time] ** 2",
     "energy": "[energy]",
     "frequency": "1 / [time]",
     "bending_stiffness": "[force] * [length] ** 2",
@@ -91,6 +92,7 @@ _KIND_DIMS: dict[str, tuple[int, int, int]] = {
     "force_per_area": (-1, 1, -2),
     "density": (-3, 1, 0),
     "velocity": (1, 0, -1),
+    "acceleration": (1, 0, -2),
     "energy": (2, 1, -2),
     "frequency": (0, 0, -1),
     "bending_stiffness": (3, 1, -2),
@@ -203,6 +205,7 @@ _EXAMPLES = {
     "force_per_area": "'1e9 N/m^2'",
     "density": "'1.4 g/cm^3'",
     "velocity": "'1.1 m/s'",
+    "acceleration": "'9.81 m/s^2'",
     "energy": "'0.08 J'",
     "frequency": "'149.5 rad/s', '24 Hz'",
     "bending_stiffness": "'5.8e5 N m^2'",
@@ -325,7 +328,7 @@ def to_si(value: Any, kind: str, field: str | None = None, *, bare_is_si: bool =
         mag = float(q.magnitude)
     elif q.dimensionality != target:
         raise InputError(
-            f"{value!r} is not a {kind.replace('_', ' ')} "
+            f"{value!r} is not {'an' if kind[0] in 'aeiou' else 'a'} {kind.replace('_', ' ')} "
             f"(it has dimension {q.dimensionality}); use e.g. {_EXAMPLES[kind]}",
             field,
         )

@@ -55,7 +55,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.optimize import brentq
 
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.instruments.definitions import Instrument
@@ -218,7 +217,15 @@ def _energy_depth_law(instrument: Instrument, law: Any) -> float:
     hi = max(xi - xg, 1e-9)
     if g(hi) < 0:  # only if the roll pushes back with negative energy: a bad law
         raise InputError("the roll spring stores negative energy", "roll_spring")
-    return brentq(g, 0.0, hi, xtol=1e-15, rtol=1e-13)
+    # g < 0 at 0 and >= 0 at hi: bisection to 1e-13 of the root (no scipy.optimize at import)
+    lo = 0.0
+    while hi - lo > max(1e-15, 1e-13 * hi):
+        mid = 0.5 * (lo + hi)
+        if g(mid) < 0:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
 
 
 def impact_energy(instrument: Instrument, roll: object) -> EnergyResult:
