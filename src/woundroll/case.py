@@ -31,7 +31,7 @@ from woundroll.errors import InputError
 from woundroll.materials.presets import material_preset
 from woundroll.materials.radial_modulus import RadialModulusLaw, law_from_spec
 from woundroll.materials.web import Core, Web
-from woundroll.units import parse_quantity, to_si
+from woundroll.units import quantity_kind, to_si
 from woundroll.winding.tension import Taper, TensionSchedule
 
 
@@ -156,26 +156,20 @@ class TaperSpec(_Section):
 
 def _tension(value: Any) -> tuple[str, float]:
     """Classify the tension by its dimension: force, force per width, or stress."""
-    q = parse_quantity(value)
-    if not math.isfinite(float(q.magnitude)):
-        raise ValueError(f"must be a finite number, got {value!r}")
-    for kind in ("force", "force_per_length", "pressure"):
-        try:
-            v = to_si(q, kind)
-        except InputError:
-            continue
-        if q.unitless:
-            raise ValueError(
-                "needs a unit: a force over the whole width ('26.7 N'), a force per "
-                "width ('2 pli', '175 N/m') or a stress ('1.75 MPa')"
-            )
-        if not (v >= 0):
-            raise ValueError(f"must be zero or positive, got {value!r}")
-        return kind, v
-    raise ValueError(
-        f"{value!r} is neither a force ('26.7 N'), a force per width ('2 pli') nor a "
-        "stress ('1.75 MPa')"
-    )
+    kind, v = quantity_kind(value, ("force", "force_per_length", "pressure"))
+    if kind is None:
+        raise ValueError(
+            f"{value!r} is neither a force ('26.7 N'), a force per width ('2 pli') nor a "
+            "stress ('1.75 MPa')"
+        )
+    if not kind:
+        raise ValueError(
+            "needs a unit: a force over the whole width ('26.7 N'), a force per "
+            "width ('2 pli', '175 N/m') or a stress ('1.75 MPa')"
+        )
+    if not (v >= 0):
+        raise ValueError(f"must be zero or positive, got {value!r}")
+    return kind, v
 
 
 class NipRollerSpec(_Section):
@@ -294,7 +288,8 @@ class ContactSpec(_Section):
     contact is solved to 1.25 x the impact's maximum depth, see
     :func:`woundroll.pipeline.roll_stiffness`). ``friction``: interlayer mu of the slip
     factor {23}. ``no_update``: also solve with E_r frozen at its pre-impact value (the
-    paper's Figure 8 comparison). ``options``: :class:`woundroll.contact.ContactOptions`.
+    paper's Figure 8 comparison; off by default, it costs a second contact solve).
+    ``options``: :class:`woundroll.contact.ContactOptions`.
     ``dynamic``: also solve the impact in time on the FE roll (the paper's dynamic reference,
     :func:`woundroll.contact.dynamic.impact_dynamic`); ``dynamic_options``:
     :class:`woundroll.contact.dynamic.DynamicOptions` (time step, mass matrix, damping).
@@ -302,7 +297,7 @@ class ContactSpec(_Section):
 
     depth_max: Q("length") | None = None
     friction: Q("dimensionless", "nonnegative") = 0.3
-    no_update: bool = True
+    no_update: bool = False
     options: dict[str, Any] = Field(default_factory=dict)
     dynamic: bool = False
     dynamic_options: dict[str, Any] = Field(default_factory=dict)

@@ -93,6 +93,13 @@ def run(
     report: Annotated[
         bool, typer.Option("--report", help="With --out: also write the HTML report.html.")
     ] = False,
+    no_update: Annotated[
+        bool,
+        typer.Option(
+            "--no-update",
+            help="Also solve with E_r frozen at its pre-impact value (contact.no_update).",
+        ),
+    ] = False,
 ) -> None:
     """Run the models a case asks for: winding, and with a tester section the hardness reading."""
     from woundroll._pool import Interrupted, clean_stop
@@ -103,7 +110,7 @@ def run(
         try:
             if report and out_dir is None:
                 raise InputError("the report goes into the --out directory: give --out", "--report")
-            c = load_case(case, set_ or [])
+            c = load_case(case, [*(set_ or []), *(["contact.no_update=true"] if no_update else [])])
             if out_dir is not None:
                 from woundroll._output import check_out_dir
 
