@@ -75,6 +75,10 @@ FloatArray = NDArray[np.float64]
 _MODES = {"midpoint": 0.5, "end": 1.0, "explicit": 0.0}
 _MAX_NODES = 20_000_000
 _MAX_LEVELS = 48
+#: Rolls up to this many nodes are wound by the NumPy kernels (no numba import, whose cost
+#: of 0.5-2 s per process exceeds the NumPy solve below this size; docs/winding.md), unless
+#: the lazy deep part is off (``window_layers=None``, O(N^2): a check, compiled).
+_NUMPY_MAX_NODES = 4001
 _NEW_LAYER = ("laid_on", "elastic")
 
 
@@ -337,6 +341,19 @@ def _result(
     )
 
 
+def _numpy_kernels_suffice(n_nodes: int, options: WindingOptions) -> bool:
+    """Small roll, default-sized window: the NumPy kernels beat numba's per-process cost.
+
+    The NumPy kernels' time grows with nodes x load substeps x window size (Python loops
+    over the window); ``_NUMPY_MAX_NODES`` is the break-even for the default window
+    (8 layers) and one load step. ``window_layers=None`` (O(N^2), a check) stays compiled.
+    """
+    if options.window_layers is None:
+        return False
+    window = max(options.window_layers, 2 * options.flush_interval * options.layers_per_increment)
+    return n_nodes * options.load_substeps * max(window / 8.0, 1.0) <= _NUMPY_MAX_NODES
+
+
 def wind(
     web: Web,
     core: Core,
@@ -374,13 +391,15 @@ def wind(
     ConvergenceError
         The fixed-point iteration for E_r did not converge in an increment.
     """
-    from woundroll.winding import _kernels as K
-
     options = options if options is not None else WindingOptions()
     if not isinstance(options, WindingOptions):
         raise InputError(f"expected WindingOptions, got {type(options).__name__}", "options")
     prob = build_problem(web, core, outer_radius, tension, options)
     nn = prob.r.size
+    if _numpy_kernels_suffice(nn, options):
+        from woundroll.winding import _kernels_numpy as K  # no compiler cost (docs/winding.md)
+    else:
+        from woundroll.winding import _kernels as K
     F = np.zeros(nn)
     st = np.zeros(nn)
     alpha = np.zeros(max(nn - 1, 1))
