@@ -47,12 +47,24 @@ during the increment, which is positive below a tensioned layer, so E_r > 0. A f
 ``E_r >= modulus_floor * E_theta`` (default 1e-6 E_theta, i.e. 5 kPa for a 5 GPa film)
 keeps a zero-tension layer, or the explicit rule at a free surface, finite.
 
-Lazy deep part (speed)
-----------------------
-Below a window of the top ``window_layers`` layers the element moduli are frozen for
-``flush_interval`` increments at the pressure predicted for the middle of that period;
-their increments are the frozen shape times one scalar, accumulated and applied at each
-flush. ``window_layers=None`` solves the whole roll with current moduli every increment.
+Lazy deep part (speed): levels of doubling depth
+-------------------------------------------------
+The top ``window_layers`` layers (level 0) are re-solved with current moduli and iterated
+in every increment. Below them, level l >= 1 is the band from ``window_layers x 2^(l-1)``
+to ``window_layers x 2^l`` layers deep (placed when it is refreshed); its element moduli are
+frozen for ``flush_interval x 2^(l-1)`` increments at the pressure predicted (quadratic
+extrapolation of its last refreshes) for the middle of that period, so the frozen period
+is the same fraction of the depth at every level. With frozen coefficients a band's
+increments are its frozen shape (a product of Riccati factors) times one scalar, the
+pending increment at its top, applied when the band is refreshed; the Riccati recursion
+condenses everything below a band into one coefficient. Refresh k re-solves levels
+1..1+(trailing zero bits of k): O(log N) element evaluations per increment, amortised,
+O(N log N) for the roll. ``window_layers=None`` solves the whole roll with current moduli
+every increment (O(N^2), the exact answer the default matches within 0.1 %).
+
+Kernels: :mod:`woundroll.winding._kernels` (numba) and its NumPy twin
+:mod:`woundroll.winding._kernels_numpy` (same algorithm, equal to rounding), used for small
+rolls so that a small roll pays no compiler import (docs/winding.md).
 """
 
 from __future__ import annotations
@@ -102,9 +114,10 @@ class WindingOptions:
         Floor of E_r as a fraction of E_theta (keeps K1 = 0 finite).
     window_layers : int or None
         Layers below the surface solved with current moduli every increment; deeper ones
-        are frozen between flushes. None: no freezing.
+        are frozen in levels of doubling depth (module docstring). None: no freezing.
     flush_interval : int
-        Increments between refreshes of the frozen deep part.
+        Increments between refreshes of the shallowest frozen level (level l: this times
+        2^(l-1)).
     load_substeps : int
         Apply each increment's pressure in this many equal steps, updating E_r in between
         (a check on the E_r rule: many substeps integrate the tangent law exactly).
