@@ -31,16 +31,25 @@ def _moduli(P: np.ndarray, kp: np.ndarray, ke: np.ndarray, floor: float, slope: 
 def _pq(g: np.ndarray, d: np.ndarray, inv_d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Vectorised :func:`woundroll.winding._kernels.element_pq` (series for k d < 0.1)."""
     x2 = g * d * d
-    p = (1.0 + x2 * (1.0 / 3.0 + x2 * (-1.0 / 45.0 + x2 * (2.0 / 945.0)))) * inv_d
-    q = (1.0 + x2 * (-1.0 / 6.0 + x2 * (7.0 / 360.0 + x2 * (-31.0 / 15120.0)))) * inv_d
     big = x2 >= 0.01
-    if big.any():
-        k = np.sqrt(g[big])
-        em = np.exp(-k * d[big])
-        e2 = em * em
-        den = 1.0 - e2
-        p[big] = k * (1.0 + e2) / den
-        q[big] = 2.0 * k * em / den
+    n_big = np.count_nonzero(big)
+    if n_big < big.shape[0]:
+        p = (1.0 + x2 * (1.0 / 3.0 + x2 * (-1.0 / 45.0 + x2 * (2.0 / 945.0)))) * inv_d
+        q = (1.0 + x2 * (-1.0 / 6.0 + x2 * (7.0 / 360.0 + x2 * (-31.0 / 15120.0)))) * inv_d
+        if n_big == 0:
+            return p, q
+        g = g[big]
+        d = d[big]
+    k = np.sqrt(g)
+    em = np.exp(-k * d)
+    e2 = em * em
+    den = 1.0 - e2
+    pb = k * (1.0 + e2) / den
+    qb = 2.0 * k * em / den
+    if n_big == big.shape[0]:
+        return pb, qb
+    p[big] = pb
+    q[big] = qb
     return p, q
 
 
