@@ -36,16 +36,25 @@ Discretisation (``_axisym_fe``; docs/profile.md section 2)
   group's own stresses are the averages over its layers: ``sigma_r = -p_j / 2`` and the hoop
   stress ``sigma_j`` plus ``(m - 1)/(2 m)`` of the hoop (and sigma_z, tau_rz) increment.
   Default **graded** grouping: single layers at the outer surface, a group holding about a
-  quarter of the layers above it, equal groups below (``_split_layers``).
+  quarter of the layers above it, equal groups below (``_split_layers``), at most
+  ``MAX_GROUP_LAYERS`` = 2 layers per group (:func:`default_groups`): the midpoint rule's
+  error grows as ``m^2 - 1`` with the group size ``m`` and the soft surface of a Table 2 roll
+  (``E_theta / E_r`` ~ 1e4) needs ``m <= 2`` for 1 % (docs/profile.md, section 6).
+* The group's pressure on the stack ``p_j = sigma_j m h_j / r_j`` and its own radial stress
+  (the thin ring, ``-p_j / 2`` at its centre scaled by ``r_j / r_mid``) are taken on the
+  undeformed geometry, as the nodal force ``-sigma_j w_j L`` of the small-strain increment
+  (and as the 1D model does).
+* ``core_pressure``: ``-sigma_r`` on the core, the inner face of the first group (its
+  increments evaluated there from the element solution).
 * Radial modulus per element at the mid-increment pressure, predicted from the previous
   increment's response scaled by the ratio of the loads (``corrections`` extra fixed-point
   solves optional). With ``K1 = 0`` (Table 3) ``E_r`` is floored at ``E_r_floor`` (default
   ``1e-6 E_theta``, 5 kPa) so that a slack sector stays solvable with zero stress.
 * Lazy deep part: groups below the top ``window`` (24) are frozen (E_r at the pressure
   predicted for the middle of the period) and condensed onto the window's bottom layer
-  (Schur complement from a natural-order sparse LU), refreshed every ``flush`` (8)
+  (Schur complement from a banded Cholesky in the mesh order), refreshed every ``flush`` (8)
   increments; their response is recovered at each refresh. ``window=None`` solves the
-  whole stack every increment (sparse LU).
+  whole stack every increment (banded Cholesky).
 * Slack flag: ``slack[j]`` is True when, within ``SLACK_DEPTH`` (1 mm) of the surface, a
   group of sector ``j`` was wound without tension or its E_r sat at the floor.
 
@@ -61,7 +70,8 @@ piecewise linear in ``1/R0``) so that ``sum_j sigma_j h_j w_j = F``. A nip adds
 ``mu N_j / h_j`` with ``N_j`` the local nip load per width (uniform ``tension.nip_load``
 unless a ``nip`` callable gives the CMD distribution). The group's layers carry their
 wound-on tension as initial hoop stress; their pressure on the stack below is
-``p_j = sigma_j m h_j / rho_j`` (``m`` layers in the group).
+``p_j = sigma_j m h_j / r_j`` (``m`` layers in the group, ``r_j`` the undeformed radius
+of the stack).
 
 Outputs at the element (group, sector) centres: sigma_r, sigma_theta, sigma_z, tau_rz.
 """
@@ -78,8 +88,8 @@ from numpy.typing import NDArray
 from scipy.linalg import LinAlgError, solveh_banded
 
 from woundroll.errors import ConvergenceError, InputError
-from woundroll.materials.web import Core, Web
 from woundroll.materials.thickness_profile import ThicknessProfile
+from woundroll.materials.web import Core, Web
 from woundroll.winding import _axisym_fe as _fe
 from woundroll.winding.tension import TensionSchedule
 
@@ -88,8 +98,12 @@ FloatArray = NDArray[np.float64]
 #: Nip hook: ``nip(group_index, outer_radius[j], sigma_r_top[j]) -> N[j]`` [N/m per width].
 NipHook = Callable[[int, FloatArray, FloatArray], FloatArray]
 
-#: Default number of winding increments (layer groups), graded toward the surface.
-DEFAULT_GROUPS = 200
+#: Default grouping: graded toward the surface, at most ``MAX_GROUP_LAYERS`` layers per group
+#: (:func:`default_groups`). The grouping error grows as ``m^2 - 1`` with the group size ``m``
+#: (midpoint rule); 2 layers keep every bundled PET roll within 0.5 % of the layer-by-layer
+#: 1D model at every radius, 5 layers (the former 200 groups on Table 2's rolls) missed by
+#: up to 4.9 % (docs/profile.md, section 6).
+MAX_GROUP_LAYERS = 2
 #: Lazy deep part of the FE model: groups below the top ``DEFAULT_WINDOW`` are frozen and
 #: condensed, refreshed every ``DEFAULT_FLUSH`` increments (``window=None``: exact).
 DEFAULT_WINDOW = 24
@@ -124,6 +138,9 @@ class AxisymmetricResult:
     slack : ndarray of bool  per sector: within ``SLACK_DEPTH`` (1 mm) of the surface a group
                              was wound without tension or its E_r sat at the floor, i.e. the
                              near-surface state (and a reading there) is set by the floor.
+    core_pressure : ndarray [Pa]  ``-sigma_r`` on the core surface per sector (the inner face
+                             of the first group; its centre lies half a group higher, where
+                             sigma_r is lower by the steep gradient next to a stiff core).
     """
 
     z: FloatArray
@@ -144,6 +161,7 @@ class AxisymmetricResult:
     core_radius: float
     info: dict[str, Any] = field(default_factory=dict)
     slack: NDArray[np.bool_] = field(default_factory=lambda: np.zeros(0, dtype=bool))
+    core_pressure: FloatArray = field(default_factory=lambda: np.zeros(0))
 
     @property
     def n_layers(self) -> int:
@@ -156,7 +174,9 @@ class AxisymmetricResult:
 
     @property
     def sigma_r_core(self) -> FloatArray:
-        """Radial stress [Pa] of the group on the core, per sector."""
+        """Radial stress [Pa] on the core surface, per sector (``-core_pressure``)."""
+        if self.core_pressure.size:
+            return -self.core_pressure
         return self.sigma_r[0]
 
     @property
@@ -170,7 +190,7 @@ class AxisymmetricResult:
         core surface (stress of the first group) through the group centres to the sector's
         undeformed outer radius (free surface, ``sigma_r = 0``), and sigma_r [Pa]."""
         r = np.concatenate([[self.core_radius], self.radius[:, j], [self.build_radius[j]]])
-        s = np.concatenate([[self.sigma_r[0, j]], self.sigma_r[:, j], [0.0]])
+        s = np.concatenate([[self.sigma_r_core[j]], self.sigma_r[:, j], [0.0]])
         return r, s
 
     def column(self, j: int) -> dict[str, FloatArray]:
@@ -310,6 +330,8 @@ def _column_solve(
         if ne > 0:
             k12[0] = 0.0
     n = (ne + 1) * ncol
+    if n == 1:  # one node (LAPACK's ptsv rejects n = 1)
+        return rhs / diag
     ab = np.zeros((2, n))
     ab[1] = diag.T.ravel()
     up = np.zeros((ncol, ne + 1))
@@ -362,6 +384,14 @@ def _split_layers(n_layers: int, n_groups: int, grouping: str = "graded") -> NDA
     return np.concatenate([deep, np.asarray(zone[::-1], dtype=np.int64)])
 
 
+def default_groups(n_layers: int, max_layers: int = MAX_GROUP_LAYERS) -> int:
+    """Fewest graded groups (:func:`_split_layers`) with at most ``max_layers`` layers each."""
+    G = min(n_layers, -(-n_layers // max_layers))
+    while G < n_layers and int(_split_layers(n_layers, G).max()) > max_layers:
+        G += 1
+    return G
+
+
 def wind_axisymmetric(
     web: Web,
     core: Core,
@@ -400,8 +430,8 @@ def wind_axisymmetric(
     n_sectors : int
         CMD sectors (finite elements across the width).
     n_groups : int, optional
-        Winding increments; default ``min(n_layers, DEFAULT_GROUPS)``. Convergence under
-        refinement: see docs/profile.md.
+        Winding increments; default :func:`default_groups` (graded, at most
+        ``MAX_GROUP_LAYERS`` = 2 layers per group). Convergence: docs/profile.md, section 6.
     shear_coupling : bool
         True (default): the axisymmetric (r, z) finite-element model. False: independent
         sectors, each a 1D plane-stress roll (``sigma_z = tau_rz = 0``), for comparison.
@@ -472,7 +502,7 @@ def wind_axisymmetric(
     if n_layers < 1:
         raise InputError("the roll must hold at least one layer", "roll.outer_radius")
     if n_groups is None:
-        n_groups = min(n_layers, DEFAULT_GROUPS)
+        n_groups = default_groups(n_layers)
     if not (isinstance(n_groups, int | np.integer) and 1 <= n_groups <= n_layers):
         raise InputError(
             f"must be a whole number in [1, {n_layers}] (the layer count), got {n_groups!r}",
@@ -501,7 +531,8 @@ def wind_axisymmetric(
     nnode = ncol + 1 if fe else ncol
     u = np.zeros((G + 1, nnode))  # radial displacement of the nodes
     uz = np.zeros((G + 1, nnode))
-    S = np.zeros((4, G, ncol))  # sigma_r, sigma_theta, sigma_z, tau_rz at element centres
+    # sigma_r, sigma_theta, sigma_z, tau_rz at element centres; sigma_r on the inner face
+    S = np.zeros((5, G, ncol))
     s_r = S[0]
     wot = np.zeros((G, ncol))
     nip_used = np.zeros((G, ncol))
@@ -552,11 +583,12 @@ def wind_axisymmetric(
             else:
                 du = _column_solve(rn, E_r, F, E_t, nu, w, k_core, rigid)
                 duz = np.zeros_like(du)
-                dS = np.zeros((4, ne, ncol))
-                if ne > 0:
-                    dS[0], dS[1] = _element_stress(
-                        rn[:-1], rn[1:], E_r, E_t, nu, du[:ne], du[1:], 0.5 * (rn[:-1] + rn[1:])
-                    )
+                dS = np.zeros((5, ne - k0, ncol))
+                if ne > k0:
+                    r1, r2 = rn[:-1], rn[1:]
+                    args = (r1, r2, E_r, E_t, nu, du[:-1], du[1:])
+                    dS[0], dS[1] = _element_stress(*args, 0.5 * (r1 + r2))
+                    dS[4] = _element_stress(*args, r1)[0]
         except (LinAlgError, RuntimeError) as exc:
             raise ConvergenceError(
                 f"winding increment {g + 1}: singular stiffness ({exc})"
@@ -619,7 +651,9 @@ def wind_axisymmetric(
         nip_used[g] = N
         sig = sig_w + tension.friction * N / h
         wot[g] = sig
-        p = sig * T_g / rho
+        # pressure of the group on the stack below, on the undeformed geometry of the
+        # (small-strain) increment, as the nodal force -sig w L applied below
+        p = sig * T_g / r_node[g]
         S[1, g] = sig  # initial hoop stress of the new group (sigma_r starts at 0)
         u[g + 1] = u[g]  # the group lands on the deformed stack (radius bookkeeping)
         uz[g + 1] = uz[g]
@@ -645,7 +679,7 @@ def wind_axisymmetric(
             E2 = modulus(pred)
             du, duz, dS = solve(g, ne, E2, F)
             # corrector(s): E_r at the mid-increment pressure, fixed-point iteration
-            for _ in range(corrections):
+            for _ in range(corrections if ne > k0 else 0):
                 E2 = modulus(s_old + 0.5 * dS[0])
                 du, duz, dS_new = solve(g, ne, E2, F)
                 scale_ = max(np.max(np.abs(dS_new[0])), 1e-300)
@@ -660,9 +694,10 @@ def wind_axisymmetric(
             # the group's own layers: sigma_r rises from 0 at the top to -p at the bottom
             # (mean -p/2); a layer of the group felt on average (m - 1) / 2 of the m later
             # layers' loads, so that fraction of the hoop (and axial, shear) increment
-            s_r[g] = -0.5 * p
+            s_r[g] = -0.5 * p * r_node[g] / r_mid[g]
+            S[4, g] = -p
             if ne > g:
-                S[1:, g] += top_frac[g] * dS[1:, g - k0]
+                S[1:4, g] += top_frac[g] * dS[1:4, g - k0]
             u[k0 : ne + 1] += du
             uz[k0 : ne + 1] += duz
             if k0 > 0:
@@ -714,6 +749,7 @@ def wind_axisymmetric(
             "u_z_outer_m": at_sectors(uz[-1]) if fe else np.zeros(ncol),
         },
         slack=slack,
+        core_pressure=-S[4, 0].copy(),
     )
 
 
@@ -725,11 +761,12 @@ def group_convergence(
     thickness: ThicknessProfile | None = None,
     *,
     n_sectors: int = 61,
-    n_groups: int = DEFAULT_GROUPS,
+    n_groups: int | None = None,
     surface_depth: float = 5e-3,
     **kwargs: Any,
 ) -> dict[str, float]:
-    """Convergence check of the layer grouping: wind with ``n_groups`` and ``2 n_groups``.
+    """Convergence check of the layer grouping: wind with ``n_groups`` (default: the default
+    grouping) and twice as many groups.
 
     Returns the largest change between the two of the radial stress at the core and of the
     mean wound-on tension, each relative to its largest magnitude [-]; of the radial stress
@@ -754,6 +791,7 @@ def group_convergence(
         **kwargs,
     )
     t1 = time.perf_counter()
+    n_groups = int(a.layers_per_group.size)
     n2 = min(2 * n_groups, a.n_layers)
     b = wind_axisymmetric(
         web, core, outer_radius, tension, thickness, n_sectors=n_sectors, n_groups=n2, **kwargs
