@@ -27,10 +27,12 @@ distribution recomputed for every winding increment from the current outer-radiu
 from __future__ import annotations
 
 import concurrent.futures as cf
+import contextlib
 import multiprocessing
+import os
 import pickle
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -395,20 +397,46 @@ def map_sectors(
         return out[:, 0], out[:, 1]
     if _picklable(fn):
         try:
-            return _run_pool(
-                fn,
-                profiles,
-                out,
-                progress,
-                cf.ProcessPoolExecutor(
-                    max_workers=workers, mp_context=multiprocessing.get_context("spawn")
-                ),
-            )
+            return _run_pool(fn, profiles, out, progress, sector_pool(workers))
         except (ImportError, AttributeError, pickle.PicklingError, BrokenProcessPool):
             # the callable pickles here but cannot be rebuilt in a fresh process (defined in
             # a script or a test module): fall back to threads
             pass
     return _run_pool(fn, profiles, out, progress, cf.ThreadPoolExecutor(max_workers=workers))
+
+
+#: Environment of the sector workers: one BLAS thread each. The workers already fill the
+#: cores; threaded BLAS on top of them oversubscribes the machine (single contact solves
+#: measured up to tenfold slower under load, docs/profile.md, section 7).
+WORKER_ENV = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+
+
+def sector_pool(workers: int) -> cf.ProcessPoolExecutor:
+    """The process pool of the per-sector solves (``spawn``: no inherited state). The one
+    place where sector workers are created; they read :data:`WORKER_ENV` when they start
+    (:func:`_run_pool` sets it while they do)."""
+    return cf.ProcessPoolExecutor(
+        max_workers=workers, mp_context=multiprocessing.get_context("spawn")
+    )
+
+
+@contextlib.contextmanager
+def _worker_env(ex: cf.Executor) -> Iterator[None]:
+    """:data:`WORKER_ENV` in the environment while the pool's workers start (spawned
+    children inherit it; this process's BLAS is already loaded and keeps its threads)."""
+    if not isinstance(ex, cf.ProcessPoolExecutor):
+        yield
+        return
+    saved = {k: os.environ.get(k) for k in WORKER_ENV}
+    os.environ.update(WORKER_ENV)
+    try:
+        yield
+    finally:
+        for k, v in saved.items():
+            if v is None:
+                os.environ.pop(k, None)
+            else:
+                os.environ[k] = v
 
 
 def _run_pool(
@@ -421,7 +449,8 @@ def _run_pool(
     n = len(profiles)
     done = 0
     with ex:
-        futs = {ex.submit(_call, fn, r, s): j for j, (r, s) in enumerate(profiles)}
+        with _worker_env(ex):
+            futs = {ex.submit(_call, fn, r, s): j for j, (r, s) in enumerate(profiles)}
         for fut in cf.as_completed(futs):
             out[futs[fut]] = fut.result()
             done += 1
