@@ -520,6 +520,78 @@ def predict_profile(
     workers = _check_workers(workers)
     t0 = time.perf_counter()
     timings: dict[str, float] = {}
+    readout, contact = _readout_and_contact(web, core, contact, instrument, depth_max)
+
+    def stage(name: str) -> Callable[[int, int], None] | None:
+        if progress is None:
+            return None
+        return lambda d, n: progress(name, d, n)
+
+    hook, f_depth = None, None
+    if nip is not None:
+        hook, f_depth, tension = _nip_on_the_roll(
+            web,
+            core,
+            tension,
+            thickness_profile,
+            outer_radius,
+            nip,
+            n_sectors=n_sectors,
+            n_groups=n_groups,
+            workers=workers,
+            progress=stage("foundation"),
+        )
+        timings["nip_foundation"] = time.perf_counter() - t0
+    # 1. stresses in the roll, (r, z)
+    t1 = time.perf_counter()
+    w = wind_axisymmetric(
+        web,
+        core,
+        outer_radius,
+        tension,
+        thickness_profile,
+        n_sectors=n_sectors,
+        n_groups=n_groups,
+        nip=hook,
+        progress=stage("winding"),
+    )
+    timings["winding"] = time.perf_counter() - t1
+    # 2. the roll spring under the striker, sector by sector
+    t2 = time.perf_counter()
+    profiles = [w.sector_profile(j) for j in range(w.z.size)]
+    alpha, beta = map_sectors(contact, profiles, workers=workers, progress=stage("contact"))
+    timings["contact"] = time.perf_counter() - t2
+    # 3. the reading
+    rho = np.asarray(readout(alpha, beta), dtype=float).reshape(-1)
+    if rho.shape != alpha.shape or not np.all(np.isfinite(rho)):
+        raise InputError(
+            "the readout must return one finite reading per sector", "tester.instrument"
+        )
+    timings["total"] = time.perf_counter() - t0
+    return ProfileResult(
+        z=w.z,
+        thickness=w.thickness,
+        rho=rho,
+        alpha=alpha,
+        beta=beta,
+        wot=w.wot_mean,
+        sigma_r_outer=w.sigma_r_outer.copy(),
+        sigma_r_core=w.sigma_r_core.copy(),
+        nip_load=w.nip_load[-1].copy() if nip is not None else None,
+        winding=w,
+        rho_stats=profile_stats(rho, "profile.rho"),
+        thickness_stats=profile_stats(w.thickness, "profile.thickness"),
+        timings=timings,
+        nip_foundation_depth=f_depth,
+    )
+
+
+def _readout_and_contact(
+    web: Web, core: Core, contact: Any, instrument: Any, depth_max: float
+) -> tuple[ReadoutFn, ContactFn]:
+    """The reading from (alpha, beta) (an Instrument's energy model, default the Rho-meter,
+    or a callable) and the per-sector contact callable (default :class:`ContactModel` with
+    the instrument's head)."""
     readout: ReadoutFn
     inst = None
     if instrument is None:
@@ -548,113 +620,68 @@ def predict_profile(
         )
     elif not callable(contact):
         raise InputError("must be a callable (radius, sigma_r) -> (alpha, beta)", "tester.contact")
+    return readout, contact
 
-    def wind_progress(stage: str) -> Callable[[int, int], None] | None:
-        if progress is None:
-            return None
-        return lambda d, n: progress(stage, d, n)
 
-    hook = None
-    f_depth = None
-    if nip is not None and not isinstance(nip, NipSpec):
+def _nip_on_the_roll(
+    web: Web,
+    core: Core,
+    tension: TensionSchedule,
+    thickness_profile: ThicknessProfile | None,
+    outer_radius: float,
+    nip: Any,
+    *,
+    n_sectors: int,
+    n_groups: int | None,
+    workers: int,
+    progress: Callable[[int, int], None] | None,
+) -> tuple[Any, float | None, TensionSchedule]:
+    """The nip roller riding on the roll: a preliminary roll wound with the uniform
+    nip-induced tension, the roll's foundation law for the roller at every
+    ``foundation_stride``-th sector (fit depth following the nip's reach), and the hook that
+    gives :func:`wind_axisymmetric` the CMD nip load of every increment. Returns the hook,
+    the foundation's fit depth and the tension schedule without the uniform nip load."""
+    if not isinstance(nip, NipSpec):
         raise InputError("must be a NipSpec (roller, foundation) or None", "winding.nip")
-    if nip is not None:
-        if tension.nip_load > 0:
-            raise InputError(
-                "set the nip load in the NipSpec's roller, not in the tension "
-                "schedule, when a nip distribution is computed",
-                "winding.nip_load",
-            )
-        roller = nip.roller
-        # preliminary roll: uniform nip-induced tension mu N / h
-        pre_tension = TensionSchedule(
-            web_stress=tension.web_stress,
-            taper=tension.taper,
-            nip_load=roller.line_load,
-            friction=roller.friction,
+    if tension.nip_load > 0:
+        raise InputError(
+            "set the nip load in the NipSpec's roller, not in the tension "
+            "schedule, when a nip distribution is computed",
+            "winding.nip_load",
         )
-        pre = wind_axisymmetric(
-            web,
-            core,
-            outer_radius,
-            pre_tension,
-            thickness_profile,
-            n_sectors=n_sectors,
-            n_groups=n_groups,
-        )
-        ns = pre.z.size
-        picks = sorted(set(range(0, ns, nip.foundation_stride)) | {ns - 1})
-        edges = np.concatenate(
-            [[pre.z[0] - 0.5 * pre.dz[0]], pre.z[0] - 0.5 * pre.dz[0] + np.cumsum(pre.dz)]
-        )
-        gap = float(np.max(pre.outer_radius)) - pre.outer_radius
-        f_depth = nip.foundation_depth
-        for attempt in range(3):
-            found = nip.foundation or ContactModel(web, core, roller.radius, 1.0, f_depth)
-            fa, fb = map_sectors(
-                found,
-                [pre.sector_profile(j) for j in picks],
-                workers=workers,
-                progress=wind_progress("foundation"),
-            )
-            alpha_n = np.interp(pre.z, pre.z[picks], fa)
-            beta_n = np.interp(pre.z, pre.z[picks], fb)
-            if nip.foundation is not None:
-                f_depth = None  # the caller's foundation: no depth range of ours
-                break
-            reach = float(np.max(solve_nip(edges, alpha_n, beta_n, roller, gap=gap).indentation))
-            if reach <= 0 or 0.25 * f_depth <= reach <= f_depth or attempt == 2:
-                break  # f_depth stays the depth the laws were fitted over
-            f_depth = 1.25 * reach
-        hook = nip_hook(edges, alpha_n, beta_n, roller)
-
-        tension = TensionSchedule(
-            web_stress=tension.web_stress,
-            taper=tension.taper,
-            nip_load=0.0,
-            friction=roller.friction,
-        )
-        timings["nip_foundation"] = time.perf_counter() - t0
-    t1 = time.perf_counter()
-    w = wind_axisymmetric(
+    roller = nip.roller
+    pre = wind_axisymmetric(
         web,
         core,
         outer_radius,
-        tension,
+        replace(tension, nip_load=roller.line_load, friction=roller.friction),
         thickness_profile,
         n_sectors=n_sectors,
         n_groups=n_groups,
-        nip=hook,
-        progress=wind_progress("winding"),
     )
-    timings["winding"] = time.perf_counter() - t1
-    t2 = time.perf_counter()
-    profiles = [w.sector_profile(j) for j in range(w.z.size)]
-    alpha, beta = map_sectors(contact, profiles, workers=workers, progress=wind_progress("contact"))
-    timings["contact"] = time.perf_counter() - t2
-    rho = np.asarray(readout(alpha, beta), dtype=float).reshape(-1)
-    if rho.shape != alpha.shape or not np.all(np.isfinite(rho)):
-        raise InputError(
-            "the readout must return one finite reading per sector", "tester.instrument"
+    ns = pre.z.size
+    picks = sorted(set(range(0, ns, nip.foundation_stride)) | {ns - 1})
+    edges = np.concatenate(
+        [[pre.z[0] - 0.5 * pre.dz[0]], pre.z[0] - 0.5 * pre.dz[0] + np.cumsum(pre.dz)]
+    )
+    gap = float(np.max(pre.outer_radius)) - pre.outer_radius
+    f_depth: float | None = nip.foundation_depth
+    for attempt in range(3):
+        found = nip.foundation or ContactModel(web, core, roller.radius, 1.0, f_depth)
+        fa, fb = map_sectors(
+            found, [pre.sector_profile(j) for j in picks], workers=workers, progress=progress
         )
-    timings["total"] = time.perf_counter() - t0
-    nip_load = w.nip_load[-1].copy() if nip is not None else None
-    return ProfileResult(
-        z=w.z,
-        thickness=w.thickness,
-        rho=rho,
-        alpha=alpha,
-        beta=beta,
-        wot=w.wot_mean,
-        sigma_r_outer=w.sigma_r_outer.copy(),
-        sigma_r_core=w.sigma_r_core.copy(),
-        nip_load=nip_load,
-        winding=w,
-        rho_stats=profile_stats(rho, "profile.rho"),
-        thickness_stats=profile_stats(w.thickness, "profile.thickness"),
-        timings=timings,
-        nip_foundation_depth=f_depth,
-    )
+        alpha_n = np.interp(pre.z, pre.z[picks], fa)
+        beta_n = np.interp(pre.z, pre.z[picks], fb)
+        if nip.foundation is not None:
+            f_depth = None  # the caller's foundation: no depth range of ours
+            break
+        reach = float(np.max(solve_nip(edges, alpha_n, beta_n, roller, gap=gap).indentation))
+        if reach <= 0 or 0.25 * f_depth <= reach <= f_depth or attempt == 2:
+            break  # f_depth stays the depth the laws were fitted over
+        f_depth = 1.25 * reach
+    hook = nip_hook(edges, alpha_n, beta_n, roller)
+    return hook, f_depth, replace(tension, nip_load=0.0, friction=roller.friction)
 
 
 __all__ = [
