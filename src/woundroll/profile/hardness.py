@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import concurrent.futures as cf
 import contextlib
+import math
 import multiprocessing
 import os
 import pickle
@@ -374,35 +375,39 @@ def _picklable(obj: Any) -> bool:
 
 
 def map_sectors(
-    fn: ContactFn,
+    fn: ContactFn | Sequence[ContactFn],
     profiles: Sequence[tuple[FloatArray, FloatArray]],
     *,
     workers: int = 2,
     progress: Callable[[int, int], None] | None = None,
 ) -> tuple[FloatArray, FloatArray]:
-    """Evaluate ``fn(radius, sigma_r)`` for every sector, in parallel.
+    """Evaluate ``fn(radius, sigma_r)`` for every sector, in parallel (``fn`` one callable,
+    or one per sector).
 
     Processes (``spawn``) when ``fn`` can be pickled and ``workers > 1``, threads when it
     cannot, in-line when ``workers == 1``. Returns ``(alpha, beta)`` arrays in sector order.
     """
     n = len(profiles)
+    fns = list(fn) if isinstance(fn, Sequence) else [fn] * n
+    if len(fns) != n:
+        raise InputError(f"{len(fns)} contact callables for {n} sectors", "tester.contact")
     out = np.empty((n, 2))
     done = 0
     if workers <= 1 or n <= 1:
         for j, (r, s) in enumerate(profiles):
-            out[j] = _call(fn, r, s)
+            out[j] = _call(fns[j], r, s)
             done += 1
             if progress is not None:
                 progress(done, n)
         return out[:, 0], out[:, 1]
-    if _picklable(fn):
+    if _picklable(fns):
         try:
-            return _run_pool(fn, profiles, out, progress, sector_pool(workers))
+            return _run_pool(fns, profiles, out, progress, sector_pool(workers))
         except (ImportError, AttributeError, pickle.PicklingError, BrokenProcessPool):
             # the callable pickles here but cannot be rebuilt in a fresh process (defined in
             # a script or a test module): fall back to threads
             pass
-    return _run_pool(fn, profiles, out, progress, cf.ThreadPoolExecutor(max_workers=workers))
+    return _run_pool(fns, profiles, out, progress, cf.ThreadPoolExecutor(max_workers=workers))
 
 
 #: Environment of the sector workers: one BLAS thread each. The workers already fill the
@@ -440,7 +445,7 @@ def _worker_env(ex: cf.Executor) -> Iterator[None]:
 
 
 def _run_pool(
-    fn: ContactFn,
+    fns: Sequence[ContactFn],
     profiles: Sequence[tuple[FloatArray, FloatArray]],
     out: FloatArray,
     progress: Callable[[int, int], None] | None,
@@ -450,7 +455,7 @@ def _run_pool(
     done = 0
     with ex:
         with _worker_env(ex):
-            futs = {ex.submit(_call, fn, r, s): j for j, (r, s) in enumerate(profiles)}
+            futs = {ex.submit(_call, fns[j], r, s): j for j, (r, s) in enumerate(profiles)}
         for fut in cf.as_completed(futs):
             out[futs[fut]] = fut.result()
             done += 1
@@ -559,7 +564,9 @@ def predict_profile(
     # 2. the roll spring under the striker, sector by sector
     t2 = time.perf_counter()
     profiles = [w.sector_profile(j) for j in range(w.z.size)]
-    alpha, beta = map_sectors(contact, profiles, workers=workers, progress=stage("contact"))
+    alpha, beta = map_sectors(
+        sector_contacts(contact, w.slack), profiles, workers=workers, progress=stage("contact")
+    )
     timings["contact"] = time.perf_counter() - t2
     # 3. the reading
     rho = np.asarray(readout(alpha, beta), dtype=float).reshape(-1)
@@ -584,6 +591,17 @@ def predict_profile(
         timings=timings,
         nip_foundation_depth=f_depth,
     )
+
+
+def sector_contacts(contact: ContactFn, slack: NDArray[np.bool_]) -> list[ContactFn]:
+    """The contact callable of each sector. A slack sector (its outer layers wound without
+    tension or at the E_r floor, :attr:`AxisymmetricResult.slack`) lets the striker sink to
+    the contact model's reach: the default :class:`ContactModel` starts it there instead of
+    at ``depth_max`` and deepening (up to three redundant solutions)."""
+    if not (isinstance(contact, ContactModel) and contact.instrument is not None):
+        return [contact] * len(slack)
+    deep = replace(contact, depth_max=math.inf)  # roll_stiffness starts at min(., reach)
+    return [deep if s else contact for s in slack]
 
 
 def _readout_and_contact(
