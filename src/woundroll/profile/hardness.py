@@ -29,7 +29,6 @@ from __future__ import annotations
 import concurrent.futures as cf
 import contextlib
 import math
-import multiprocessing
 import os
 import pickle
 import time
@@ -417,12 +416,13 @@ WORKER_ENV = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THRE
 
 
 def sector_pool(workers: int) -> cf.ProcessPoolExecutor:
-    """The process pool of the per-sector solves (``spawn``: no inherited state). The one
-    place where sector workers are created; they read :data:`WORKER_ENV` when they start
+    """The process pool of the per-sector solves (``spawn``: no inherited state; from
+    :func:`woundroll._pool.process_pool`, so SIGINT/SIGTERM stop it cleanly). The one place
+    where sector workers are created; they read :data:`WORKER_ENV` when they start
     (:func:`_run_pool` sets it while they do)."""
-    return cf.ProcessPoolExecutor(
-        max_workers=workers, mp_context=multiprocessing.get_context("spawn")
-    )
+    from woundroll._pool import process_pool
+
+    return process_pool(workers)
 
 
 @contextlib.contextmanager
