@@ -107,6 +107,17 @@ def diagnose_cmd(
     ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress or table.")] = False,
+    causes: Annotated[
+        bool,
+        typer.Option(
+            "--causes",
+            help="Also fit the profile's causes (thickness bands, tension level, nip "
+            "deflection) with the reduced axisymmetric model (~20-40 forward runs).",
+        ),
+    ] = False,
+    bands: Annotated[
+        int | None, typer.Option(help="Thickness bands fitted with --causes (default n/2, <= 8).")
+    ] = None,
 ) -> None:
     """Readings -> the effective wound-on tension and near-surface pressure at each position."""
     from woundroll.case import load_case
@@ -136,7 +147,23 @@ def diagnose_cmd(
             "readings": d.readings.to_dict(),
             "diagnosis": {**d.to_dict(), "defects": defects.to_dict()},
         }
+        fit = None
+        if causes:
+            from woundroll.causes import fit_causes
+
+            fit = fit_causes(c, d.readings, n_bands=bands)
+            fd = fit.to_dict()
+            payload["diagnosis"]["profile"] = fd["profile"]
+            payload["diagnosis"]["causes"] = fd["causes"]
+            payload["diagnosis"]["cause_fit"] = {
+                k: fd[k] for k in ("parameters", "verification", "forward_runs", "notes")
+            }
         written = _write(out_dir, payload, d, defects) if out_dir is not None else []
+        if fit is not None and out_dir is not None:
+            import matplotlib.pyplot as plt
+
+            plt.close(fit.plot(out_dir / "causes.png"))
+            written.append(out_dir / "causes.png")
     except InputError as exc:
         _fail(exc, 2)
     except ConvergenceError as exc:
@@ -171,6 +198,18 @@ def diagnose_cmd(
     for note in d.notes:
         out.print(f"note: {escape(note)}", highlight=False)
     _print_defects(defects)
+    if fit is not None:
+        tc = Table("rank", "cause", title="causes of the CMD profile (reduced axisymmetric model)")
+        for i, cz in enumerate(fit.causes, 1):
+            tc.add_row(f"{i}", escape(cz["sentence"]))
+        out.print(tc)
+        out.print(
+            f"fit: residual RMS {fit.residual_rms:.2f} {d.curve.scale}, "
+            f"{fit.forward_runs} forward runs",
+            highlight=False,
+        )
+        for note in fit.notes:
+            out.print(f"note: {escape(note)}", highlight=False)
     for p in written:
         out.print(f"wrote {p}")
 

@@ -468,22 +468,40 @@ class Diagnosis:
         }
 
     def summary(self) -> list[tuple[str, ...]]:
-        """Rows for a table: position [in], reading, T0, WOT and P with their intervals."""
+        """Rows for a table: position [in], reading, WOT [MPa] and P [kPa] with intervals
+        (an interval end beyond what the chain can produce is open: ``<=`` / ``>=``)."""
+
+        def fmt(v: float, lo: float, hi: float, scale: float, spec: str = ".3g") -> str:
+            if not math.isfinite(v):
+                return "-"
+            mid = f"{v * scale:{spec}}"
+            a, b = math.isfinite(lo), math.isfinite(hi)
+            if a and b:
+                return f"{mid} ({lo * scale:{spec}}-{hi * scale:{spec}})"
+            if b:
+                return f"{mid} (<= {hi * scale:{spec}})"
+            if a:
+                return f"{mid} (>= {lo * scale:{spec}})"
+            return f"{mid} (unbounded)"
+
         rows = []
         for i in range(self.position.size):
-
-            def f(v: float, scale: float, fmt: str = ".3g") -> str:
-                return "-" if not math.isfinite(v) else f"{v * scale:{fmt}}"
-
             rows.append(
                 (
                     f"{self.position[i] / 0.0254:.2f}",
-                    f"{self.reading[i]:.1f} ({f(self.reading_low[i], 1, '.1f')}-"
-                    f"{f(self.reading_high[i], 1, '.1f')})",
-                    f"{f(self.wound_on_tension[i], 1e-6)} ({f(self.wound_on_tension_low[i], 1e-6)}"
-                    f"-{f(self.wound_on_tension_high[i], 1e-6)})",
-                    f"{f(self.surface_pressure[i], 1e-3)} ({f(self.surface_pressure_low[i], 1e-3)}"
-                    f"-{f(self.surface_pressure_high[i], 1e-3)})",
+                    fmt(self.reading[i], self.reading_low[i], self.reading_high[i], 1, ".1f"),
+                    fmt(
+                        self.wound_on_tension[i],
+                        self.wound_on_tension_low[i],
+                        self.wound_on_tension_high[i],
+                        1e-6,
+                    ),
+                    fmt(
+                        self.surface_pressure[i],
+                        self.surface_pressure_low[i],
+                        self.surface_pressure_high[i],
+                        1e-3,
+                    ),
                     self.status[i],
                 )
             )
