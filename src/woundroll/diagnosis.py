@@ -345,19 +345,22 @@ def forward_curve(
     targets = targets[np.isfinite(targets)]
     if tensions is None and targets.size:
         lo, hi = float(targets.min()), float(targets.max())
+        stuck = {"low": False, "high": False}
         while True:
             ts = sorted(pts)
             r = [pts[t].reading for t in ts]
-            if lo < min(r) and ts[0] / 2 >= t_case * MIN_FACTOR * (1 - 1e-9):
-                t_new = ts[0] / 2
-            elif hi > max(r) and ts[-1] * 2 <= t_case * MAX_FACTOR * (1 + 1e-9):
-                t_new = ts[-1] * 2
+            if not stuck["low"] and lo < min(r) and ts[0] / 2 >= t_case * MIN_FACTOR * (1 - 1e-9):
+                side, t_new = "low", ts[0] / 2
+            elif (
+                not stuck["high"] and hi > max(r) and ts[-1] * 2 <= t_case * MAX_FACTOR * (1 + 1e-9)
+            ):
+                side, t_new = "high", ts[-1] * 2
             else:
                 break
             try:
                 pts[t_new] = model.evaluate(t_new)
             except (ConvergenceError, InputError):
-                break  # the chain has no answer there (e.g. a roll too slack to solve)
+                stuck[side] = True  # the chain has no answer there (e.g. too slack to solve)
     if tensions is None and targets.size and refine > 1.0:
         # subdivide (geometric midpoints) the intervals that hold a target reading until
         # their tension ratio is at most ``refine``: the interpolant is exact at grid points
