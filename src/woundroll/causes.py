@@ -318,6 +318,11 @@ def fit_causes(
             "told apart by hardness: the level is fitted as tension, the nip's CMD deflection "
             "separately"
         )
+    if case.winding.nip_roller is not None:
+        notes.append(
+            "the case's [winding.nip_roller] beam is not used: the nip's CMD distribution is "
+            "the fitted deflection shape"
+        )
     K = n_bands if n_bands is not None else int(min(8, max(2, readings.n_positions // 2)))
     # the P_s -> reading map: the case's forward curve over the readings' range (widened)
     r_lo, r_hi = float(readings.mean.min()), float(readings.mean.max())
