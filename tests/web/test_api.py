@@ -175,3 +175,33 @@ def test_serve_port_in_use_is_one_line():
         )
     lines = [ln for ln in (r.stdout + r.stderr).splitlines() if ln.strip()]
     assert r.returncode == 2 and len(lines) == 1 and "--port: cannot listen" in lines[0]
+
+
+def test_defects_always_and_diagnosis_on_request(client):
+    r = client.post("/api/run", json={"case": FAST_TOML})
+    s = wait(client, r.json()["job"])
+    assert s["result"]["defects"]["risk"] in ("low", "watch", "high", "n/a")
+    names = [row["name"] for row in s["result"]["defects"]["rows"]]
+    assert "starring" in names and s["result"]["diagnosis"] is None
+    r = client.post("/api/run", json={"case": FAST_TOML, "diagnose": True})
+    assert r.status_code == 422 and r.json()["error"]["field"] == "readings"
+    r = client.post(
+        "/api/run",
+        json={"case": FAST_TOML, "readings": "lane,rho\n1,50\n", "lane_width": "6 psi"},
+    )
+    assert r.json()["error"]["field"] == "readings.lane_width"
+
+
+@pytest.mark.slow
+def test_diagnosis_on_the_page_and_in_the_report(client):
+    """Readings -> diagnosis (full forward runs through the contact model: about a minute)."""
+    text = client.get("/api/cases/pet1-26.7N").text
+    readings = "position [in],rho\n1,50\n3,52\n5,51\n1,51\n3,53\n"
+    r = client.post("/api/run", json={"case": text, "readings": readings, "diagnose": True})
+    s = wait(client, r.json()["job"], 600)
+    assert s["state"] == "done", s
+    g = s["result"]["diagnosis"]
+    assert len(g["rows"]) == 3 and all(row[-1] == "ok" for row in g["rows"])
+    assert any(p["id"] == "plot-diagnosis" for p in s["result"]["plots"])
+    rep = client.get(s["report_url"]).text
+    assert 'id="diagnosis"' in rep and 'id="defects"' in rep
