@@ -15,15 +15,24 @@ from woundroll.errors import ConvergenceError, InputError
 
 
 def load_readings(
-    path: str | Path, case: Any, lane_width: float | None = None, field: str = "--readings"
+    path: str | Path,
+    case: Any,
+    lane_width: float | None = None,
+    *,
+    fmt: str = "auto",
+    roll: str | None = None,
+    field: str = "--readings",
 ) -> Any:
-    """Readings of ``path`` for ``case`` (positions checked against the web width; lane
-    numbers need ``lane_width`` or the case's ``readings.lane_width``)."""
-    from woundroll.readings import read_readings
+    """Readings of one roll from a tester file (:func:`woundroll.tester_files.read_tester_file`:
+    generic CSV, TAPPI T 834 sheet, dense profile export), positions checked against the web
+    width; lane numbers use ``lane_width`` or the case's ``readings.lane_width``."""
+    from woundroll.tester_files import read_tester_file
 
     if lane_width is None and case.readings is not None:
         lane_width = case.readings.lane_width
-    return read_readings(path, width=case.web.width, lane_width=lane_width, field=field)
+    return read_tester_file(
+        path, format=fmt, roll=roll, width=case.web.width, lane_width=lane_width, field=field
+    )
 
 
 def report_cmd(
@@ -41,6 +50,15 @@ def report_cmd(
     ] = None,
     lane_width: Annotated[
         str | None, typer.Option("--lane-width", help="Lane width for lane numbers ('6 in').")
+    ] = None,
+    fmt: Annotated[
+        str,
+        typer.Option(
+            "--format", help="Readings file layout: auto, generic, tappi (T 834 sheet), profile."
+        ),
+    ] = "auto",
+    roll: Annotated[
+        str | None, typer.Option("--roll", help="Roll id on a TAPPI sheet with several rolls.")
     ] = None,
     set_: Annotated[
         list[str] | None,
@@ -70,7 +88,7 @@ def report_cmd(
 
             lw = to_si(lane_width, "length", "--lane-width")
         if readings is not None:
-            r = load_readings(readings, c, lw)
+            r = load_readings(readings, c, lw, fmt=fmt, roll=roll)
         else:
             r = c.measured_readings
         if quiet or not sys.stderr.isatty():

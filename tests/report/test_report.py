@@ -135,10 +135,23 @@ def test_cli_report_and_run_report(tmp_path):
         (["run", "pet1-26.7N", "--report"], "--report"),
         (["report", "pet1-26.7N", "--out", "OUT", "--readings", "no/such.csv"], "--readings"),
         (["report", "pet1-26.7N", "--out", "/proc/no/way"], "--out"),
+        (["report", "pet1-26.7N", "--out", "OUT", "--readings", "SHEET"], "--readings"),
+        (
+            ["report", "pet1-26.7N", "--out", "OUT", "--readings", "SHEET", "--roll", "9"],
+            "--readings",
+        ),
+        (
+            ["report", "pet1-26.7N", "--out", "OUT", "--readings", "SHEET", "--format", "x"],
+            "--readings",
+        ),
     ],
 )
 def test_cli_bad_input_one_line(args, field, tmp_path):
-    args = [str(tmp_path / "o") if a == "OUT" else a for a in args]
+    from pathlib import Path
+
+    sheet = Path(__file__).resolve().parents[2] / "examples" / "data" / "tappi_t834_sheet.csv"
+    subs = {"OUT": str(tmp_path / "o"), "SHEET": str(sheet)}
+    args = [subs.get(a, a) for a in args]
     res = CliRunner().invoke(app, [*args, "--set", FAST[0], "--set", FAST[1]])
     assert res.exit_code == 2, res.output
     lines = [ln for ln in res.output.splitlines() if ln.strip()]

@@ -205,3 +205,16 @@ def test_diagnosis_on_the_page_and_in_the_report(client):
     assert any(p["id"] == "plot-diagnosis" for p in s["result"]["plots"])
     rep = client.get(s["report_url"]).text
     assert 'id="diagnosis"' in rep and 'id="defects"' in rep
+
+
+def test_tappi_sheet_pasted_needs_a_roll(client):
+    sheet = "roll,pass,lane 1,lane 2\nA,1,50,52\nB,1,55,57\n"
+    body = {"case": FAST_TOML, "readings": sheet, "lane_width": "2 in"}
+    r = client.post("/api/run", json=body)
+    err = r.json()["error"]
+    assert err["field"] == "readings" and "holds 2 rolls (A, B): pick one" in err["line"]
+    # T 834's 6 in lanes do not fit on the 6 in wide web: lane 2 lies outside
+    r = client.post("/api/run", json={**body, "lane_width": "", "roll": "B"})
+    assert r.json()["error"]["field"] == "readings" and "outside the roll" in r.text
+    s = wait(client, client.post("/api/run", json={**body, "roll": "B"}).json()["job"])
+    assert s["result"]["measured"]["mean"] == 56.0

@@ -126,10 +126,12 @@ def case_from_text(text: str, overrides: dict[str, str] | None = None) -> Any:
     return case_from_dict(data, _cases_dir())
 
 
-def readings_from_text(text: str, case: Any, lane_width: str = "") -> Any:
+def readings_from_text(text: str, case: Any, lane_width: str = "", roll: str = "") -> Any:
     """Pasted or uploaded readings (CSV text) as :class:`woundroll.readings.Readings`
-    (any layout :func:`woundroll.readings.read_readings` takes: positions or lanes, passes,
-    Rho/R/L/g scales); lane numbers use ``lane_width`` or the case's ``readings.lane_width``.
+    in any layout of :func:`woundroll.tester_files.read_tester_file` (generic CSV with
+    positions or lanes, passes, Rho/R/L/g scales; a TAPPI T 834 sheet, ``roll`` picking one of
+    several rolls; a dense profile export); lane numbers use ``lane_width`` or the case's
+    ``readings.lane_width``.
 
     Raises
     ------
@@ -137,7 +139,7 @@ def readings_from_text(text: str, case: Any, lane_width: str = "") -> Any:
         field ``readings``: too large, or anything the reader rejects;
         ``readings.lane_width``: not a length.
     """
-    from woundroll.readings import read_readings
+    from woundroll.tester_files import read_tester_file
     from woundroll.units import to_si
 
     size = len(text.encode("utf-8"))
@@ -157,7 +159,9 @@ def readings_from_text(text: str, case: Any, lane_width: str = "") -> Any:
         path = Path(tmp) / "readings.csv"
         path.write_text(text, encoding="utf-8")
         try:
-            r = read_readings(path, width=case.web.width, lane_width=lw, field="readings")
+            r = read_tester_file(
+                path, roll=roll.strip() or None, width=case.web.width, lane_width=lw
+            )
         except InputError as exc:
             # the temporary directory is nobody's business: name the sheet, not the path
             msg = exc.message.replace(str(path), "readings.csv").replace(tmp, "")
@@ -456,6 +460,7 @@ def create_app() -> Any:
         overrides: dict[str, str] = Field(default_factory=dict, max_length=len(FORM_FIELDS) + 5)
         readings: str = Field(default="", max_length=MAX_READINGS_BYTES * 2)
         lane_width: str = Field(default="", max_length=40)
+        roll: str = Field(default="", max_length=100)
         diagnose: bool = False
 
     def bad(exc: InputError | ConvergenceError, status: int = 422) -> JSONResponse:
@@ -503,7 +508,7 @@ def create_app() -> Any:
             case = case_from_text(req.case, req.overrides)
             readings = None
             if req.readings.strip():
-                readings = readings_from_text(req.readings, case, req.lane_width)
+                readings = readings_from_text(req.readings, case, req.lane_width, req.roll)
             elif req.diagnose:
                 raise InputError("give readings to diagnose", "readings")
             job = store.start(case, readings, req.diagnose)
