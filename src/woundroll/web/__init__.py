@@ -392,20 +392,20 @@ def result_payload(
         )
     diag = None
     if diagnosis is not None:
-        d = diagnosis
+        g = diagnosis
         diag = {
             "header": [
                 "position [in]",
-                f"reading [{d.curve.scale}]",
+                f"reading [{g.curve.scale}]",
                 "wound-on tension [MPa]",
-                f"P at {d.pressure_depth * 1e3:.1f} mm [kPa]",
+                f"P at {g.pressure_depth * 1e3:.1f} mm [kPa]",
                 "status",
             ],
-            "rows": [list(r) for r in d.summary()],
-            "notes": list(d.notes),
+            "rows": [list(r) for r in g.summary()],
+            "notes": list(g.notes),
         }
-        ok = [i for i in range(d.position.size) if math.isfinite(d.wound_on_tension[i])]
-        xs = [d.position[i] * 100 for i in ok]
+        ok = [i for i in range(g.position.size) if math.isfinite(g.wound_on_tension[i])]
+        xs = [g.position[i] * 100 for i in ok]
         plots.append(
             {
                 "id": "plot-diagnosis",
@@ -413,9 +413,9 @@ def result_payload(
                 "xlabel": "CMD position [cm]",
                 "ylabel": "wound-on tension [MPa]",
                 "series": [
-                    _series(xs, [d.wound_on_tension[i] / 1e6 for i in ok], "diagnosed"),
-                    _series(xs, [d.wound_on_tension_low[i] / 1e6 for i in ok], "low", "dots"),
-                    _series(xs, [d.wound_on_tension_high[i] / 1e6 for i in ok], "high", "dots"),
+                    _series(xs, [g.wound_on_tension[i] / 1e6 for i in ok], "diagnosed"),
+                    _series(xs, [g.wound_on_tension_low[i] / 1e6 for i in ok], "low", "dots"),
+                    _series(xs, [g.wound_on_tension_high[i] / 1e6 for i in ok], "high", "dots"),
                 ],
             }
         )
