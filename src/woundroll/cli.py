@@ -124,9 +124,12 @@ def run(
             written = result.write(out_dir) if out_dir is not None else []
             uq = _cli_diagnose.run_uncertainty(c, uncertainty, out_dir, written, quiet or as_json)
             if report:
+                from woundroll.defects import defect_report
                 from woundroll.report import write_report
 
-                written.append(write_report(result, out_dir))
+                defects = defect_report(c, winding=result.winding)
+                readings = c.measured_readings
+                written.append(write_report(result, out_dir, readings=readings, defects=defects))
         except InputError as exc:
             _fail(exc, 2)
         except ConvergenceError as exc:
