@@ -926,3 +926,46 @@ def impact_dynamic(
         options=opts,
         contact_position=xg,
     )
+
+
+def matching_active_mass(
+    instrument: Instrument,
+    spring: Any,
+    rho_target: float,
+    *,
+    collision: str = "plastic",
+    m_max: float = 1.0,
+) -> float:
+    """The active roll mass m_r [kg] with which the 1.5D FD model {4}-{13} reads
+    ``rho_target`` on the roll spring ``spring`` (what the FE roll "shows" as active mass).
+
+    The FD reading falls monotonically with m_r (the plastic collision takes
+    ``m_r/(m_s + m_r)`` of the impact energy and the deceleration is shared by
+    ``m_s + m_r``), so the root is unique; NaN when even ``m_r = 0`` reads lower than the
+    target (the FE roll reads harder than any massless spring) or ``m_max`` is not enough.
+
+    Parameters
+    ----------
+    instrument : Instrument
+    spring : force law, (alpha, beta) or RollSpring (its mass is replaced)
+    rho_target : float [Rho]
+        Typically :attr:`DynamicImpactResult.rho`.
+    collision : {"plastic", "keep-velocity"}
+    m_max : float [kg]
+        Upper end of the search.
+    """
+    from scipy.optimize import brentq
+
+    from woundroll.instruments import RollSpring, impact_fd
+    from woundroll.instruments.roll_side import as_roll_spring
+
+    base = as_roll_spring(spring)
+
+    def f(m: float) -> float:
+        rs = RollSpring(base.law, m, base.restitution)
+        return impact_fd(instrument, rs, collision=collision).rho - rho_target
+
+    lo, hi = f(0.0), f(m_max)
+    if lo < 0 or hi > 0:
+        return math.nan
+    return float(brentq(f, 0.0, m_max, xtol=1e-7, rtol=1e-6))
