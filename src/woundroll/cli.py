@@ -268,9 +268,23 @@ def fit_stack_cmd(
     ],
     law: Annotated[str, typer.Option(help="pfeiffer, polynomial, constant, or all.")] = "all",
     as_json: Annotated[bool, typer.Option("--json")] = False,
+    unloading: Annotated[
+        bool,
+        typer.Option(
+            "--unloading",
+            help="One loading/unloading cycle: fit Pfeiffer loading and the unloading branch "
+            "(web.radial_unloading).",
+        ),
+    ] = False,
 ) -> None:
     """Fit radial-modulus laws to a stack test and print their parameters and fit quality."""
     import json
+
+    if unloading:
+        from woundroll.cli_unloading import fit_cycle_cmd
+
+        fit_cycle_cmd(csv_file, as_json, out, _fail)
+        return
 
     from woundroll.materials.radial_modulus import read_stack_csv
     from woundroll.materials.stack_fit import FIT_LAWS, fit_stack

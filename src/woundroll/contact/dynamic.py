@@ -296,8 +296,18 @@ class _FeRoll:
             return self.m_lumped * x
         return dsbmv(self.M_band.shape[0] - 1, 1.0, self.M_band, x, lower=1)
 
-    def moduli(self, sigma_r_total: FloatArray) -> tuple[FloatArray, ...]:
-        E_r = np.clip(self.web.E_r(sigma_r_total), self.E_floor, self.E_cap)
+    def moduli(
+        self, sigma_r_total: FloatArray, p_hist: FloatArray | None = None
+    ) -> tuple[FloatArray, ...]:
+        """Element moduli at the total radial stress; with the web's unloading law and the
+        largest pressure each element has seen (``p_hist``), elements below it take the
+        unloading modulus (:mod:`woundroll.materials.unloading`)."""
+        E_r = self.web.E_r(sigma_r_total)
+        un = self.web.radial_unloading
+        if un is not None and p_hist is not None:
+            P = -sigma_r_total
+            E_r = np.where(P < p_hist * (1.0 - 1e-9), un.modulus_at_pressure(P), E_r)
+        E_r = np.clip(E_r, self.E_floor, self.E_cap)
         return plane_strain_moduli(self.web, E_r)
 
     def k_band(self, mod: tuple[FloatArray, ...]) -> FloatArray:
@@ -691,6 +701,8 @@ def impact_dynamic(
     x, xv, xa = xg, v_c, -k_s * xg / m_s
     lam = np.zeros(n_surf)
     frozen = roll.moduli(roll.sigma_pre) if not opts.update_modulus else None
+    # largest pressure each element has seen (the unloading law's memory)
+    p_hist = np.maximum(-roll.sigma_pre, 0.0) if web.radial_unloading is not None else None
 
     e_in = 0.5 * m_s * v_c * v_c
     e_int = 0.0  # work of the roll's internal forces (per length, half model)
@@ -803,14 +815,14 @@ def impact_dynamic(
         if frozen is not None:
             mod = frozen
         elif opts.modulus_update == "euler":
-            mod = roll.moduli(roll.sigma_pre + sig[:, 0])
+            mod = roll.moduli(roll.sigma_pre + sig[:, 0], p_hist)
         elif opts.modulus_update == "extrapolated":
-            mod = roll.moduli(roll.sigma_pre + sig[:, 0] + 0.5 * dsig_prev_r)
+            mod = roll.moduli(roll.sigma_pre + sig[:, 0] + 0.5 * dsig_prev_r, p_hist)
         else:  # midpoint: trial step at the start-of-step moduli
-            mod0 = roll.moduli(roll.sigma_pre + sig[:, 0])
+            mod0 = roll.moduli(roll.sigma_pre + sig[:, 0], p_hist)
             trial = solve_step(mod0)
             dsr = roll.stress_increment(mod0, roll.full(trial[0]))[:, 0]
-            mod = roll.moduli(roll.sigma_pre + sig[:, 0] + 0.5 * dsr)
+            mod = roll.moduli(roll.sigma_pre + sig[:, 0] + 0.5 * dsr, p_hist)
         du, dx, lam_new, fc, f_s, a_pred, v_pred, Kb, normal = solve_step(mod)
         # Newmark update
         acc_new = c0 * du - a_pred
@@ -832,6 +844,8 @@ def impact_dynamic(
         dsig = roll.stress_increment(mod, roll.full(du))
         sig += dsig
         dsig_prev_r = dsig[:, 0]
+        if p_hist is not None:
+            p_hist = np.maximum(p_hist, -(roll.sigma_pre + sig[:, 0]))
         u += du
         v, acc, f_int = v_new, acc_new, f_int_new
         x, xv, xa = x + dx, xv_new, xa_new
@@ -904,7 +918,7 @@ def impact_dynamic(
         energy_roll_left=e_roll,
         energy_damped=e_damp_tot,
         energy_contact_loss=e_in - e_striker_end - e_roll - e_damp_tot,
-        elastic_rebound=True,
+        elastic_rebound=web.radial_unloading is None,
         time=T,
         position=X_,
         velocity=V,
