@@ -328,6 +328,13 @@ class HardnessResult:
             "beta_N_per_m": float(self.beta),
             "effective_mass_kg": float(self.effective_mass),
             "restitution": float(self.restitution),
+            "rebound": (
+                "elastic (no unloading law): rebound readings lose energy only to the "
+                "roll's active mass"
+                if self.restitution >= 1.0
+                else f"roll unloading: the roll returns e^2 = {self.restitution**2:.3f} of "
+                "the energy it stored"
+            ),
             "collision": fd.collision,
             "time_step_s": float(fd.time_step),
             "time_s": lst(fd.time),
