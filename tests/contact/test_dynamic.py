@@ -263,3 +263,26 @@ def test_unloading_law_takes_energy_and_the_budget_still_closes(pet1):
     assert un.impulse < el.impulse
     assert un.rho > el.rho
     assert abs(un.energy_contact_loss) < 0.05 * un.energy_in
+
+
+def test_dynamic_study_is_registered_and_checks_its_input():
+    from woundroll.studies import STUDIES
+    from woundroll.studies.dynamic import dynamic_study
+
+    assert "dynamic" in STUDIES
+    with pytest.raises(InputError) as e:
+        dynamic_study([], block=False)
+    assert e.value.field == "study.cases"
+
+
+@pytest.mark.slow
+def test_dynamic_study_row_pet2():
+    # one roll of the study (PET2 80 N): the FE and FD readings within 5 % (measured 0.1 %,
+    # docs/studies.md), the FE impulse below the FD one (energy left in the roll), the
+    # measured active mass within a factor 2 of the tapered column's
+    from woundroll.studies.dynamic import dynamic_study
+
+    r = dynamic_study(["pet2-80N"], block=False).rolls[0]
+    assert r["rho_dynamic"] == pytest.approx(r["rho_fd"], rel=0.05)
+    assert r["impulse_dynamic_Ns"] < r["impulse_fd_Ns"]
+    assert 0.5 < r["active_mass_fe_kg"] / r["active_mass_column_kg"] < 2.0
