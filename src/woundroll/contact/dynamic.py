@@ -54,8 +54,9 @@ budget (striker kinetic and spring energy, roll kinetic energy, work of the roll
 forces, damping); the radial pressure along the contact axis against depth at the peak
 deceleration (Figure 10) and the contact pressure there; the rebound speed and the
 coefficient of restitution ``e = v_rebound / v_impact``. An elastic roll (no unloading law)
-gives back everything but what stays in its vibrations when the striker leaves, so e < 1
-measures the wave loss; the readout says the material rebound is elastic.
+gives back everything but what is still in the roll when the striker leaves (its motion and
+its not yet recovered indentation), so e < 1 measures that; the readout says the material
+is elastic.
 """
 
 from __future__ import annotations
@@ -374,7 +375,7 @@ class DynamicImpactResult:
         of nodes coming into contact; tends to 0 with the time step).
     elastic_rebound : bool
         True: the roll's material has no unloading law (the rebound is elastic but for the
-        vibrations left in the roll).
+        energy still in the roll when the striker leaves).
     time, position, velocity, deceleration, contact_force : ndarray
     energy_striker, energy_roll_kinetic, energy_roll_internal : ndarray [J]
     axis_depth : ndarray [m]
@@ -458,7 +459,8 @@ class DynamicImpactResult:
             "rebound_R": self.rebound_r,
             "parotester_L": self.rebound_l,
             "rebound": (
-                "elastic (no unloading law): only the vibrations left in the roll are lost"
+                "elastic material (no unloading law): the striker loses only the energy still "
+                "in the roll when it leaves (its motion, its not yet recovered indentation)"
                 if self.elastic_rebound
                 else "unloading law of the roll"
             ),
