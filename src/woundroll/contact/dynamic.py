@@ -71,6 +71,7 @@ import numpy as np
 import scipy.linalg as la
 from numpy.typing import NDArray
 from scipy.linalg.blas import dsbmv
+from scipy.linalg.lapack import dtbtrs
 from scipy.optimize import nnls
 
 from woundroll.contact.fem import Assembler, element_basis, plane_strain_moduli
@@ -773,14 +774,18 @@ def impact_dynamic(
             ok_r, ok_t = rows_r >= 0, rows_t >= 0
             rhs_c[rows_r[ok_r], cols[ok_r]] = n_r[ok_r]
             rhs_c[rows_t[ok_t], cols[ok_t]] = n_t[ok_t]
-            X = la.cho_solve_banded((cb, True), rhs_c, check_finite=False)
-            W = np.where(ok_r[:, None], n_r[:, None] * X[np.maximum(rows_r, 0)], 0.0) + np.where(
-                ok_t[:, None], n_t[:, None] * X[np.maximum(rows_t, 0)], 0.0
-            )
+            # W = N^T K_eff^-1 N = Y^T Y with Y = L^-1 N (forward substitutions only);
+            # the displacement of the contact forces is then one backward solve L^-T (Y lam)
+            Y, info = dtbtrs(cb, rhs_c, uplo="L", trans="N", diag="N")
+            if info != 0:
+                raise ConvergenceError("banded triangular solve failed")
             nx = normal[idx, 0]
-            W = W + np.outer(nx, nx) / s_eff
+            W = Y.T @ Y + np.outer(nx, nx) / s_eff
             lam_c = _lcp(W, g_free[idx])
-            du = du_free + X @ lam_c
+            dz, info = dtbtrs(cb, Y @ lam_c, uplo="L", trans="T", diag="N")
+            if info != 0:
+                raise ConvergenceError("banded triangular solve failed")
+            du = du_free + dz
             dx = dx_free + float(nx @ lam_c) / s_eff
             centre = np.array([r_out + R_h - (x + dx - xg), 0.0])
             pos = roll.xy[surf] + roll.cartesian(roll.full(u + du), surf)
