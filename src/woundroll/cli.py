@@ -188,7 +188,10 @@ def result_summary(result: RunResult) -> list[tuple[str, str]]:
 def study(
     name: Annotated[
         str,
-        typer.Argument(help="tension (Figures 14/15), pile-height (16/17), slip (18), or all."),
+        typer.Argument(
+            help="tension (Figures 14/15), pile-height (16/17), slip (18), all, or dynamic "
+            "(the FE impact in time against the 1.5D models)."
+        ),
     ],
     out_dir: Annotated[
         Path | None, typer.Option("--out", help="Write study.json and PNG plots here.")
