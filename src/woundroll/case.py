@@ -69,12 +69,18 @@ class WebSpec(_Section):
     G_r_theta: Q("pressure") | None = None
     G_r_z: Q("pressure") | None = None
     G_theta_z: Q("pressure") | None = None
+    radial_unloading: Any = None
 
     @model_validator(mode="before")
     @classmethod
     def _apply_preset(cls, data: Any) -> Any:
         if isinstance(data, dict) and data.get("preset"):
             data = _merge(material_preset(data["preset"]), data)
+        if isinstance(data, dict) and data.get("radial_unloading") is not None:
+            from woundroll.materials.unloading import unloading_from_spec
+
+            data = dict(data)
+            data["radial_unloading"] = unloading_from_spec(data["radial_unloading"])
         if isinstance(data, dict) and isinstance(data.get("radial_modulus"), dict):
             _check_tabulated_types(data["radial_modulus"])
             data = dict(data)

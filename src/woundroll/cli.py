@@ -265,7 +265,10 @@ def result_summary(result: RunResult) -> list[tuple[str, str]]:
 def study(
     name: Annotated[
         str,
-        typer.Argument(help="tension (Figures 14/15), pile-height (16/17), slip (18), or all."),
+        typer.Argument(
+            help="tension (Figures 14/15), pile-height (16/17), slip (18), all, or dynamic "
+            "(the FE impact in time against the 1.5D models)."
+        ),
     ],
     out_dir: Annotated[
         Path | None, typer.Option("--out", help="Write study.json and PNG plots here.")
@@ -346,8 +349,22 @@ def fit_stack_cmd(
     ],
     law: Annotated[str, typer.Option(help="pfeiffer, polynomial, constant, or all.")] = "all",
     as_json: Annotated[bool, typer.Option("--json")] = False,
+    unloading: Annotated[
+        bool,
+        typer.Option(
+            "--unloading",
+            help="One loading/unloading cycle: fit Pfeiffer loading and the unloading branch "
+            "(web.radial_unloading).",
+        ),
+    ] = False,
 ) -> None:
     """Fit radial-modulus laws to a stack test and print their parameters and fit quality."""
+    if unloading:
+        from woundroll.cli_unloading import fit_cycle_cmd
+
+        fit_cycle_cmd(csv_file, as_json, out, _fail)
+        return
+
     from woundroll._output import strict_json
     from woundroll.materials.radial_modulus import read_stack_csv
     from woundroll.materials.stack_fit import FIT_LAWS, check_stack_data, fit_stack
