@@ -204,8 +204,12 @@ class Contact3DResult(ContactResult):
     stats: dict
 
 
-class _Model:
-    """Mesh, assembler, boundary conditions, pre-impact state and solver of one 3D solve."""
+class Roll3D:
+    """The roll under the head as a 3D FE model: mesh, assembler (stiffness for any
+    per-element moduli, :class:`~woundroll.contact.fem3d.Assembler3D`), held DOFs, the
+    pre-impact radial stress at the element centres and the linear solver. Built by
+    :func:`build_roll3d`; :func:`indent3d` presses the head into it, and a dynamic model can
+    reuse it (``asm``, :func:`~woundroll.contact.fem3d.lumped_mass` on ``mesh``)."""
 
     def __init__(
         self,
@@ -218,6 +222,7 @@ class _Model:
     ) -> None:
         self.web = web
         self.mesh = mesh
+        self.opts = opts
         n_r, n_t, n_z = mesh.shape
         n_dof = 3 * mesh.n_nodes
         free = np.ones(n_dof, dtype=bool)
@@ -389,41 +394,18 @@ def _edge(coord: FloatArray, active: NDArray[np.bool_], gap: FloatArray) -> floa
     return _half_width(coord, active.astype(float), np.maximum(gap, 0.0), 0, (1,))
 
 
-def indent3d(
+def build_roll3d(
     web: Web,
     core: Core,
     radius: FloatArray,
     sigma_r: FloatArray,
     *,
     head: Head,
-    depth_max: float | str = 1e-3,
-    friction: float = 0.3,
-    update_modulus: bool = True,
+    depth_max: float,
     options: Contact3DOptions | None = None,
-) -> Contact3DResult:
-    """Press a rigid head into the wound roll (3D) and return F(d), a(d) and the fields.
-
-    Parameters
-    ----------
-    web, core, radius, sigma_r, depth_max, friction, update_modulus
-        As :func:`woundroll.contact.indent` (the roll's width is ``web.width``).
-    head : Head
-        Cylinder (axis along the CMD, rounded ends), sphere or flat punch.
-    options : Contact3DOptions, optional
-
-    Returns
-    -------
-    Contact3DResult
-
-    Raises
-    ------
-    InputError
-        Bad geometry, a head wider than the roll, a depth beyond the model's reach, a mesh
-        too coarse for the contact, bad options.
-    ConvergenceError
-        The contact set does not settle.
-    """
-    t0 = time.perf_counter()
+) -> Roll3D:
+    """Mesh and assemble the roll for a head pressed to ``depth_max`` (checks as
+    :func:`indent3d`, which calls it)."""
     if not isinstance(web, Web):
         raise InputError("must be a woundroll.materials.Web", "web")
     if not isinstance(core, Core):
@@ -431,9 +413,6 @@ def indent3d(
     if not isinstance(head, Head):
         raise InputError("must be a woundroll.contact.heads.Head", "head")
     depth_max = _check_scalar(depth_max, "depth_max")
-    friction = to_si(friction, "dimensionless", "friction")
-    if friction < 0:
-        raise InputError(f"must be zero or positive, got {friction:g}", "friction")
     r, s = _check_profile(web, core, radius, sigma_r)
     opts = options if options is not None else Contact3DOptions()
     if not isinstance(opts, Contact3DOptions):
@@ -498,7 +477,53 @@ def indent3d(
         fine_halflength=max(fine_z, z_size),
         axial_growth=opts.axial_growth,
     )
-    model = _Model(web, core, r, s, mesh, opts)
+    model = Roll3D(web, core, r, s, mesh, opts)
+    return model
+
+
+def indent3d(
+    web: Web,
+    core: Core,
+    radius: FloatArray,
+    sigma_r: FloatArray,
+    *,
+    head: Head,
+    depth_max: float | str = 1e-3,
+    friction: float = 0.3,
+    update_modulus: bool = True,
+    options: Contact3DOptions | None = None,
+) -> Contact3DResult:
+    """Press a rigid head into the wound roll (3D) and return F(d), a(d) and the fields.
+
+    Parameters
+    ----------
+    web, core, radius, sigma_r, depth_max, friction, update_modulus
+        As :func:`woundroll.contact.indent` (the roll's width is ``web.width``).
+    head : Head
+        Cylinder (axis along the CMD, rounded ends), sphere or flat punch.
+    options : Contact3DOptions, optional
+
+    Returns
+    -------
+    Contact3DResult
+
+    Raises
+    ------
+    InputError
+        Bad geometry, a head wider than the roll, a depth beyond the model's reach, a mesh
+        too coarse for the contact, bad options.
+    ConvergenceError
+        The contact set does not settle.
+    """
+    t0 = time.perf_counter()
+    depth_max = _check_scalar(depth_max, "depth_max")
+    friction = to_si(friction, "dimensionless", "friction")
+    if friction < 0:
+        raise InputError(f"must be zero or positive, got {friction:g}", "friction")
+    model = build_roll3d(
+        web, core, radius, sigma_r, head=head, depth_max=depth_max, options=options
+    )
+    mesh, opts, r_out = model.mesh, model.opts, model.R
     t_setup = time.perf_counter() - t0
     n_t, n_z = mesh.theta.size, mesh.z.size
     th, zz = model.surf_theta, model.surf_z
