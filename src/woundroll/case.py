@@ -22,6 +22,7 @@ from pydantic import (
     BeforeValidator,
     ConfigDict,
     Field,
+    PrivateAttr,
     ValidationError,
     model_validator,
 )
@@ -75,6 +76,7 @@ class WebSpec(_Section):
         if isinstance(data, dict) and data.get("preset"):
             data = _merge(material_preset(data["preset"]), data)
         if isinstance(data, dict) and isinstance(data.get("radial_modulus"), dict):
+            _check_tabulated_types(data["radial_modulus"])
             data = dict(data)
             data["radial_modulus"] = law_from_spec(
                 data["radial_modulus"], "web.radial_modulus", _BASE_DIR.get()
@@ -86,6 +88,17 @@ class WebSpec(_Section):
         return Web(
             **{name: getattr(self, name) for name in type(self).model_fields if name != "preset"}
         )
+
+
+def _check_tabulated_types(spec: dict[str, Any]) -> None:
+    """Types of a tabulated law's keys, before the law reads them (a clear message, no
+    TypeError from deep inside)."""
+    f = "web.radial_modulus"
+    if "file" in spec and not isinstance(spec["file"], str):
+        raise InputError(f"must be a file name (text), got {spec['file']!r}", f"{f}.file")
+    for key in ("strain", "pressure"):
+        if key in spec and not isinstance(spec[key], list):
+            raise InputError(f"must be a list of values, got {spec[key]!r}", f"{f}.{key}")
 
 
 class CoreSpec(_Section):
@@ -247,11 +260,12 @@ class WindingSpec(_Section):
             r = self.outer_radius
         else:
             r = math.sqrt(core.outer_radius**2 + self.length * web.thickness / math.pi)
-        if r <= core.outer_radius + web.thickness:
+        if r < core.outer_radius + web.thickness * (1 - 1e-9):
+            field = "winding.outer_radius" if self.outer_radius is not None else "winding.length"
             raise InputError(
                 f"outer radius {r:g} m must exceed the core radius {core.outer_radius:g} m "
                 f"by at least one layer (web.thickness = {web.thickness:g} m)",
-                "winding.outer_radius",
+                field,
             )
         return r
 
@@ -279,6 +293,9 @@ class ContactSpec(_Section):
     :func:`woundroll.pipeline.roll_stiffness`). ``friction``: interlayer mu of the slip
     factor {23}. ``no_update``: also solve with E_r frozen at its pre-impact value (the
     paper's Figure 8 comparison). ``options``: :class:`woundroll.contact.ContactOptions`.
+    ``dynamic``: also solve the impact in time on the FE roll (the paper's dynamic reference,
+    :func:`woundroll.contact.dynamic.impact_dynamic`); ``dynamic_options``:
+    :class:`woundroll.contact.dynamic.DynamicOptions` (time step, mass matrix, damping).
     """
 
     depth_max: Q("length") | None = None
@@ -305,6 +322,27 @@ class ContactSpec(_Section):
         except InputError as exc:
             raise InputError(exc.message, f"contact.options3d.{exc.field.split('.')[-1]}") from None
 
+    dynamic: bool = False
+    dynamic_options: dict[str, Any] = Field(default_factory=dict)
+
+    def dynamic_settings(self) -> Any:
+        """The :class:`~woundroll.contact.dynamic.DynamicOptions` of this section."""
+        from woundroll.contact.dynamic import DynamicOptions
+
+        known = set(DynamicOptions.__dataclass_fields__) - {"mesh"}
+        unknown = sorted(set(self.dynamic_options) - known)
+        if unknown:
+            raise InputError(
+                f"unknown option(s) {', '.join(unknown)}; known: {', '.join(sorted(known))}",
+                f"contact.dynamic_options.{unknown[0]}",
+            )
+        opts = dict(self.dynamic_options)
+        if "time_step" in opts:
+            opts["time_step"] = to_si(
+                opts["time_step"], "time", "contact.dynamic_options.time_step"
+            )
+        return DynamicOptions(mesh=self.contact_options(), **opts)
+
     def contact_options(self) -> Any:
         """The :class:`~woundroll.contact.ContactOptions` of this section (validated)."""
         from woundroll.contact import ContactOptions
@@ -320,6 +358,11 @@ class ContactSpec(_Section):
             return ContactOptions(**self.options)
         except InputError as exc:
             raise exc.at("contact") from None
+        except (TypeError, ValueError) as exc:
+            raise InputError(
+                f"bad value ({exc}): {', '.join(f'{k} = {v!r}' for k, v in self.options.items())}",
+                "contact.options",
+            ) from None
 
 
 class ProfileSpec(_Section):
@@ -341,6 +384,76 @@ class ProfileSpec(_Section):
     depth_max: Q("length") = 1e-3
 
 
+class ReadingsSpec(_Section):
+    """``[readings]``: hardness readings taken on the roll (:mod:`woundroll.readings`).
+
+    ``file``: the readings CSV (path relative to the case file); ``lane_width``: width of one
+    lane when the file gives lane numbers (TAPPI T 834: ``"6 in"``); ``repeatability``: the
+    instrument's repeatability, one SD in its scale (used where the file has no repeated
+    readings to estimate the scatter from).
+    """
+
+    file: str
+    lane_width: Q("length") | None = None
+    repeatability: Q("dimensionless", "nonnegative") | None = None
+
+
+def _tolerance(value: Any) -> tuple[str, float]:
+    """A tolerance (1 SD): relative (``"2 %"``, ``0.02``) or absolute (``"1.5 um"``)."""
+    q = parse_quantity(value)
+    for kind, tag in (("dimensionless", "relative"), ("length", "absolute")):
+        try:
+            v = to_si(q, kind)
+        except InputError:
+            continue
+        if not (math.isfinite(v) and v >= 0):
+            raise ValueError(f"must be zero or positive, got {value!r}")
+        return tag, v
+    raise ValueError(f"{value!r} is neither relative ('2 %') nor a length ('1.5 um')")
+
+
+class UncertaintySpec(_Section):
+    """``[uncertainty]``: one standard deviation of the inputs the predictions depend on.
+
+    ``K1`` [pressure], ``K2`` [-] and ``K1_K2_correlation`` of the Pfeiffer law {2} (from
+    ``woundroll fit-stack``'s covariance); ``thickness`` (relative ``"2 %"`` or a length
+    ``"1.5 um"``); ``tension`` (relative, of the winder's tension setting). Used by
+    ``woundroll diagnose`` and ``--uncertainty N`` (docs/diagnosis.md).
+    """
+
+    K1: Q("pressure", "nonnegative") | None = None
+    K2: Q("dimensionless", "nonnegative") | None = None
+    K1_K2_correlation: float = Field(default=0.0, ge=-1.0, le=1.0)
+    thickness: Annotated[tuple[str, float], BeforeValidator(_tolerance)] | None = None
+    tension: Q("dimensionless", "nonnegative") | None = None
+
+    def thickness_sd(self, thickness: float) -> float:
+        """SD of the web thickness [m] for a nominal ``thickness`` [m] (0 when not given)."""
+        if self.thickness is None:
+            return 0.0
+        kind, v = self.thickness
+        return v * thickness if kind == "relative" else v
+
+
+class DefectsSpec(_Section):
+    """``[defects]``: limits for the defect-risk criteria (docs/diagnosis.md, "Defect risk").
+
+    ``core_strength`` (radial pressure the core carries), ``blocking_pressure`` (layers
+    stick above it), ``friction`` (interlayer mu; default ``contact.friction``),
+    ``axial_acceleration_g`` (axial handling load, in g) and ``torque`` (through the roll)
+    for slip and telescoping, ``slack_pressure`` (default 1 kPa) and ``slack_fraction``
+    (default 0.7 of the lanes' median wound-on tension).
+    """
+
+    core_strength: Q("pressure") | None = None
+    blocking_pressure: Q("pressure") | None = None
+    friction: Q("dimensionless") | None = None
+    axial_acceleration_g: Q("dimensionless", "nonnegative") | None = None
+    torque: Q("energy", "nonnegative") | None = None
+    slack_pressure: Q("pressure") = 1e3
+    slack_fraction: float = Field(default=0.7, gt=0.0, lt=1.0)
+
+
 class Case(_Section):
     """A whole case: ``title``, ``[web]``, ``[core]``, ``[winding]``, optional ``[tester]``,
     ``[contact]``, ``[profile]`` (their tables are passed to the models that own them)."""
@@ -352,7 +465,22 @@ class Case(_Section):
     tester: dict[str, Any] | None = None
     contact: ContactSpec = ContactSpec()
     profile: ProfileSpec = ProfileSpec()
-    base_dir: Path | None = Field(default=None, exclude=True)
+    readings: ReadingsSpec | None = None
+    uncertainty: UncertaintySpec | None = None
+    defects: DefectsSpec | None = None
+    _base_dir: Path | None = PrivateAttr(default=None)
+    _warnings: tuple[str, ...] = PrivateAttr(default=())
+
+    @property
+    def base_dir(self) -> Path | None:
+        """Directory of the case file (relative paths inside it), or None."""
+        return self._base_dir
+
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        """Values outside their plausible range and long-run estimates
+        (:mod:`woundroll.limits`); the case is valid, the CLI prints them before the run."""
+        return self._warnings
 
     @cached_property
     def thickness_profile(self) -> Any:
@@ -360,7 +488,7 @@ class Case(_Section):
         ``winding.thickness_profile`` (path relative to the case file), or None."""
         if self.winding.thickness_profile is None:
             return None
-        from woundroll.profile.thickness import load_thickness
+        from woundroll.materials.thickness_profile import load_thickness
 
         return load_thickness(self._path(self.winding.thickness_profile), width=self.web.width)
 
@@ -372,6 +500,20 @@ class Case(_Section):
         from woundroll.profile.compare import read_measured_profile
 
         return read_measured_profile(self._path(self.profile.measured))
+
+    @cached_property
+    def measured_readings(self) -> Any:
+        """The :class:`~woundroll.readings.Readings` of ``[readings]``, or None."""
+        if self.readings is None:
+            return None
+        from woundroll.readings import read_readings
+
+        return read_readings(
+            self._path(self.readings.file),
+            width=self.web.width,
+            lane_width=self.readings.lane_width,
+            field="readings.file",
+        )
 
     def _path(self, name: str) -> Path:
         path = Path(name).expanduser()
@@ -420,18 +562,28 @@ def _error_from_validation(exc: ValidationError) -> InputError:
 
 def case_from_dict(data: dict[str, Any], base_dir: Path | None = None) -> Case:
     """Validate a case given as nested dicts (TOML structure) and return a :class:`Case`."""
+    from woundroll import limits
+    from woundroll.winding.hakiel import WindingOptions
+
+    if not isinstance(data, dict):
+        raise InputError("a case must be a table of tables ([web], [core], [winding])", "CASE")
     _BASE_DIR.value = base_dir
     try:
-        case = Case.model_validate({**data, "base_dir": base_dir})
+        case = Case.model_validate(data)
+        case._base_dir = base_dir
+        warnings = limits.check_case_values(case)
         web = case.web.build()
         core = case.core.build()
-        case.winding.final_radius(web, core)
-        case.winding.schedule(web)
+        r_out = case.winding.final_radius(web, core)
+        schedule = case.winding.schedule(web)
+        options = WindingOptions.from_dict(case.winding.options, "winding.options")
+        warnings += limits.check_built(web, core, r_out, schedule, options)
         _check_options(case)
     except ValidationError as exc:
         raise _error_from_validation(exc) from None
     finally:
         _BASE_DIR.value = None
+    case._warnings = tuple(warnings)
     return case
 
 
@@ -444,7 +596,21 @@ def _check_options(case: Case) -> None:
     _ = case.tester_setup
     if case.tester is not None:
         case.contact.contact_options()
-    _ = case.thickness_profile
+    if case.contact.dynamic or case.contact.dynamic_options:
+        case.contact.dynamic_settings()
+        if case.tester is None or "roll_spring" in case.tester:
+            raise InputError(
+                "the impact in time runs on the FE roll under the tester's head: give [tester] "
+                "without [tester.roll_spring]",
+                "contact.dynamic",
+            )
+        if case.winding.thickness_profile is not None:
+            raise InputError(
+                "the impact in time runs on the single roll, not per CMD sector: remove "
+                "winding.thickness_profile or contact.dynamic",
+                "contact.dynamic",
+            )
+    _read_file(case, "thickness_profile", "winding.thickness_profile")
     if case.profile.measured is not None:
         if case.winding.thickness_profile is None:
             raise InputError(
@@ -452,7 +618,9 @@ def _check_options(case: Case) -> None:
                 "winding.thickness_profile too",
                 "profile.measured",
             )
-        _ = case.measured_profile
+        _read_file(case, "measured_profile", "profile.measured")
+    if case.readings is not None:
+        _read_file(case, "measured_readings", "readings.file")
     if case.winding.nip_roller is not None:
         if case.winding.thickness_profile is None:
             raise InputError(
@@ -461,6 +629,17 @@ def _check_options(case: Case) -> None:
                 "winding.nip_roller",
             )
         case.winding.nip_roller.build(case.winding.nip_load, case.winding.friction)
+
+
+def _read_file(case: Case, attr: str, field: str) -> None:
+    """Read a file the case names now; a file whose content is not what it should be (text in
+    a number map, a wrong encoding) is an input error naming the field, not a traceback."""
+    try:
+        getattr(case, attr)
+    except InputError:
+        raise
+    except (ValueError, TypeError, OSError, UnicodeDecodeError, EOFError) as exc:
+        raise InputError(f"cannot read the file: {exc}", field) from None
 
 
 def bundled_cases() -> dict[str, str]:
@@ -528,16 +707,37 @@ def load_case(source: str | Path | dict[str, Any], overrides: list[str] | None =
         data = source
     else:
         path = resolve_case_path(source)
-        try:
-            data = tomllib.loads(path.read_text(encoding="utf-8"))
-        except tomllib.TOMLDecodeError as exc:
-            raise InputError(f"{path.name} is not valid TOML: {exc}", "CASE") from None
+        data = _read_toml(path)
         base_dir = path.parent
     data = _deepcopy(data)
     for text in overrides or []:
         key, value = parse_override(text)
         set_dotted(data, key, value)
     return case_from_dict(data, base_dir)
+
+
+def _read_toml(path: Path) -> dict[str, Any]:
+    """The TOML table of a case file: UTF-8 (a byte-order mark is skipped); a binary file, a
+    UTF-16 file or a TOML syntax error is an input error naming the file (field ``CASE``)."""
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise InputError(f"cannot read {path}: {exc.strerror or exc}", "CASE") from None
+    if b"\x00" in raw[:4096]:
+        kind = "UTF-16/32 text" if raw[:2] in (b"\xff\xfe", b"\xfe\xff") else "binary"
+        raise InputError(
+            f"{path.name} is {kind}, not a UTF-8 TOML file (save it as UTF-8 text)", "CASE"
+        )
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise InputError(
+            f"{path.name} is not UTF-8 text (byte {exc.start}); save it as UTF-8", "CASE"
+        ) from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{path.name} is not valid TOML: {exc}", "CASE") from None
 
 
 def _merge(base: dict[str, Any], top: dict[str, Any]) -> dict[str, Any]:
