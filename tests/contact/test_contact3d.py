@@ -261,3 +261,85 @@ def test_bad_options_are_rejected() -> None:
     with pytest.raises(InputError) as e:
         Contact3DOptions(solver="magic")
     assert e.value.field == "options.solver"
+
+
+# ------------------------------------------------------------------ pipeline, refinement
+
+
+COARSE3D = [
+    "contact.options3d.n_fine=5",
+    "contact.options3d.radial_growth=1.6",
+    "contact.options3d.tangential_growth=1.6",
+    "contact.options3d.axial_growth=1.6",
+]
+
+
+@pytest.mark.slow
+def test_schmidt_hammer_reads_a_roll_through_the_3d_model() -> None:
+    """``contact.model = "auto"`` (the default) sends the spherical Schmidt tip to the 3D
+    model: a reading from winder settings without a hand-given roll spring (coarse mesh:
+    this checks the coupling, the mesh study checks the numbers)."""
+    import woundroll
+    from woundroll.contact.solver3d import Contact3DResult
+
+    res = woundroll.run(
+        woundroll.load_case(
+            "pet2-53.4N", ["tester.instrument='schmidt-n'", "contact.no_update=false", *COARSE3D]
+        )
+    )
+    assert isinstance(res.contact.contact, Contact3DResult)
+    assert res.contact.contact.head["shape"] == "sphere"
+    r = res.hardness.to_dict()
+    assert 10.0 < r["reading"] <= 100.0
+    assert res.contact.alpha >= 0 and res.contact.beta > 0
+
+
+def _refined(base: Contact3DOptions, name: str) -> Contact3DOptions:
+    kw = dict(base.__dict__)
+    if name.endswith("growth"):
+        kw[name] = kw[name] ** 0.5
+    elif name == "n_fine":
+        kw[name] = 2 * kw[name]
+    elif name == "n_steps":
+        kw[name] = 2 * kw[name]
+    return Contact3DOptions(**kw)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(
+    "name", ["radial_growth", "tangential_growth", "axial_growth", "n_fine", "n_steps"]
+)
+def test_mesh_refinement_moves_the_rho_meter_curve_by_less_than_1_percent(name: str) -> None:
+    """PET2 26.7 N (Hakiel profile), Rho-meter head, 2.1 mm: each mesh parameter refined
+    alone from the default moves F(d) over 0.2-1 depth_max by < 1 % (the issue's bar)."""
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_real_profiles import real_roll
+
+    web, core, radius, sigma_r = real_roll("pet2-26.7N")
+    head = Head("cylinder", 6.565e-3, 25.4e-3)
+    base = Contact3DOptions()
+    ref = indent3d(web, core, radius, sigma_r, head=head, depth_max=2.1e-3, options=base)
+    fine = indent3d(
+        web, core, radius, sigma_r, head=head, depth_max=2.1e-3, options=_refined(base, name)
+    )
+    d = np.linspace(0.2, 1.0, 9) * 2.1e-3
+    f0 = np.interp(d, ref.delta, ref.force)
+    f1 = np.interp(d, fine.delta, fine.force)
+    assert np.max(np.abs(f1 / f0 - 1)) < 0.01
+
+
+def test_model_dispatch_errors_name_the_field() -> None:
+    from woundroll.contact import roll_stiffness
+    from woundroll.instruments import get_instrument
+
+    r, s = pet_profile()
+    sn = get_instrument("schmidt-n")
+    with pytest.raises(InputError) as e:  # the 2D model cannot take a sphere
+        roll_stiffness(PET1, RIGID, r, s, sn, model="2d")
+    assert e.value.field == "tester.instrument"
+    with pytest.raises(InputError) as e:
+        roll_stiffness(PET1, RIGID, r, s, sn, model="4d")
+    assert e.value.field == "contact.model"
