@@ -6,6 +6,7 @@ mesh-refinement study of the real rolls is ``slow`` (docs/contact.md, 3D section
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -294,6 +295,19 @@ def test_schmidt_hammer_reads_a_roll_through_the_3d_model() -> None:
     assert res.contact.alpha >= 0 and res.contact.beta > 0
 
 
+@functools.cache
+def _rho_meter_pet2(options: Contact3DOptions):  # noqa: ANN202
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_real_profiles import real_roll
+
+    web, core, radius, sigma_r = real_roll("pet2-26.7N")
+    head = Head("cylinder", 6.565e-3, 25.4e-3)
+    return indent3d(web, core, radius, sigma_r, head=head, depth_max=2.1e-3, options=options)
+
+
 def _refined(base: Contact3DOptions, name: str) -> Contact3DOptions:
     kw = dict(base.__dict__)
     if name.endswith("growth"):
@@ -312,19 +326,9 @@ def _refined(base: Contact3DOptions, name: str) -> Contact3DOptions:
 def test_mesh_refinement_moves_the_rho_meter_curve_by_less_than_1_percent(name: str) -> None:
     """PET2 26.7 N (Hakiel profile), Rho-meter head, 2.1 mm: each mesh parameter refined
     alone from the default moves F(d) over 0.2-1 depth_max by < 1 % (the issue's bar)."""
-    import sys
-    from pathlib import Path
-
-    sys.path.insert(0, str(Path(__file__).parent))
-    from test_real_profiles import real_roll
-
-    web, core, radius, sigma_r = real_roll("pet2-26.7N")
-    head = Head("cylinder", 6.565e-3, 25.4e-3)
     base = Contact3DOptions()
-    ref = indent3d(web, core, radius, sigma_r, head=head, depth_max=2.1e-3, options=base)
-    fine = indent3d(
-        web, core, radius, sigma_r, head=head, depth_max=2.1e-3, options=_refined(base, name)
-    )
+    ref = _rho_meter_pet2(base)
+    fine = _rho_meter_pet2(_refined(base, name))
     d = np.linspace(0.2, 1.0, 9) * 2.1e-3
     f0 = np.interp(d, ref.delta, ref.force)
     f1 = np.interp(d, fine.delta, fine.force)
