@@ -347,3 +347,22 @@ def test_model_dispatch_errors_name_the_field() -> None:
     with pytest.raises(InputError) as e:
         roll_stiffness(PET1, RIGID, r, s, sn, model="4d")
     assert e.value.field == "contact.model"
+
+
+def test_reduced_shear_slip_softens_and_vanishes_without_slip() -> None:
+    """Slip emulation (Figure 19): with mu so large that no element slips the curve is the
+    no-slip curve exactly; with mu = 0.3 the slipped elements lose 99 % of G_rt, G_rz and
+    the roll is softer."""
+    r, s = pet_profile()
+    head = Head("sphere", 0.0125)
+    grow = {"radial_growth": 1.6, "tangential_growth": 1.6, "axial_growth": 1.6}
+    base = {"n_steps": 3, "n_fine": 5, "locality_cut": True, **grow}
+    kw = {"head": head, "depth_max": 3e-4}
+    plain = indent3d(PET1, RIGID, r, s, options=Contact3DOptions(**base), **kw)
+    slip = Contact3DOptions(**base, slip="reduced-shear")
+    sticky = indent3d(PET1, RIGID, r, s, friction=1e9, options=slip, **kw)
+    slipping = indent3d(PET1, RIGID, r, s, friction=0.3, options=slip, **kw)
+    assert sticky.stats["slipped_elements"] == 0
+    np.testing.assert_allclose(sticky.force, plain.force, rtol=1e-12)
+    assert slipping.stats["slipped_elements"] > 0
+    assert slipping.force[-1] < plain.force[-1]

@@ -87,6 +87,13 @@ class Contact3DOptions:
         How the mid-step stress is predicted: from the last increment's stress rate (one
         factorisation per increment; default) or by a trial solve at the start-of-step
         modulus (two, as the 2D model does).
+    slip : {"none", "reduced-shear"}
+        Slip emulation (the paper's Figure 19): an element whose interlayer shear
+        sqrt(tau_rt^2 + tau_rz^2) reaches mu P ({23} with the resultant shear) keeps
+        ``slip_shear_fraction`` of its G_r_theta and G_r_z for the rest of the loading
+        (from the next increment on; the increments resolve the spread of the slip zone).
+    slip_shear_fraction : float
+        Fraction of the transverse shear moduli left in a slipped element.
     solver : {"auto", "pardiso", "splu", "amg"}
         Linear solver (:mod:`woundroll.contact.linsolve`); auto: PARDISO if installed.
     """
@@ -108,12 +115,23 @@ class Contact3DOptions:
     max_modulus_ratio: float | None = None
     midpoint: bool = True
     predictor: str = "rate"
+    slip: str = "none"
+    slip_shear_fraction: float = 0.01
     solver: str = "auto"
 
     def __post_init__(self) -> None:
         if self.predictor not in ("rate", "trial"):
             raise InputError(
                 f"must be 'rate' or 'trial', got {self.predictor!r}", "options.predictor"
+            )
+        if self.slip not in ("none", "reduced-shear"):
+            raise InputError(
+                f"must be 'none' or 'reduced-shear', got {self.slip!r}", "options.slip"
+            )
+        if not (math.isfinite(self.slip_shear_fraction) and 0 < self.slip_shear_fraction <= 1):
+            raise InputError(
+                f"must lie in (0, 1], got {self.slip_shear_fraction!r}",
+                "options.slip_shear_fraction",
             )
         if self.cmd_edges not in ("free", "fixed"):
             raise InputError(
@@ -223,6 +241,8 @@ class Roll3D:
         self.web = web
         self.mesh = mesh
         self.opts = opts
+        #: elements whose interlayer shear reached Coulomb's limit (slip emulation)
+        self.slipped: NDArray[np.bool_] | None = None
         n_r, n_t, n_z = mesh.shape
         n_dof = 3 * mesh.n_nodes
         free = np.ones(n_dof, dtype=bool)
@@ -276,7 +296,10 @@ class Roll3D:
 
     def moduli(self, sigma_r_total: FloatArray) -> FloatArray:
         E_r = np.clip(self.web.E_r(sigma_r_total), self.E_floor, self.E_cap)
-        return orthotropic_moduli(self.web, E_r)
+        D = orthotropic_moduli(self.web, E_r)
+        if self.slipped is not None and np.any(self.slipped):
+            D[6:8, self.slipped] *= self.opts.slip_shear_fraction  # G_r_theta, G_r_z
+        return D
 
     def factor(self, D: FloatArray) -> None:
         """Assemble and factorise K for the material constants ``D`` (kept if unchanged)."""
@@ -564,6 +587,8 @@ def indent3d(
     p_line_hist = np.zeros((n + 1, n_t))
     tol = 1e-3 * delta[1]  # gap tolerance, as in 2D
     s_line = r_out * mesh.theta
+    if opts.slip == "reduced-shear":
+        model.slipped = np.zeros(n_el, dtype=bool)
     D_frozen = model.moduli(model.sigma_pre) if not update_modulus else None
     if D_frozen is not None:
         model.factor(D_frozen)  # one factorisation for all increments
@@ -603,6 +628,16 @@ def indent3d(
         u_prev = u.copy()
         u = u + du
         sig += dsig
+        if model.slipped is not None:
+            # slip emulation (Figure 19): where the interlayer shear reaches mu P, {23},
+            # the transverse shear moduli drop for the rest of the loading
+            tau = np.hypot(sig[:, 3], sig[:, 4])
+            grew = (tau >= friction * np.maximum(-(model.sigma_pre + sig[:, 0]), 0.0)) & (tau > 0)
+            if np.any(grew & ~model.slipped):
+                model.slipped |= grew
+                if D_frozen is not None:
+                    D_frozen = model.moduli(model.sigma_pre)
+                    model.factor(D_frozen)
         f_surf = f_new
         A = f_new < 0
         force[k] = -sym * float(np.sum(f_new * cos_t))
@@ -669,5 +704,6 @@ def indent3d(
             "factor_s": model.t_factor,
             "solve_s": model.t_solve,
             "setup_s": t_setup,
+            "slipped_elements": 0 if model.slipped is None else int(model.slipped.sum()),
         },
     )
