@@ -130,7 +130,7 @@ def test_head_length_override_scales_the_force():
 @pytest.mark.parametrize(
     ("overrides", "field"),
     [
-        (["tester.instrument='schmidt-n'"], "tester.instrument"),
+        (["tester.instrument='schmidt-n'", "contact.model='2d'"], "tester.instrument"),
         (["contact.depth_max='10 um'", "contact.no_update=false"], "contact.depth_max"),
         (["contact.options.bogus=1"], "contact.options.bogus"),
         (["contact.friction=-1"], "contact.friction"),

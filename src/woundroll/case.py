@@ -305,6 +305,26 @@ class ContactSpec(_Section):
     friction: Q("dimensionless", "nonnegative") = 0.3
     no_update: bool = False
     options: dict[str, Any] = Field(default_factory=dict)
+    #: "2d" plane strain, "3d" (any head), "auto": 2D for cylinders, 3D for other heads
+    model: Literal["2d", "3d", "auto"] = "auto"
+    options3d: dict[str, Any] = Field(default_factory=dict)
+
+    def contact3d_options(self) -> Any:
+        """The :class:`~woundroll.contact.solver3d.Contact3DOptions` of ``options3d``."""
+        from woundroll.contact.solver3d import Contact3DOptions
+
+        known = set(Contact3DOptions.__dataclass_fields__)
+        unknown = sorted(set(self.options3d) - known)
+        if unknown:
+            raise InputError(
+                f"unknown option(s) {', '.join(unknown)}; known: {', '.join(sorted(known))}",
+                f"contact.options3d.{unknown[0]}",
+            )
+        try:
+            return Contact3DOptions(**self.options3d)
+        except InputError as exc:
+            raise InputError(exc.message, f"contact.options3d.{exc.field.split('.')[-1]}") from None
+
     dynamic: bool = False
     dynamic_options: dict[str, Any] = Field(default_factory=dict)
 

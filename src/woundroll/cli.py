@@ -280,12 +280,21 @@ def study(
         int, typer.Option(help="Rolls run in parallel (processes).", min=1, max=64)
     ] = 1,
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar.")] = False,
+    model: Annotated[
+        str, typer.Option(help="Contact model of the pile-height study: 2d or 3d.")
+    ] = "2d",
 ) -> None:
     """Run one of the reference paper's studies on its Table 2 rolls; print its tables."""
     from woundroll._output import strict_json
     from woundroll.studies import run_study
 
     def job(progress):  # type: ignore[no-untyped-def]
+        if model != "2d" or name == "pile-height":
+            from woundroll.studies.pile_height import pile_height_study
+
+            if name != "pile-height" or model not in ("2d", "3d"):
+                raise InputError("--model 3d is for the pile-height study; 2d or 3d", "--model")
+            return pile_height_study(progress=progress, workers=workers, model=model)
         return run_study(name, progress=progress, workers=workers)
 
     try:

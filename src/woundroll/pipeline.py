@@ -354,6 +354,8 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         "depth_max": spec.depth_max,
         "friction": spec.friction,
         "options": spec.contact_options(),
+        "model": spec.model,
+        "options3d": spec.contact3d_options(),
     }
     report("contact", 0.0)
     with _user_fields(case, H):

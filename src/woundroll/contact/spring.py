@@ -281,6 +281,8 @@ def roll_stiffness(
     update_modulus: bool = True,
     options: Any = None,
     field: str = "contact",
+    model: str = "2d",
+    options3d: Any = None,
 ) -> RollStiffness:
     """The 2D contact solve that gives the roll spring {3} under the instrument's head.
 
@@ -305,6 +307,12 @@ def roll_stiffness(
         As :func:`woundroll.contact.indent`.
     field : str
         Table named in error messages (``"contact"``, ``"profile"``).
+    model : {"2d", "3d", "auto"}
+        The contact model: the plane-strain 2D model, the 3D model
+        (:func:`woundroll.contact.solver3d.indent3d`, any head), or ``"auto"``: 2D for a
+        cylindrical head, 3D for the heads 2D cannot represent (sphere, punch).
+    options3d : Contact3DOptions, optional
+        Settings of the 3D model.
 
     Raises
     ------
@@ -315,10 +323,27 @@ def roll_stiffness(
     """
     from woundroll.contact.solver import indent
 
-    head_length = head_length_of(instrument)
+    if model not in ("2d", "3d", "auto"):
+        raise InputError(f"must be '2d', '3d' or 'auto', got {model!r}", f"{field}.model")
+    use_3d = model == "3d" or (model == "auto" and instrument.head_shape != "cylinder")
+    if use_3d:
+        from woundroll.contact.heads import Head
+        from woundroll.contact.solver3d import indent3d
+
+        head = Head.from_instrument(instrument)
+
+        def indent(web, core, r, sigma_r, *, head_radius, head_length, options, **kw):  # noqa: ARG001
+            return indent3d(web, core, r, sigma_r, head=head, options=options3d, **kw)
+
+        head_length = float(instrument.head_length or 0.0)
+    else:
+        head_length = head_length_of(instrument)
     r = np.asarray(radius, dtype=float)
     # the model's reach: below half the head radius and a quarter of the wound thickness
-    reach = 0.98 * min(0.5 * instrument.head_radius, 0.25 * float(r[-1] - r[0]))
+    reach = 0.98 * min(
+        0.5 * instrument.head_radius if instrument.head_shape != "punch" else np.inf,
+        0.25 * float(r[-1] - r[0]),
+    )
     if depth_max is not None:
         depth = depth_max
     elif start_depth is not None:
