@@ -403,6 +403,8 @@ class ReadingsSpec(_Section):
 
 def _tolerance(value: Any) -> tuple[str, float]:
     """A tolerance (1 SD): relative (``"2 %"``, ``0.02``) or absolute (``"1.5 um"``)."""
+    from woundroll.units import parse_quantity
+
     q = parse_quantity(value)
     for kind, tag in (("dimensionless", "relative"), ("length", "absolute")):
         try:
