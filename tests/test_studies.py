@@ -130,7 +130,10 @@ def test_write_produces_json_and_pngs(subset, slip, piles, tmp_path):
     expected = {
         "tension": (subset, {"tension_rho.png", "tension_impulse.png"}),
         "slip": (slip, {"slip_factor.png"}),
-        "pile-height": (piles, {"pile_height_pressure.png", "pile_height_rho.png"}),
+        "pile-height": (
+            piles,
+            {"pile_height_pressure.png", "pile_height_rho.png", "pile_height_under_head.png"},
+        ),
     }
     for name, (study, pngs) in expected.items():
         out = tmp_path / name

@@ -297,18 +297,24 @@ def study(
             return pile_height_study(progress=progress, workers=workers, model=model)
         return run_study(name, progress=progress, workers=workers)
 
-    try:
-        if quiet or as_json or not sys.stderr.isatty():
-            result = job(None)
-        else:
-            result = _with_progress(job)
-        written = result.write(out_dir) if out_dir is not None else []
-    except InputError as exc:
-        _fail(exc, 2)
-    except ConvergenceError as exc:
-        _fail(exc, 1)
-    except OSError as exc:
-        _fail(InputError(f"cannot write to {out_dir}: {exc.strerror or exc}", "--out"), 2)
+    from woundroll._pool import Interrupted, clean_stop
+
+    with clean_stop():  # SIGINT/SIGTERM end the study's worker pool too
+        try:
+            if quiet or as_json or not sys.stderr.isatty():
+                result = job(None)
+            else:
+                result = _with_progress(job)
+            written = result.write(out_dir) if out_dir is not None else []
+        except InputError as exc:
+            _fail(exc, 2)
+        except ConvergenceError as exc:
+            _fail(exc, 1)
+        except OSError as exc:
+            _fail(InputError(f"cannot write to {out_dir}: {exc.strerror or exc}", "--out"), 2)
+        except Interrupted as exc:
+            err.print(f"stopped by {exc}: workers ended, no output written", highlight=False)
+            raise typer.Exit(128 + exc.signum) from None
     if as_json:
         sys.stdout.write(strict_json(result.to_dict()) + "\n")
         return

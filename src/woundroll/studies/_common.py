@@ -147,11 +147,12 @@ def _map(
             results[i] = fn(*job)
         _report(progress, "done", 1.0)
         return results
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor, as_completed
+    from concurrent.futures import as_completed
 
-    ctx = multiprocessing.get_context("spawn")
-    with ProcessPoolExecutor(max_workers=min(workers, n), mp_context=ctx) as pool:
+    from woundroll._pool import process_pool
+
+    # the pool clean_stop() ends on SIGINT/SIGTERM (woundroll._pool)
+    with process_pool(min(workers, n)) as pool:
         futures = {pool.submit(fn, *job): i for i, job in enumerate(jobs)}
         done = 0
         _report(progress, label(0), 0.0)
