@@ -55,12 +55,16 @@ class ContactOptions:
         Depths ``d_k = depth_max (k / n_steps)^step_exponent`` [-]: > 1 makes the first
         increments, where the modulus under the head changes fastest, smaller.
     surface_size : float or None
-        Radial size of the outermost element ring [m]; None -> the web thickness (one layer).
+        Radial size of the outermost element ring [m]; None -> half the web thickness (two
+        rings per outer layer: the edge of the contact, and so the semi-contact width ``a``
+        of {14}-{18}, is decided by the surface ring; one ring per layer left ``a`` 11 % low,
+        docs/contact.md, "Semi-contact width").
     radial_growth : float
         Ratio of neighbouring radial element sizes toward the core [-].
     tangential_size : float or None
         Arc length of the surface elements near the contact [m]; None -> the larger of
-        ``surface_size / 4`` and ``a_geo / 40``, with ``a_geo = sqrt(2 R_eff depth_max)`` the
+        ``surface_size / 4`` (the web thickness / 4 when ``surface_size`` is None) and
+        ``a_geo / 40``, with ``a_geo = sqrt(2 R_eff depth_max)`` the
         half-chord of the head's geometric intersection with the undeformed roll at
         ``depth_max`` (1/R_eff = 1/head_radius + 1/R_out).
     fine_halfwidth : float or None
@@ -696,11 +700,12 @@ def indent(
         )
     R_eff = 1.0 / (1.0 / head_radius + 1.0 / r_out)
     a_geo = math.sqrt(2.0 * R_eff * depth_max)
-    surface_size = opts.surface_size if opts.surface_size is not None else web.thickness
+    surface_size = opts.surface_size if opts.surface_size is not None else 0.5 * web.thickness
+    t_ref = opts.surface_size if opts.surface_size is not None else web.thickness
     t_size = (
         opts.tangential_size
         if opts.tangential_size is not None
-        else max(0.25 * surface_size, a_geo / 40.0)
+        else max(0.25 * t_ref, a_geo / 40.0)
     )
     fine = opts.fine_halfwidth if opts.fine_halfwidth is not None else a_geo
     if surface_size >= 0.5 * (r_out - r_in):
