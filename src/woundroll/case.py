@@ -584,6 +584,9 @@ def case_from_dict(data: dict[str, Any], base_dir: Path | None = None) -> Case:
         options = WindingOptions.from_dict(case.winding.options, "winding.options")
         warnings += limits.check_built(web, core, r_out, schedule, options)
         _check_options(case)
+        slow = limits.contact_time_warning(case, web)
+        if slow:
+            warnings.append(slow)
     except ValidationError as exc:
         raise _error_from_validation(exc) from None
     finally:

@@ -27,15 +27,24 @@ class InputError(WoundrollError, ValueError):
     def __init__(self, message: str, field: str | None = None) -> None:
         super().__init__(message)
         self.message = message
-        self.field = field
+        self.field = _printable(field) if field is not None else None
 
     def __str__(self) -> str:
-        return f"{self.field}: {self.message}" if self.field else self.message
+        msg = _printable(self.message)
+        return f"{self.field}: {msg}" if self.field else msg
 
     def at(self, prefix: str) -> InputError:
         """Return the same error with ``prefix`` prepended to its field path."""
         field = f"{prefix}.{self.field}" if self.field else prefix
         return type(self)(self.message, field)
+
+
+def _printable(text: str) -> str:
+    """``text`` on one line: control characters (a newline in a quoted TOML key) escaped."""
+    text = str(text)
+    if text.isprintable():
+        return text
+    return "".join(c if c.isprintable() else c.encode("unicode_escape").decode() for c in text)
 
 
 class ConvergenceError(WoundrollError, RuntimeError):

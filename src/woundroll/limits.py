@@ -336,6 +336,37 @@ def check_built(web: Any, core: Any, r_out: float, schedule: Any, options: Any) 
     return warnings
 
 
+#: Contact-model times measured on the development machine (2 cores, loaded), per solution:
+#: PET 100 um (890 layers) 1.4 s, 50 um (1,500 layers) 1.5 s, 23 um (4,565 layers) 100 s (its
+#: mesh follows the web thickness near the surface); the bundled PET3 profile (76 um, 61
+#: sectors, 2 workers) 2.5 min in all.
+THIN_WEB_CONTACT = 30e-6
+PROFILE_REFERENCE_SECONDS = 150.0
+
+
+def contact_time_warning(case: Any, web: Any) -> str | None:
+    """A warning before runs whose contact solutions will take long (constants above)."""
+    if case.winding.thickness_profile is not None:
+        p = case.profile
+        t = PROFILE_REFERENCE_SECONDS * (p.sectors / 61) * (2 / p.workers)
+        if t > LONG_RUN_SECONDS:
+            return (
+                f"long run: a CMD profile solves the contact model for each of {p.sectors} "
+                f"sectors on {p.workers} workers: about {fmt_seconds(t)} (scaled from the "
+                "bundled pet3 case; thinner webs take longer; profile.sectors and "
+                "profile.workers set it)"
+            )
+        return None
+    if case.tester is not None and "roll_spring" not in case.tester:
+        if web.thickness < THIN_WEB_CONTACT:
+            return (
+                f"long run: the contact model's mesh follows the web thickness "
+                f"({web.thickness * 1e6:.3g} um): a 23 um web took about 100 s per contact "
+                "solution here, a 100 um web 1.4 s (contact.no_update = false saves one)"
+            )
+    return None
+
+
 def pressure_warning(max_pressure: float) -> str | None:
     """A warning when the largest radial pressure in the roll is beyond the plausible range."""
     return check("pressure", max_pressure, field="winding", what="largest radial pressure")

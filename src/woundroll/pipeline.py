@@ -199,7 +199,7 @@ def result_flags(
     flags = {
         "reading_outside_range": False,
         "spring_extrapolated": False,
-        "implausible_input": bool(case_warnings),
+        "implausible_input": any(not w.startswith("long run:") for w in case_warnings),
         "pressure_implausible": False,
     }
     warnings: list[str] = list(case_warnings)
@@ -364,7 +364,8 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     if web.radial_unloading is not None and not _restitution_given(case):
         p_peak = float(np.max(-stiff.at_impact.sigma_r))
         setup = _with_unloading(setup, web, p_peak, unloading_notes)
-    hardness = hardness_on_roll(setup, stiff, H, web.density, semi_contact_width_given=a_given)
+    with _thin_roll(case, H, setup.instrument.head_radius):
+        hardness = hardness_on_roll(setup, stiff, H, web.density, semi_contact_width_given=a_given)
     no_update = None
     if spec.no_update:
         report("contact", 0.5)
@@ -382,7 +383,14 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
             )
         no_update = NoUpdate(
             frozen,
-            hardness_on_roll(setup, frozen, H, web.density, semi_contact_width_given=a_given),
+            _thin_roll_call(
+                case,
+                H,
+                setup.instrument.head_radius,
+                lambda: hardness_on_roll(
+                    setup, frozen, H, web.density, semi_contact_width_given=a_given
+                ),
+            ),
         )
     report("contact", 1.0)
     springs = [("contact", stiff), ("no update", no_update and no_update.stiffness)]
@@ -434,6 +442,31 @@ def _user_fields(case: Case, wound: float) -> Iterator[None]:
             f"wound ({exc.message}); wind a larger roll",
             "winding.outer_radius" if case.winding.outer_radius is not None else "winding.length",
         ) from None
+
+
+@contextmanager
+def _thin_roll(case: Case, wound: float, head_radius: float) -> Iterator[None]:
+    """On a roll wound thinner than the head radius, an impact that does not end is the
+    striker going through the few layers (the contact model's spring is extrapolated far
+    beyond them): an input limit naming the roll's size, not a solver failure."""
+    from woundroll.errors import ConvergenceError
+
+    try:
+        yield
+    except ConvergenceError as exc:
+        if wound >= head_radius:
+            raise
+        raise InputError(
+            f"the roll is too thin for a hardness reading: {wound * 1e3:.3g} mm wound, less "
+            f"than the head radius ({head_radius * 1e3:.3g} mm), and the impact did not end "
+            f"({exc}); wind a larger roll",
+            "winding.outer_radius" if case.winding.outer_radius is not None else "winding.length",
+        ) from None
+
+
+def _thin_roll_call(case: Case, wound: float, head_radius: float, fn: Callable[[], Any]) -> Any:
+    with _thin_roll(case, wound, head_radius):
+        return fn()
 
 
 def _run_profile(

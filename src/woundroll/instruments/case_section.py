@@ -47,7 +47,7 @@ from woundroll.instruments.impact import (
     impact_fd,
 )
 from woundroll.instruments.roll_side import RollSpring, roll_effective_mass
-from woundroll.limits import LIMITS, MAX_STEPS_PER_CONTACT
+from woundroll.limits import MAX_STEPS_PER_CONTACT
 from woundroll.limits import check as check_limit
 from woundroll.units import to_si
 
@@ -245,9 +245,20 @@ def tester_from_spec(spec: dict[str, Any], field: str = "tester") -> TesterSetup
         )
     if overrides:
         inst = inst.with_overrides(field_prefix=field, **overrides)
-        for key in overrides:
-            if f"tester.{key}" in LIMITS and getattr(inst, key) is not None:
-                check_limit(f"tester.{key}", getattr(inst, key), field=f"{field}.{key}")
+        # every limited field, also those derived from an override (mass from omega {1})
+        for key in ("mass", "spring_stiffness", "release_position", "head_radius", "head_length"):
+            if getattr(inst, key) is not None:
+                fld = (
+                    key
+                    if key in overrides or "natural_frequency" not in overrides
+                    else ("natural_frequency")
+                )
+                check_limit(
+                    f"tester.{key}",
+                    getattr(inst, key),
+                    field=f"{field}.{fld}",
+                    what=key.replace("_", " "),
+                )
     return TesterSetup(
         instrument=inst,
         roll_spring=roll_spring,

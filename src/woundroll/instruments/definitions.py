@@ -141,7 +141,7 @@ class Instrument:
         if self.natural_frequency is not None:
             _check(self.natural_frequency, f"{p}.natural_frequency", positive=True)
             w2 = self.spring_stiffness / self.mass
-            if abs(w2 / self.natural_frequency**2 - 1.0) > EQ1_RTOL:
+            if abs(w2 / (self.natural_frequency * self.natural_frequency) - 1.0) > EQ1_RTOL:
                 raise InputError(
                     f"mass {self.mass:.6g} kg, spring stiffness {self.spring_stiffness:.6g} N/m "
                     f"and natural frequency {self.natural_frequency:.6g} rad/s disagree: "
@@ -243,9 +243,15 @@ class Instrument:
                 f"{field_prefix}.natural_frequency",
             )
         if omega_given and "mass" not in new:
-            new["mass"] = (
-                new.get("spring_stiffness", self.spring_stiffness) / new["natural_frequency"] ** 2
-            )
+            w2 = float(new["natural_frequency"]) * float(
+                new["natural_frequency"]
+            )  # no OverflowError
+            if not (w2 > 0 and math.isfinite(w2)):
+                raise InputError(
+                    f"{new['natural_frequency']!r} rad/s gives no finite striker mass {{1}}",
+                    f"{field_prefix}.natural_frequency",
+                )
+            new["mass"] = new.get("spring_stiffness", self.spring_stiffness) / w2
         elif not omega_given and ("mass" in new or "spring_stiffness" in new):
             k = new.get("spring_stiffness", self.spring_stiffness)
             m = new.get("mass", self.mass)
