@@ -335,7 +335,13 @@ def fit_causes(
     if nip_defl:
         prior[1] = 1.0
     repeat = case.readings.repeatability if case.readings is not None else None
-    se = _quantiles(readings, 0.6826894921370859, repeat)  # one standard error
+    # one standard error per position from the pooled repeatability (a per-position SD from
+    # 2-3 passes is too noisy to weight with), else the case's, else the positions' own
+    pooled = readings.pooled_sd or repeat
+    if pooled:
+        se = np.full(readings.n_positions, float(pooled)) / np.sqrt(readings.count)
+    else:
+        se = _quantiles(readings, 0.6826894921370859, repeat)
     if not np.all(se > 0):
         floor = 0.01 * float(np.mean(readings.mean))
         se = np.where(se > 0, se, floor)
@@ -394,6 +400,21 @@ def fit_causes(
     corr = cov / np.outer(sd, sd)
     identifiable = [bool(s < 0.7 * p) for s, p in zip(sd, prior, strict=True)]
     causes = _rank(model, J, theta, sd, identifiable, corr, readings)
+    # is there a CMD pattern at all? chi-square of the means about their weighted mean
+    from scipy.stats import chi2
+
+    ybar = float(np.sum(Wd * y) / np.sum(Wd))
+    stat = float(np.sum(Wd * (y - ybar) ** 2))
+    p_flat = float(chi2.sf(stat, y.size - 1))
+    if p_flat > 0.05:
+        notes.append(
+            f"the CMD variation of the readings is within their scatter (chi-square p = "
+            f"{p_flat:.2f}): no CMD cause can be identified from them"
+        )
+        for cz in causes:
+            if cz["cause"] != "tension level" and "not" not in cz["sentence"]:
+                cz["sentence"] += " (within the noise: not significant)"
+                cz["identifiable"] = False
     verification: dict[str, Any] = {}
     if verify:
         verification = _verify(model, theta)
@@ -480,12 +501,17 @@ def _rank(
     if model.nip_deflection:
         d = float(theta[1])
         where = "edges" if d > 0 else "middle"
+        extra = ""
+        if not ident[1]:
+            extra = " (not identifiable: a nip deflection leaves almost no trace in these readings)"
+        elif abs(d) < 2 * sd[1]:
+            extra = " (within the noise: not significant)"
         groups.append(
             (
                 "nip deflection",
                 [1],
                 f"the nip load is higher toward the {where} (a deflecting nip roller), "
-                f"about {100 * abs(d) * 2 / 3:.0f} % more there than the average",
+                f"about {100 * abs(d) * 2 / 3:.0f} % more there than the average" + extra,
             )
         )
     # thickness bands: contiguous runs of basis functions with the same sign and a
@@ -510,12 +536,19 @@ def _rank(
         peak = float(c[run][np.argmax(np.abs(c[run]))])
         kind = "thick" if sign > 0 else "thin"
         ok = all(ident[k0 + i] for i in run)
+        k_peak = k0 + run[int(np.argmax(np.abs(c[run])))]
+        if not ok:
+            extra = " (not identifiable: the readings hardly constrain it)"
+        elif abs(peak) < 2 * sd[k_peak]:
+            extra = " (within the noise: not significant)"
+        else:
+            extra = ""
         groups.append(
             (
                 f"{kind} band {lo:.0f}-{hi:.0f} in",
                 [k0 + i for i in run],
                 f"a persistent {kind} band at {lo:.0f}-{hi:.0f} in, about {100 * peak:+.1f} % "
-                "caliper" + ("" if ok else " (not identifiable: the readings hardly constrain it)"),
+                "caliper" + extra,
             )
         )
         k = run[-1] + 1
