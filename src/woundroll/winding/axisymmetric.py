@@ -37,9 +37,11 @@ Discretisation (``_axisym_fe``; docs/profile.md section 2)
   stress ``sigma_j`` plus ``(m - 1)/(2 m)`` of the hoop (and sigma_z, tau_rz) increment.
   Default **graded** grouping: single layers at the outer surface, a group holding about a
   quarter of the layers above it, equal groups below (``_split_layers``), at most
-  ``MAX_GROUP_LAYERS`` = 2 layers per group (:func:`default_groups`): the midpoint rule's
-  error grows as ``m^2 - 1`` with the group size ``m`` and the soft surface of a Table 2 roll
-  (``E_theta / E_r`` ~ 1e4) needs ``m <= 2`` for 1 % (docs/profile.md, section 6).
+  ``MAX_GROUP_LAYERS`` = 2 layers per group (:func:`default_groups`) unless 200 or 400
+  groups agree with that within 0.5 % on a column of the mean thickness
+  (:func:`choose_groups`): the midpoint rule's error grows as ``m^2 - 1`` with the group
+  size ``m``; the soft surface of a Table 2 roll (``E_theta / E_r`` ~ 1e4) needs ``m <= 2``
+  for 1 %, PET3 does not (docs/profile.md, section 6).
 * The group's pressure on the stack ``p_j = sigma_j m h_j / r_j`` and its own radial stress
   (the thin ring, ``-p_j / 2`` at its centre scaled by ``r_j / r_mid``) are taken on the
   undeformed geometry, as the nodal force ``-sigma_j w_j L`` of the small-strain increment
@@ -98,8 +100,9 @@ FloatArray = NDArray[np.float64]
 #: Nip hook: ``nip(group_index, outer_radius[j], sigma_r_top[j]) -> N[j]`` [N/m per width].
 NipHook = Callable[[int, FloatArray, FloatArray], FloatArray]
 
-#: Default grouping: graded toward the surface, at most ``MAX_GROUP_LAYERS`` layers per group
-#: (:func:`default_groups`). The grouping error grows as ``m^2 - 1`` with the group size ``m``
+#: Fine grouping: graded toward the surface, at most ``MAX_GROUP_LAYERS`` layers per group
+#: (:func:`default_groups`; the default unless :func:`choose_groups` finds a coarser one as
+#: good). The grouping error grows as ``m^2 - 1`` with the group size ``m``
 #: (midpoint rule); 2 layers keep every bundled PET roll within 0.5 % of the layer-by-layer
 #: 1D model at every radius, 5 layers (the former 200 groups on Table 2's rolls) missed by
 #: up to 4.9 % (docs/profile.md, section 6).
