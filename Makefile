@@ -19,6 +19,7 @@ demo: $(STAMP)
 	@echo "Figures and result.json written to out/demo/"
 
 test: $(STAMP)
+	@command -v chromium >/dev/null && command -v chromedriver >/dev/null || echo "note: chromium/chromedriver not installed: the browser tests (tests/web/test_browser.py) are SKIPPED (apt-get install chromium chromium-driver)"
 	MPLBACKEND=Agg $(BIN)/python -m pytest -q
 
 test-all: $(STAMP)

@@ -22,6 +22,7 @@ from pydantic import (
     BeforeValidator,
     ConfigDict,
     Field,
+    PrivateAttr,
     ValidationError,
     model_validator,
 )
@@ -81,6 +82,7 @@ class WebSpec(_Section):
             data = dict(data)
             data["radial_unloading"] = unloading_from_spec(data["radial_unloading"])
         if isinstance(data, dict) and isinstance(data.get("radial_modulus"), dict):
+            _check_tabulated_types(data["radial_modulus"])
             data = dict(data)
             data["radial_modulus"] = law_from_spec(
                 data["radial_modulus"], "web.radial_modulus", _BASE_DIR.get()
@@ -92,6 +94,17 @@ class WebSpec(_Section):
         return Web(
             **{name: getattr(self, name) for name in type(self).model_fields if name != "preset"}
         )
+
+
+def _check_tabulated_types(spec: dict[str, Any]) -> None:
+    """Types of a tabulated law's keys, before the law reads them (a clear message, no
+    TypeError from deep inside)."""
+    f = "web.radial_modulus"
+    if "file" in spec and not isinstance(spec["file"], str):
+        raise InputError(f"must be a file name (text), got {spec['file']!r}", f"{f}.file")
+    for key in ("strain", "pressure"):
+        if key in spec and not isinstance(spec[key], list):
+            raise InputError(f"must be a list of values, got {spec[key]!r}", f"{f}.{key}")
 
 
 class CoreSpec(_Section):
@@ -253,11 +266,12 @@ class WindingSpec(_Section):
             r = self.outer_radius
         else:
             r = math.sqrt(core.outer_radius**2 + self.length * web.thickness / math.pi)
-        if r <= core.outer_radius + web.thickness:
+        if r < core.outer_radius + web.thickness * (1 - 1e-9):
+            field = "winding.outer_radius" if self.outer_radius is not None else "winding.length"
             raise InputError(
                 f"outer radius {r:g} m must exceed the core radius {core.outer_radius:g} m "
                 f"by at least one layer (web.thickness = {web.thickness:g} m)",
-                "winding.outer_radius",
+                field,
             )
         return r
 
@@ -330,6 +344,11 @@ class ContactSpec(_Section):
             return ContactOptions(**self.options)
         except InputError as exc:
             raise exc.at("contact") from None
+        except (TypeError, ValueError) as exc:
+            raise InputError(
+                f"bad value ({exc}): {', '.join(f'{k} = {v!r}' for k, v in self.options.items())}",
+                "contact.options",
+            ) from None
 
 
 class ProfileSpec(_Section):
@@ -365,6 +384,62 @@ class ReadingsSpec(_Section):
     repeatability: Q("dimensionless", "nonnegative") | None = None
 
 
+def _tolerance(value: Any) -> tuple[str, float]:
+    """A tolerance (1 SD): relative (``"2 %"``, ``0.02``) or absolute (``"1.5 um"``)."""
+    q = parse_quantity(value)
+    for kind, tag in (("dimensionless", "relative"), ("length", "absolute")):
+        try:
+            v = to_si(q, kind)
+        except InputError:
+            continue
+        if not (math.isfinite(v) and v >= 0):
+            raise ValueError(f"must be zero or positive, got {value!r}")
+        return tag, v
+    raise ValueError(f"{value!r} is neither relative ('2 %') nor a length ('1.5 um')")
+
+
+class UncertaintySpec(_Section):
+    """``[uncertainty]``: one standard deviation of the inputs the predictions depend on.
+
+    ``K1`` [pressure], ``K2`` [-] and ``K1_K2_correlation`` of the Pfeiffer law {2} (from
+    ``woundroll fit-stack``'s covariance); ``thickness`` (relative ``"2 %"`` or a length
+    ``"1.5 um"``); ``tension`` (relative, of the winder's tension setting). Used by
+    ``woundroll diagnose`` and ``--uncertainty N`` (docs/diagnosis.md).
+    """
+
+    K1: Q("pressure", "nonnegative") | None = None
+    K2: Q("dimensionless", "nonnegative") | None = None
+    K1_K2_correlation: float = Field(default=0.0, ge=-1.0, le=1.0)
+    thickness: Annotated[tuple[str, float], BeforeValidator(_tolerance)] | None = None
+    tension: Q("dimensionless", "nonnegative") | None = None
+
+    def thickness_sd(self, thickness: float) -> float:
+        """SD of the web thickness [m] for a nominal ``thickness`` [m] (0 when not given)."""
+        if self.thickness is None:
+            return 0.0
+        kind, v = self.thickness
+        return v * thickness if kind == "relative" else v
+
+
+class DefectsSpec(_Section):
+    """``[defects]``: limits for the defect-risk criteria (docs/diagnosis.md, "Defect risk").
+
+    ``core_strength`` (radial pressure the core carries), ``blocking_pressure`` (layers
+    stick above it), ``friction`` (interlayer mu; default ``contact.friction``),
+    ``axial_acceleration_g`` (axial handling load, in g) and ``torque`` (through the roll)
+    for slip and telescoping, ``slack_pressure`` (default 1 kPa) and ``slack_fraction``
+    (default 0.7 of the lanes' median wound-on tension).
+    """
+
+    core_strength: Q("pressure") | None = None
+    blocking_pressure: Q("pressure") | None = None
+    friction: Q("dimensionless") | None = None
+    axial_acceleration_g: Q("dimensionless", "nonnegative") | None = None
+    torque: Q("energy", "nonnegative") | None = None
+    slack_pressure: Q("pressure") = 1e3
+    slack_fraction: float = Field(default=0.7, gt=0.0, lt=1.0)
+
+
 class Case(_Section):
     """A whole case: ``title``, ``[web]``, ``[core]``, ``[winding]``, optional ``[tester]``,
     ``[contact]``, ``[profile]`` (their tables are passed to the models that own them)."""
@@ -377,7 +452,21 @@ class Case(_Section):
     contact: ContactSpec = ContactSpec()
     profile: ProfileSpec = ProfileSpec()
     readings: ReadingsSpec | None = None
-    base_dir: Path | None = Field(default=None, exclude=True)
+    uncertainty: UncertaintySpec | None = None
+    defects: DefectsSpec | None = None
+    _base_dir: Path | None = PrivateAttr(default=None)
+    _warnings: tuple[str, ...] = PrivateAttr(default=())
+
+    @property
+    def base_dir(self) -> Path | None:
+        """Directory of the case file (relative paths inside it), or None."""
+        return self._base_dir
+
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        """Values outside their plausible range and long-run estimates
+        (:mod:`woundroll.limits`); the case is valid, the CLI prints them before the run."""
+        return self._warnings
 
     @cached_property
     def thickness_profile(self) -> Any:
@@ -385,7 +474,7 @@ class Case(_Section):
         ``winding.thickness_profile`` (path relative to the case file), or None."""
         if self.winding.thickness_profile is None:
             return None
-        from woundroll.profile.thickness import load_thickness
+        from woundroll.materials.thickness_profile import load_thickness
 
         return load_thickness(self._path(self.winding.thickness_profile), width=self.web.width)
 
@@ -459,18 +548,28 @@ def _error_from_validation(exc: ValidationError) -> InputError:
 
 def case_from_dict(data: dict[str, Any], base_dir: Path | None = None) -> Case:
     """Validate a case given as nested dicts (TOML structure) and return a :class:`Case`."""
+    from woundroll import limits
+    from woundroll.winding.hakiel import WindingOptions
+
+    if not isinstance(data, dict):
+        raise InputError("a case must be a table of tables ([web], [core], [winding])", "CASE")
     _BASE_DIR.value = base_dir
     try:
-        case = Case.model_validate({**data, "base_dir": base_dir})
+        case = Case.model_validate(data)
+        case._base_dir = base_dir
+        warnings = limits.check_case_values(case)
         web = case.web.build()
         core = case.core.build()
-        case.winding.final_radius(web, core)
-        case.winding.schedule(web)
+        r_out = case.winding.final_radius(web, core)
+        schedule = case.winding.schedule(web)
+        options = WindingOptions.from_dict(case.winding.options, "winding.options")
+        warnings += limits.check_built(web, core, r_out, schedule, options)
         _check_options(case)
     except ValidationError as exc:
         raise _error_from_validation(exc) from None
     finally:
         _BASE_DIR.value = None
+    case._warnings = tuple(warnings)
     return case
 
 
@@ -497,7 +596,7 @@ def _check_options(case: Case) -> None:
                 "winding.thickness_profile or contact.dynamic",
                 "contact.dynamic",
             )
-    _ = case.thickness_profile
+    _read_file(case, "thickness_profile", "winding.thickness_profile")
     if case.profile.measured is not None:
         if case.winding.thickness_profile is None:
             raise InputError(
@@ -505,8 +604,9 @@ def _check_options(case: Case) -> None:
                 "winding.thickness_profile too",
                 "profile.measured",
             )
-        _ = case.measured_profile
-    _ = case.measured_readings
+        _read_file(case, "measured_profile", "profile.measured")
+    if case.readings is not None:
+        _read_file(case, "measured_readings", "readings.file")
     if case.winding.nip_roller is not None:
         if case.winding.thickness_profile is None:
             raise InputError(
@@ -515,6 +615,17 @@ def _check_options(case: Case) -> None:
                 "winding.nip_roller",
             )
         case.winding.nip_roller.build(case.winding.nip_load, case.winding.friction)
+
+
+def _read_file(case: Case, attr: str, field: str) -> None:
+    """Read a file the case names now; a file whose content is not what it should be (text in
+    a number map, a wrong encoding) is an input error naming the field, not a traceback."""
+    try:
+        getattr(case, attr)
+    except InputError:
+        raise
+    except (ValueError, TypeError, OSError, UnicodeDecodeError, EOFError) as exc:
+        raise InputError(f"cannot read the file: {exc}", field) from None
 
 
 def bundled_cases() -> dict[str, str]:
@@ -582,16 +693,37 @@ def load_case(source: str | Path | dict[str, Any], overrides: list[str] | None =
         data = source
     else:
         path = resolve_case_path(source)
-        try:
-            data = tomllib.loads(path.read_text(encoding="utf-8"))
-        except tomllib.TOMLDecodeError as exc:
-            raise InputError(f"{path.name} is not valid TOML: {exc}", "CASE") from None
+        data = _read_toml(path)
         base_dir = path.parent
     data = _deepcopy(data)
     for text in overrides or []:
         key, value = parse_override(text)
         set_dotted(data, key, value)
     return case_from_dict(data, base_dir)
+
+
+def _read_toml(path: Path) -> dict[str, Any]:
+    """The TOML table of a case file: UTF-8 (a byte-order mark is skipped); a binary file, a
+    UTF-16 file or a TOML syntax error is an input error naming the file (field ``CASE``)."""
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise InputError(f"cannot read {path}: {exc.strerror or exc}", "CASE") from None
+    if b"\x00" in raw[:4096]:
+        kind = "UTF-16/32 text" if raw[:2] in (b"\xff\xfe", b"\xfe\xff") else "binary"
+        raise InputError(
+            f"{path.name} is {kind}, not a UTF-8 TOML file (save it as UTF-8 text)", "CASE"
+        )
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise InputError(
+            f"{path.name} is not UTF-8 text (byte {exc.start}); save it as UTF-8", "CASE"
+        ) from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{path.name} is not valid TOML: {exc}", "CASE") from None
 
 
 def _merge(base: dict[str, Any], top: dict[str, Any]) -> dict[str, Any]:

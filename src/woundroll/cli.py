@@ -36,6 +36,34 @@ def _fail(exc: Exception, status: int) -> None:
     raise typer.Exit(status)
 
 
+def _warn(text: str) -> None:
+    err.print(f"[yellow]warning:[/] {escape(text)}", highlight=False, soft_wrap=True)
+
+
+def _version(value: bool) -> None:
+    if value:
+        from importlib.metadata import PackageNotFoundError, version
+
+        try:
+            v = version("woundroll")
+        except PackageNotFoundError:  # running from a source tree without installing
+            v = "unknown"
+        out.print(f"woundroll {v}", highlight=False)
+        raise typer.Exit()
+
+
+@app.callback()
+def _main(
+    _version_flag: Annotated[
+        bool,
+        typer.Option(
+            "--version", callback=_version, is_eager=True, help="Print the version and exit."
+        ),
+    ] = False,
+) -> None:
+    """Wound-roll stresses from winder settings, and the hardness readings they cause."""
+
+
 @app.command()
 def run(
     case: Annotated[
@@ -54,27 +82,60 @@ def run(
     quiet: Annotated[
         bool, typer.Option("--quiet", "-q", help="No progress bar or summary.")
     ] = False,
+    uncertainty: Annotated[
+        int,
+        typer.Option(
+            "--uncertainty",
+            help="Monte Carlo samples of the case's [uncertainty] (0: none).",
+            min=0,
+        ),
+    ] = 0,
+    report: Annotated[
+        bool, typer.Option("--report", help="With --out: also write the HTML report.html.")
+    ] = False,
 ) -> None:
     """Run the models a case asks for: winding, and with a tester section the hardness reading."""
+    from woundroll._pool import Interrupted, clean_stop
     from woundroll.case import load_case
     from woundroll.pipeline import run as run_case
 
-    try:
-        c = load_case(case, set_ or [])
-        if quiet or as_json or not sys.stderr.isatty():
-            result = run_case(c)
-        else:
-            result = _with_progress(lambda progress: run_case(c, progress=progress))
-        written = result.write(out_dir) if out_dir is not None else []
-    except InputError as exc:
-        _fail(exc, 2)
-    except ConvergenceError as exc:
-        _fail(exc, 1)
+    with clean_stop():
+        try:
+            if report and out_dir is None:
+                raise InputError("the report goes into the --out directory: give --out", "--report")
+            c = load_case(case, set_ or [])
+            if out_dir is not None:
+                from woundroll._output import check_out_dir
+
+                check_out_dir(out_dir)  # a bad --out fails now, not after the run
+            for w in c.warnings:
+                _warn(w)
+            if quiet or as_json or not sys.stderr.isatty():
+                result = run_case(c)
+            else:
+                result = _with_progress(lambda progress: run_case(c, progress=progress))
+            written = result.write(out_dir) if out_dir is not None else []
+            uq = _cli_diagnose.run_uncertainty(c, uncertainty, out_dir, written, quiet or as_json)
+            if report:
+                from woundroll.report import write_report
+
+                written.append(write_report(result, out_dir))
+        except InputError as exc:
+            _fail(exc, 2)
+        except ConvergenceError as exc:
+            _fail(exc, 1)
+        except Interrupted as exc:
+            err.print(f"stopped by {exc}: workers ended, no output written", highlight=False)
+            raise typer.Exit(128 + exc.signum) from None
+    for w in result.warnings:
+        if w not in c.warnings:
+            _warn(w)
     if as_json:
-        sys.stdout.write(result.to_json() + "\n")
+        sys.stdout.write(_cli_diagnose.json_with_uncertainty(result, uq) + "\n")
         return
     if not quiet:
         _summary(result)
+        _cli_diagnose.print_uncertainty(uq)
         for p in written:
             out.print(f"wrote {p}")
 
@@ -110,6 +171,9 @@ def _summary(result) -> None:  # type: ignore[no-untyped-def]
     out.print(t)
     for note in result.notes:
         out.print(f"note: {escape(note)}", highlight=False)
+    raised = [k.replace("_", " ") for k, v in result.flags.items() if v]
+    if raised:
+        out.print(f"[bold yellow]flags:[/] {escape(', '.join(raised))}", highlight=False)
 
 
 def result_summary(result: RunResult) -> list[tuple[str, str]]:
@@ -126,8 +190,10 @@ def result_summary(result: RunResult) -> list[tuple[str, str]]:
     h = result.hardness
     if h is not None:
         d = h.to_dict()
+        outside = result.flags.get("reading_outside_range")
+        flag = " (outside the instrument's range)" if outside else ""
         rows += [
-            (f"{d['readout']} reading ({d['instrument']})", f"{d['reading']:.1f}"),
+            (f"{d['readout']} reading ({d['instrument']})", f"{d['reading']:.1f}{flag}"),
             ("Rho (finite difference / energy)", f"{d['rho_fd']:.1f} / {d['rho_energy']:.1f}"),
             ("impulse", f"{d['impulse_Ns']:.4f} N s"),
             ("max depth", f"{d['delta_max_m'] * 1e3:.3f} mm"),
@@ -138,6 +204,7 @@ def result_summary(result: RunResult) -> list[tuple[str, str]]:
         rows += [
             ("roll spring alpha", f"{c.alpha:.4g} N/m^2"),
             ("roll spring beta", f"{c.beta:.4g} N/m"),
+            ("roll spring extrapolated", "yes" if c.extrapolated else "no"),
             ("semi-contact width at max depth", f"{c.semi_contact_width * 1e3:.3f} mm"),
         ]
     nu = result.no_update
@@ -205,8 +272,7 @@ def study(
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar.")] = False,
 ) -> None:
     """Run one of the reference paper's studies on its Table 2 rolls; print its tables."""
-    import json
-
+    from woundroll._output import strict_json
     from woundroll.studies import run_study
 
     def job(progress):  # type: ignore[no-untyped-def]
@@ -225,7 +291,7 @@ def study(
     except OSError as exc:
         _fail(InputError(f"cannot write to {out_dir}: {exc.strerror or exc}", "--out"), 2)
     if as_json:
-        sys.stdout.write(json.dumps(result.to_dict()) + "\n")
+        sys.stdout.write(strict_json(result.to_dict()) + "\n")
         return
     wide = out if out.is_terminal else Console(width=160)
     for title, header, rows in result.summary():
@@ -266,7 +332,9 @@ def fit_stack_cmd(
     csv_file: Annotated[
         Path,
         typer.Argument(
-            help="CSV with columns strain and pressure (units in the header: 'pressure [kPa]')."
+            help=escape(
+                "CSV with columns strain and pressure (units in the header: 'pressure [kPa]')."
+            )
         ),
     ],
     law: Annotated[str, typer.Option(help="pfeiffer, polynomial, constant, or all.")] = "all",
@@ -281,19 +349,22 @@ def fit_stack_cmd(
     ] = False,
 ) -> None:
     """Fit radial-modulus laws to a stack test and print their parameters and fit quality."""
-    import json
-
     if unloading:
         from woundroll.cli_unloading import fit_cycle_cmd
 
         fit_cycle_cmd(csv_file, as_json, out, _fail)
         return
 
+    from woundroll._output import strict_json
     from woundroll.materials.radial_modulus import read_stack_csv
-    from woundroll.materials.stack_fit import FIT_LAWS, fit_stack
+    from woundroll.materials.stack_fit import FIT_LAWS, check_stack_data, fit_stack
 
     try:
         eps, p = read_stack_csv(csv_file, "CSV_FILE")
+        try:
+            check_stack_data(eps, p)
+        except InputError as exc:
+            raise InputError(f"{csv_file.name}: {exc.message}", "CSV_FILE") from None
         laws = FIT_LAWS if law == "all" else (law,)
         fits = {}
         for name in laws:
@@ -302,24 +373,39 @@ def fit_stack_cmd(
             except InputError as exc:
                 if law != "all":
                     raise
-                err.print(f"{name}: {exc.message}")
+                err.print(f"{name}: {escape(exc.message)}", highlight=False, soft_wrap=True)
+        if not fits:
+            raise InputError("no law could be fitted to this stack test (see above)", "CSV_FILE")
     except InputError as exc:
         _fail(exc, 2)
     except ConvergenceError as exc:
         _fail(exc, 1)
     if as_json:
-        sys.stdout.write(json.dumps({k: f.to_dict() for k, f in fits.items()}) + "\n")
+        sys.stdout.write(strict_json({k: f.to_dict() for k, f in fits.items()}) + "\n")
         return
     t = Table("law", "R^2", "RMS rel. error", "max rel. error", "case-file table")
     for name, f in fits.items():
         t.add_row(name, f"{f.r2:.5f}", f"{f.rms_rel_error:.2%}", f"{f.max_rel_error:.2%}", f.toml())
     out.print(t)
+    for name, f in fits.items():  # the fit's covariance, ready for the case's [uncertainty]
+        if f.uncertainty_toml():
+            out.print(escape(f"{name}: [uncertainty] (1 SD)\n{f.uncertainty_toml()}"))
 
 
 # the reverse road (readings -> stresses): commands in their own module
 from woundroll import cli_diagnose as _cli_diagnose  # noqa: E402
 
 _cli_diagnose.register(app)
+
+
+# the shop floor and sweeps: commands in their own modules (woundroll.cli_*)
+from woundroll import cli_report as _cli_report  # noqa: E402
+from woundroll import cli_serve as _cli_serve  # noqa: E402
+from woundroll import cli_sweep as _cli_sweep  # noqa: E402
+
+_cli_report.register(app)
+_cli_sweep.register(app)
+_cli_serve.register(app)
 
 
 def main() -> None:

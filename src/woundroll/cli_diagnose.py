@@ -7,6 +7,7 @@ numpy-heavy modules happen inside the commands (``woundroll --help`` stays light
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 from typing import Annotated
 
 import typer
@@ -82,6 +83,218 @@ def readings_cmd(
         out.print("no repeated readings: the scatter must come from the instrument's repeatability")
 
 
+def diagnose_cmd(
+    case: Annotated[
+        str, typer.Argument(help="Case file (TOML) or bundled case name (see `woundroll cases`).")
+    ],
+    readings: Annotated[
+        str | None,
+        typer.Option("--readings", help="Readings CSV (default: the case's [readings] file)."),
+    ] = None,
+    lane_width: Annotated[
+        str | None, typer.Option("--lane-width", help="Lane width for lane numbers ('6 in').")
+    ] = None,
+    confidence: Annotated[
+        float, typer.Option(help="Two-sided confidence of the intervals.")
+    ] = 0.95,
+    set_: Annotated[
+        list[str] | None,
+        typer.Option("--set", help="Override a case key: dotted.key=value (repeatable)."),
+    ] = None,
+    out_dir: Annotated[
+        Path | None, typer.Option("--out", help="Write diagnosis.json and PNG plots here.")
+    ] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
+    quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress or table.")] = False,
+) -> None:
+    """Readings -> the effective wound-on tension and near-surface pressure at each position."""
+    from woundroll.case import load_case
+    from woundroll.cli import _fail, _with_progress, out
+    from woundroll.diagnosis import diagnose
+    from woundroll.readings import read_readings
+
+    try:
+        c = load_case(case, set_ or [])
+        lw = _length(lane_width, "--lane-width")
+        if lw is None and c.readings is not None:
+            lw = c.readings.lane_width
+        r = None
+        if readings is not None:
+            r = read_readings(readings, width=c.web.width, lane_width=lw, field="--readings")
+        if quiet or as_json or not sys.stderr.isatty():
+            d = diagnose(c, r, confidence=confidence)
+        else:
+            d = _with_progress(
+                lambda progress: diagnose(c, r, confidence=confidence, progress=progress)
+            )
+        from woundroll.defects import defect_report
+
+        defects = defect_report(c, d)
+        payload = {
+            "case": {"title": c.title},
+            "readings": d.readings.to_dict(),
+            "diagnosis": {**d.to_dict(), "defects": defects.to_dict()},
+        }
+        written = _write(out_dir, payload, d, defects) if out_dir is not None else []
+    except InputError as exc:
+        _fail(exc, 2)
+    except ConvergenceError as exc:
+        _fail(exc, 1)
+    if as_json:
+        import json
+
+        sys.stdout.write(json.dumps(payload) + "\n")
+        return
+    if quiet:
+        return
+    t = Table(
+        "position [in]",
+        f"reading [{d.curve.scale}]",
+        "wound-on tension [MPa]",
+        f"P at {d.pressure_depth * 1e3:.1f} mm [kPa]",
+        "status",
+        title=escape(
+            f"{c.title or case}: diagnosis ({100 * d.confidence:.0f} % intervals in brackets)"
+        ),
+    )
+    for row in d.summary():
+        t.add_row(*[escape(v) for v in row])
+    out.print(t)
+    v = d.verification
+    if v:
+        out.print(
+            f"check: full forward run at {v['web_tension_Pa'] / 1e6:.3g} MPa reads "
+            f"{v['full_forward_reading']:.2f} (target {v['target_reading']:.2f})",
+            highlight=False,
+        )
+    for note in d.notes:
+        out.print(f"note: {escape(note)}", highlight=False)
+    _print_defects(defects)
+    for p in written:
+        out.print(f"wrote {p}")
+
+
+def _print_defects(defects) -> None:  # type: ignore[no-untyped-def]
+    from woundroll.cli import out
+
+    t = Table("criterion", "risk", "finding", title=f"defect risk: {defects.risk}")
+    for name, risk, sentence in defects.summary():
+        t.add_row(escape(name), escape(risk), escape(sentence))
+    out.print(t)
+
+
+def defects_cmd(
+    case: Annotated[
+        str, typer.Argument(help="Case file (TOML) or bundled case name (see `woundroll cases`).")
+    ],
+    set_: Annotated[
+        list[str] | None,
+        typer.Option("--set", help="Override a case key: dotted.key=value (repeatable)."),
+    ] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
+    out_dir: Annotated[
+        Path | None, typer.Option("--out", help="Write defects.json and defects.png here.")
+    ] = None,
+) -> None:
+    """Defect risk of a roll from its wound-in stresses: starring, core crush, slip,
+    telescoping, blocking, slack (limits in the case's [defects])."""
+    import json
+
+    from woundroll.case import load_case
+    from woundroll.cli import _fail
+    from woundroll.defects import defect_report
+
+    try:
+        c = load_case(case, set_ or [])
+        rep = defect_report(c)
+        if out_dir is not None:
+            import matplotlib
+
+            matplotlib.use("Agg", force=False)
+            import matplotlib.pyplot as plt
+
+            try:
+                out_dir.mkdir(parents=True, exist_ok=True)
+                (out_dir / "defects.json").write_text(json.dumps(rep.to_dict()), encoding="utf-8")
+                plt.close(rep.plot(out_dir / "defects.png"))
+            except OSError as exc:
+                raise InputError(
+                    f"cannot write to {out_dir}: {exc.strerror or exc}", "--out"
+                ) from None
+    except InputError as exc:
+        _fail(exc, 2)
+    except ConvergenceError as exc:
+        _fail(exc, 1)
+    if as_json:
+        sys.stdout.write(json.dumps({"defects": rep.to_dict()}) + "\n")
+        return
+    _print_defects(rep)
+
+
+def _write(out_dir: Path, payload: dict, d, defects) -> list[Path]:  # type: ignore[no-untyped-def]
+    import json
+
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+        paths = [out_dir / "diagnosis.json"]
+        paths[0].write_text(json.dumps(payload, indent=1), encoding="utf-8")
+        plt.close(d.readings.plot(out_dir / "readings.png"))
+        for fig in d.plot(out_dir / "diagnosis"):
+            plt.close(fig)
+        plt.close(defects.plot(out_dir / "defects.png"))
+    except OSError as exc:
+        raise InputError(f"cannot write to {out_dir}: {exc.strerror or exc}", "--out") from None
+    return paths + [
+        out_dir / n for n in ("readings.png", "diagnosis_curve.png", "diagnosis_cmd.png")
+    ]
+
+
+def run_uncertainty(case, n: int, out_dir: Path | None, written: list, quiet: bool):  # type: ignore[no-untyped-def]
+    """``woundroll run --uncertainty N``: the Monte Carlo bands (None for N = 0); adds its
+    files to ``written`` when ``out_dir`` is given."""
+    if not n:
+        return None
+    from woundroll.cli import _with_progress
+    from woundroll.uncertainty import propagate
+
+    if quiet or not sys.stderr.isatty():
+        uq = propagate(case, n)
+    else:
+        uq = _with_progress(lambda progress: propagate(case, n, progress=progress))
+    if out_dir is not None:
+        written.extend(uq.write(out_dir))
+    return uq
+
+
+def json_with_uncertainty(result, uq) -> str:  # type: ignore[no-untyped-def]
+    """The run's JSON, with ``uncertainty`` added when it was propagated."""
+    if uq is None:
+        return result.to_json()
+    from woundroll._output import strict_json
+
+    return strict_json({**result.to_dict(), "uncertainty": uq.to_dict()})
+
+
+def print_uncertainty(uq) -> None:  # type: ignore[no-untyped-def]
+    if uq is None:
+        return
+    from woundroll.cli import out
+
+    t = Table("quantity", "value", title="uncertainty (Monte Carlo)")
+    for name, value in uq.summary():
+        t.add_row(escape(name), escape(value))
+    out.print(t)
+    for note in uq.notes:
+        out.print(f"note: {escape(note)}", highlight=False)
+
+
 def register(app: typer.Typer) -> None:
     """Add the reverse-road commands to the ``woundroll`` app."""
     app.command("readings")(readings_cmd)
+    app.command("diagnose")(diagnose_cmd)
+    app.command("defects")(defects_cmd)

@@ -15,7 +15,6 @@ typed results into :class:`RunResult`:
 
 from __future__ import annotations
 
-import json
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
@@ -89,10 +88,13 @@ class RunResult:
     no_update: NoUpdate | None = None
     profile: ProfileResult | None = None
     notes: tuple[str, ...] = field(default_factory=tuple)
+    warnings: tuple[str, ...] = field(default_factory=tuple)
+    flags: dict[str, bool] = field(default_factory=dict)
     dynamic: DynamicImpactResult | None = None
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict: ``{"case": ..., "winding": {...}, "contact": ..., "hardness": ...}``."""
+        """JSON-ready dict: ``{"case": ..., "winding": {...}, "contact": ..., "hardness": ...,
+        "flags": {...}, "warnings": [...]}`` (``flags``: :func:`result_flags`)."""
         out: dict[str, Any] = {"case": {"title": self.case.title}}
         for name in ("winding", "contact", "hardness", "no_update", "profile"):
             part = getattr(self, name)
@@ -100,56 +102,132 @@ class RunResult:
                 out[name] = part.to_dict()
         if self.dynamic is not None and "hardness" in out:
             out["hardness"]["dynamic"] = self.dynamic.to_dict()
+        out["flags"] = dict(self.flags)
+        out["warnings"] = list(self.warnings)
         if self.notes:
             out["notes"] = list(self.notes)
         return out
 
     def to_json(self, **kw: Any) -> str:
-        return json.dumps(self.to_dict(), default=_json_default, **kw)
+        """Standard JSON: NaN and infinities are written as null."""
+        from woundroll._output import strict_json
+
+        return strict_json(self.to_dict(), **kw)
 
     def write(self, out_dir: str | Path) -> list[Path]:
-        """Write ``result.json`` and a PNG for every profile into ``out_dir``; return the paths.
+        """Write ``result.json`` and the PNG plots into ``out_dir``; return the paths.
+
+        Every file is written to a temporary directory inside ``out_dir`` and moved into
+        place atomically, ``result.json`` last; it lists the run's files under ``"files"``.
+        Files the previous run's ``result.json`` listed and this run did not write are
+        removed; other plot-named PNGs are reported in ``notes`` (:mod:`woundroll._output`).
 
         Raises
         ------
         InputError
             ``out_dir`` cannot be created or written (field ``--out``).
         """
-        out = Path(out_dir)
-        try:
-            out.mkdir(parents=True, exist_ok=True)
-            written = [out / "result.json"]
-            written[0].write_text(self.to_json(indent=1), encoding="utf-8")
-        except OSError as exc:
-            raise InputError(f"cannot write to {out}: {exc.strerror or exc}", "--out") from None
         import matplotlib
+
+        from woundroll._output import OutputDir
 
         matplotlib.use("Agg", force=False)
         import matplotlib.pyplot as plt
 
-        for name in ("winding", "contact", "hardness", "profile"):
-            part = getattr(self, name)
-            if part is None or not hasattr(part, "plot"):
-                continue
-            figs = part.plot(out / f"{name}.png")
-            for fig in figs if isinstance(figs, list | tuple) else [figs]:
-                plt.close(fig)
-            written.extend(sorted(out.glob(f"{name}*.png")))
-        if self.dynamic is not None:
-            fd = self.hardness.fd if self.hardness is not None else None
-            plt.close(self.dynamic.plot(out / "dynamic.png", fd=fd))
-            written.append(out / "dynamic.png")
+        parts = ("winding", "contact", "hardness", "profile")
+        with OutputDir(out_dir) as od:
+            for name in parts:
+                part = getattr(self, name)
+                if part is None or not hasattr(part, "plot"):
+                    continue
+                figs = part.plot(od.tmp / f"{name}.png")
+                figs = list(figs) if isinstance(figs, list | tuple) else [figs]
+                warning = self._plot_warning(name)
+                if warning and figs:
+                    # the flag on the plot itself (first figure: the one showing the reading)
+                    first = sorted(od.tmp.glob(f"{name}*.png"))[0]
+                    figs[0].text(0.01, 0.005, warning, color="red", fontsize=7, va="bottom")
+                    figs[0].savefig(first, dpi=120)
+                for fig in figs:
+                    plt.close(fig)
+            if self.dynamic is not None:
+                fd = self.hardness.fd if self.hardness is not None else None
+                plt.close(self.dynamic.plot(od.tmp / "dynamic.png", fd=fd))
+            names = sorted(p.name for p in od.tmp.glob("*.png")) + ["result.json"]
+            data = self.to_dict()
+            data["files"] = names
+            from woundroll._output import strict_json
+
+            (od.tmp / "result.json").write_text(strict_json(data, indent=1), encoding="utf-8")
+            written, stale = od.publish(names, tuple(f"{p}*.png" for p in (*parts, "dynamic")))
+        if stale:
+            object.__setattr__(self, "notes", self.notes + tuple(stale))
         return written
 
+    def _plot_warning(self, part: str) -> str:
+        """The flags shown on the plot of ``part`` (empty when none)."""
+        f = self.flags
+        out = []
+        if part in ("hardness", "profile") and f.get("reading_outside_range"):
+            out.append("reading outside the instrument's range")
+        if part in ("contact", "hardness", "profile") and f.get("spring_extrapolated"):
+            out.append("roll spring extrapolated beyond the contact model's depth")
+        if part == "winding" and f.get("implausible_input"):
+            out.append("inputs outside their usual range (see warnings in result.json)")
+        return ("warning: " + "; ".join(out)) if out else ""
 
-def _json_default(obj: Any) -> Any:
-    if isinstance(obj, np.ndarray):
-        return obj.tolist()
-    if isinstance(obj, np.generic):
-        return obj.item()
-    if isinstance(obj, Path):
-        return str(obj)
-    raise TypeError(f"not JSON serialisable: {type(obj).__name__}")
+
+def result_flags(
+    instrument: Any,
+    readings: Any,
+    stiffness: list[Any],
+    case_warnings: tuple[str, ...],
+    max_pressure: float | None,
+) -> tuple[dict[str, bool], list[str]]:
+    """Flags of a run and the warnings that explain them.
+
+    ``reading_outside_range``: a reading beyond the instrument's scale
+    (:attr:`~woundroll.instruments.Instrument.reading_range`: the instrument would show its
+    end stop). ``spring_extrapolated``: the striker goes deeper than the contact model was
+    solved, so the spring {3} is extrapolated there. ``implausible_input``: a case value
+    outside its plausible range (:mod:`woundroll.limits`). ``pressure_implausible``: the
+    largest radial pressure in the roll is beyond the plausible range.
+    """
+    from woundroll.limits import pressure_warning
+
+    flags = {
+        "reading_outside_range": False,
+        "spring_extrapolated": False,
+        "implausible_input": bool(case_warnings),
+        "pressure_implausible": False,
+    }
+    warnings: list[str] = list(case_warnings)
+    if max_pressure is not None:
+        w = pressure_warning(max_pressure)
+        if w:
+            flags["pressure_implausible"] = True
+            warnings.append(w)
+    rng = getattr(instrument, "reading_range", None) if instrument is not None else None
+    if rng is not None and readings is not None:
+        r = np.atleast_1d(np.asarray(readings, dtype=float))
+        out = (r < rng[0]) | (r > rng[1]) | ~np.isfinite(r)
+        if out.any():
+            flags["reading_outside_range"] = True
+            where = f" in {int(out.sum())} of {r.size} sectors" if r.size > 1 else ""
+            warnings.append(
+                f"reading {np.nanmax(r):.4g}{where} is outside the {instrument.name}'s range "
+                f"{rng[0]:g}-{rng[1]:g} ({instrument.readout}): the instrument would not show it"
+            )
+    for label, rs in stiffness:
+        if rs is not None and rs.extrapolated:
+            flags["spring_extrapolated"] = True
+            ratio = rs.impact_depth / float(rs.contact.delta[-1])
+            warnings.append(
+                f"{label}: the striker reaches {rs.impact_depth * 1e3:.3g} mm, {ratio:.2g} x the "
+                f"contact model's depth ({rs.contact.delta[-1] * 1e3:.3g} mm): the roll spring "
+                "is extrapolated (set contact.depth_max deeper)"
+            )
+    return flags, warnings
 
 
 def hardness_on_roll(
@@ -233,8 +311,10 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     setup = case.tester_setup
     if case.winding.thickness_profile is not None:
         return _run_profile(case, web, core, r_out, schedule, winding, setup, report)
+    max_p = float(-np.min(winding.sigma_r))
     if setup is None:
-        return RunResult(case=case, winding=winding)
+        flags, warns = result_flags(None, None, [], case.warnings, max_p)
+        return RunResult(case=case, winding=winding, warnings=tuple(warns), flags=flags)
 
     from woundroll.instruments import hardness_from_spring
 
@@ -254,7 +334,15 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
                 setup, pile_height=r_out - core.outer_radius, density=web.density
             )
         report("impact", 1.0)
-        return RunResult(case=case, winding=winding, hardness=hardness, notes=tuple(notes))
+        flags, warns = result_flags(setup.instrument, hardness.reading, [], case.warnings, max_p)
+        return RunResult(
+            case=case,
+            winding=winding,
+            hardness=hardness,
+            notes=tuple(notes),
+            warnings=tuple(warns),
+            flags=flags,
+        )
 
     from woundroll.contact import roll_stiffness
 
@@ -292,6 +380,8 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
             hardness_on_roll(setup, frozen, H, web.density, semi_contact_width_given=a_given),
         )
     report("contact", 1.0)
+    springs = [("contact", stiff), ("no update", no_update and no_update.stiffness)]
+    flags, warns = result_flags(setup.instrument, hardness.reading, springs, case.warnings, max_p)
     dynamic = None
     if spec.dynamic:
         from woundroll.contact.dynamic import impact_dynamic
@@ -308,20 +398,15 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
             options=spec.dynamic_settings(),
         )
         report("dynamic", 1.0)
-    notes = tuple(
-        f"{label}: the striker reaches {rs.impact_depth * 1e3:.3g} mm, beyond the contact "
-        f"model's range ({rs.contact.delta[-1] * 1e3:.3g} mm): its spring is extrapolated"
-        for label, rs in (("contact", stiff), ("no update", no_update and no_update.stiffness))
-        if rs is not None and rs.extrapolated
-    )
-    notes = (*notes, *unloading_notes)
     return RunResult(
         case=case,
         winding=winding,
         contact=stiff,
         hardness=hardness,
         no_update=no_update,
-        notes=notes,
+        notes=tuple(unloading_notes),
+        warnings=tuple(warns),
+        flags=flags,
         dynamic=dynamic,
     )
 
@@ -399,4 +484,13 @@ def _run_profile(
     measured = case.measured_profile
     if measured is not None:
         profile = profile.compare(measured)
-    return RunResult(case=case, winding=winding, profile=profile, notes=tuple(notes))
+    p_max = float(np.max(-np.asarray(profile.sigma_r_core)))
+    flags, warns = result_flags(instrument, profile.rho, [], case.warnings, p_max)
+    return RunResult(
+        case=case,
+        winding=winding,
+        profile=profile,
+        notes=tuple(notes),
+        warnings=tuple(warns),
+        flags=flags,
+    )

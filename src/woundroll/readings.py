@@ -346,7 +346,8 @@ def _assemble(
 
 
 def _split(cell: str) -> tuple[str, str | None]:
-    """``"reading [Rho]"`` -> ``("reading", "Rho")``; ``"position_in"`` -> ``("position", "in")``."""
+    """Header cell -> (name, unit): ``"reading [Rho]"`` -> ``("reading", "Rho")``,
+    ``"position_in"`` -> ``("position", "in")``."""
     m = _BRACKET.match(cell)
     if m:
         return _key(m.group(1)), m.group(2).strip()

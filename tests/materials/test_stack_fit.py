@@ -170,3 +170,34 @@ def test_example_script_uses_the_fit_in_a_case(capsys):
     assert out["core_pressure_Pa"] == pytest.approx(out["core_pressure_table2_Pa"], rel=0.01)
     assert 70e3 < out["core_pressure_Pa"] < 100e3  # PET1 at 26.7 N: 84 kPa (docs/winding.md)
     assert "core pressure" in capsys.readouterr().out
+
+
+def test_pfeiffer_covariance_matches_the_scatter_of_repeated_fits():
+    """The reported SDs of K1, K2 (Jacobian covariance) agree with the spread of fits to
+    many noisy copies of one stack test (200 copies: the SD of an SD estimate is ~5 %, and
+    the first-order covariance is a few per cent off at 2 % noise: 20 % tolerance)."""
+    true = Pfeiffer(K1=20270.0, K2=26.24)
+    eps = np.linspace(0.005, 0.15, 40)
+    rng = np.random.default_rng(11)
+    k = []
+    for _ in range(200):
+        noisy = true.pressure(eps) * np.exp(0.02 * rng.standard_normal(eps.size))
+        f = fit_stack(eps, noisy, "pfeiffer")
+        k.append((f.law.K1, f.law.K2))
+    k = np.array(k)
+    u = fit_stack(
+        eps, true.pressure(eps) * np.exp(0.02 * rng.standard_normal(eps.size))
+    ).uncertainty()
+    assert u["K1_sd_Pa"] == pytest.approx(np.std(k[:, 0], ddof=1), rel=0.2)
+    assert u["K2_sd"] == pytest.approx(np.std(k[:, 1], ddof=1), rel=0.2)
+    assert u["K1_K2_correlation"] == pytest.approx(np.corrcoef(k.T)[0, 1], abs=0.1)
+
+
+def test_covariance_in_json_and_toml_only_for_pfeiffer():
+    true = Pfeiffer(K1=4620.0, K2=123.88)
+    rng = np.random.default_rng(3)
+    noisy = true.pressure(EPS) * np.exp(0.01 * rng.standard_normal(EPS.size))
+    d = fit_stack(EPS, noisy).to_dict()
+    assert len(d["covariance"]) == 2 and d["K2_sd"] > 0
+    assert "K1_K2_correlation =" in fit_stack(EPS, noisy).uncertainty_toml()
+    assert "covariance" not in fit_stack(EPS, 3e6 * EPS, "constant").to_dict()

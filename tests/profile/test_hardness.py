@@ -9,10 +9,10 @@ import pytest
 
 from woundroll.errors import InputError
 from woundroll.materials.radial_modulus import Pfeiffer
+from woundroll.materials.thickness_profile import ThicknessProfile, bundled_profile
 from woundroll.materials.web import Core, Web
 from woundroll.profile.hardness import NipSpec, predict_profile
 from woundroll.profile.nip import NipRoller
-from woundroll.profile.thickness import ThicknessProfile, bundled_profile
 from woundroll.winding.tension import TensionSchedule
 
 WEB = Web(

@@ -12,8 +12,8 @@ from scipy.integrate import quad
 
 from woundroll.errors import InputError
 from woundroll.materials.radial_modulus import Constant, Pfeiffer
+from woundroll.materials.thickness_profile import ThicknessProfile, bundled_profile
 from woundroll.materials.web import Core, Web
-from woundroll.profile.thickness import ThicknessProfile, bundled_profile
 from woundroll.winding.axisymmetric import allocate_tension, wind_axisymmetric
 from woundroll.winding.tension import TensionSchedule
 

@@ -47,6 +47,8 @@ from woundroll.instruments.impact import (
     impact_fd,
 )
 from woundroll.instruments.roll_side import RollSpring, roll_effective_mass
+from woundroll.limits import LIMITS, MAX_STEPS_PER_CONTACT
+from woundroll.limits import check as check_limit
 from woundroll.units import to_si
 
 __all__ = ["HardnessResult", "TesterSetup", "hardness_from_spring", "tester_from_spec"]
@@ -203,8 +205,17 @@ def tester_from_spec(spec: dict[str, Any], field: str = "tester") -> TesterSetup
                 raise InputError(f"must be one of {', '.join(COLLISIONS)}, got {v!r}", fld)
             opts[key] = v
         elif key == "steps_per_contact":
-            if isinstance(value, bool) or not isinstance(value, int) or value < 20:
-                raise InputError(f"must be an integer >= 20, got {value!r}", fld)
+            if (
+                isinstance(value, bool)
+                or not isinstance(value, int)
+                or not 20 <= value <= MAX_STEPS_PER_CONTACT
+            ):
+                raise InputError(
+                    f"must be an integer from 20 to {MAX_STEPS_PER_CONTACT:,}, got {value!r} "
+                    f"(the FD error falls as 1/N^2: the default 2000 is converged to 1e-6; each "
+                    "step is kept in the impact's history)",
+                    fld,
+                )
             opts[key] = value
         elif key in _OPTION_KINDS:
             v = to_si(value, _OPTION_KINDS[key], fld)
@@ -234,6 +245,9 @@ def tester_from_spec(spec: dict[str, Any], field: str = "tester") -> TesterSetup
         )
     if overrides:
         inst = inst.with_overrides(field_prefix=field, **overrides)
+        for key in overrides:
+            if f"tester.{key}" in LIMITS and getattr(inst, key) is not None:
+                check_limit(f"tester.{key}", getattr(inst, key), field=f"{field}.{key}")
     return TesterSetup(
         instrument=inst,
         roll_spring=roll_spring,
@@ -244,6 +258,28 @@ def tester_from_spec(spec: dict[str, Any], field: str = "tester") -> TesterSetup
 
 
 tester_from_spec.__test__ = False  # type: ignore[attr-defined]  # not a pytest test
+
+
+def _check_time_step(setup: TesterSetup, spring: RollSpring, en: EnergyResult) -> None:
+    """Reject a ``time_step`` that would resolve the contact with more than
+    :data:`~woundroll.limits.MAX_STEPS_PER_CONTACT` steps (the FD keeps a history per step).
+
+    Contact duration from the energy model's depth: half the period of the striker and roll
+    masses on the secant stiffness ``F(d_max)/d_max + k_s`` (the estimate the FD model uses).
+    """
+    inst = setup.instrument
+    d = float(en.max_depth)
+    k_sec = (float(en.peak_force) / d if d > 0 else 0.0) + inst.spring_stiffness
+    T = math.pi * math.sqrt((inst.mass + spring.effective_mass) / k_sec)
+    steps = T / setup.time_step
+    if steps > MAX_STEPS_PER_CONTACT:
+        raise InputError(
+            f"{setup.time_step:.3g} s resolves the contact of about {T:.3g} s with "
+            f"{steps:.3g} steps; at most {MAX_STEPS_PER_CONTACT:,} are allowed (the FD error "
+            f"falls as 1/N^2 and its history grows with N): use at least "
+            f"{T / MAX_STEPS_PER_CONTACT:.3g} s, or omit time_step",
+            f"{setup.field}.time_step",
+        )
 
 
 def _roll_spring(value: Any, fld: str, restitution: float) -> RollSpring:
@@ -258,6 +294,9 @@ def _roll_spring(value: Any, fld: str, restitution: float) -> RollSpring:
         if key not in value:
             raise InputError("missing", f"{fld}.{key}")
     vals = {k: to_si(v, _ROLL_SPRING_KINDS[k], f"{fld}.{k}") for k, v in value.items()}
+    for k in ("alpha", "beta", "effective_mass"):
+        if k in vals:
+            check_limit(f"tester.roll_spring.{k}", vals[k], field=f"{fld}.{k}")
     e = vals.get("restitution", restitution)
     try:
         return RollSpring.quadratic(vals["alpha"], vals["beta"], vals.get("effective_mass", 0.0), e)
@@ -467,6 +506,9 @@ def hardness_from_spring(
     if not math.isfinite(effective_mass):
         raise InputError("must be finite", f"{setup.field}.roll_spring.effective_mass")
     spring = RollSpring(law, effective_mass, restitution)
+    en = impact_energy(setup.instrument, spring)
+    if setup.time_step is not None:
+        _check_time_step(setup, spring, en)
     fd = impact_fd(
         setup.instrument,
         spring,
@@ -474,7 +516,6 @@ def hardness_from_spring(
         time_step=setup.time_step,
         steps_per_contact=setup.steps_per_contact,
     )
-    en = impact_energy(setup.instrument, spring)
     law = spring.law
     return HardnessResult(
         instrument=setup.instrument,

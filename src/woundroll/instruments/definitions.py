@@ -53,6 +53,16 @@ _TEXT_FIELDS = ("name", "title", "readout", "head_shape", "notes")
 #: Relative tolerance of ``k/m = omega^2`` {1} for an instrument that gives all three.
 EQ1_RTOL = 1e-3
 _HEAD_SHAPES = ("cylinder", "sphere")
+#: Scale of each readout (what the instrument can show): a simulated reading outside it is
+#: flagged (the instrument would read its end stop or nothing). Rho-meter: dial 0-100 Rho;
+#: Schmidt hammers: rebound number R 10-100; Parotester: L = 1000 v_out/v_in, 0-1000 by
+#: construction; g: no fixed scale.
+READING_RANGES: dict[str, tuple[float, float] | None] = {
+    "rho": (0.0, 100.0),
+    "schmidt-r": (10.0, 100.0),
+    "parotester-l": (0.0, 1000.0),
+    "g": None,
+}
 
 
 @dataclass(frozen=True)
@@ -154,6 +164,11 @@ class Instrument:
             )
 
     # -- derived quantities -------------------------------------------------------------
+    @property
+    def reading_range(self) -> tuple[float, float] | None:
+        """The scale of the readout (:data:`READING_RANGES`), or None when it has none."""
+        return READING_RANGES.get(self.readout)
+
     @property
     def impact_speed(self) -> float:
         """Striker speed at first contact [m/s]: ``sqrt(k/m (x_in^2 - x_gap^2))``.

@@ -1,4 +1,5 @@
-"""Materials: radial-modulus laws, web and core data, presets, stack-test fitting."""
+"""Materials: radial-modulus laws, web and core data, presets, stack-test fitting, and the
+web's CMD thickness profile (:mod:`woundroll.materials.thickness_profile`, imported on use)."""
 
 from woundroll.materials.radial_modulus import (
     LAWS,

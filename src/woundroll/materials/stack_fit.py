@@ -29,7 +29,7 @@ P > 0.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -53,9 +53,36 @@ class StackFit:
     n_points: int
     strain_max: float
     pressure_max: float
+    #: Covariance of the fitted parameters (Pfeiffer: K1 [Pa], K2 [-]) from the
+    #: least-squares Jacobian at the optimum, ``s^2 (J^T J)^-1`` in (ln K1, ln K2) mapped
+    #: to (K1, K2); None for laws fitted without it.
+    covariance: tuple[tuple[float, ...], ...] | None = None
+
+    def uncertainty(self) -> dict[str, float] | None:
+        """SDs and correlation of K1, K2 (Pfeiffer) for the case's ``[uncertainty]``."""
+        if self.covariance is None:
+            return None
+        c = np.asarray(self.covariance)
+        sd = np.sqrt(np.diag(c))
+        rho = float(c[0, 1] / (sd[0] * sd[1])) if sd[0] > 0 and sd[1] > 0 else 0.0
+        return {"K1_sd_Pa": float(sd[0]), "K2_sd": float(sd[1]), "K1_K2_correlation": rho}
+
+    def uncertainty_toml(self) -> str:
+        """The ``[uncertainty]`` lines for K1, K2 (empty without a covariance)."""
+        u = self.uncertainty()
+        if u is None:
+            return ""
+        return (
+            f'K1 = "{u["K1_sd_Pa"] / 1e3:.4g} kPa"\nK2 = {u["K2_sd"]:.4g}\n'
+            f"K1_K2_correlation = {u['K1_K2_correlation']:.4f}"
+        )
 
     def to_dict(self) -> dict[str, Any]:
+        extra: dict[str, Any] = {}
+        if self.covariance is not None:
+            extra = {"covariance": [list(r) for r in self.covariance], **self.uncertainty()}
         return {
+            **extra,
             **self.law.to_dict(),
             "r2": self.r2,
             "rms_rel_error": self.rms_rel_error,
@@ -91,7 +118,29 @@ def _check(strain: ArrayLike, pressure: ArrayLike) -> tuple[np.ndarray, np.ndarr
         raise InputError("strain and pressure must be >= 0 (compression positive)", "stack")
     if np.count_nonzero(p > 0) < 3:
         raise InputError("needs at least 3 points with positive pressure", "stack")
+    order = np.argsort(eps, kind="stable")
+    e_s, p_s = eps[order], p[order]
+    if not p_s[-1] > p_s[0]:
+        raise InputError(
+            "the pressure does not rise with the strain (constant or falling): a stack test's "
+            "pressure rises as the stack is compressed; check the columns and their order",
+            "stack",
+        )
+    if np.any(np.diff(p_s) < -1e-3 * p_s.max()):
+        i = int(np.argmax(np.diff(p_s) < -1e-3 * p_s.max()))
+        raise InputError(
+            f"the pressure falls from {p_s[i]:.4g} Pa to {p_s[i + 1]:.4g} Pa between strains "
+            f"{e_s[i]:.4g} and {e_s[i + 1]:.4g}: a loading curve rises monotonically (give the "
+            "loading branch only)",
+            "stack",
+        )
     return eps, p
+
+
+def check_stack_data(strain: ArrayLike, pressure: ArrayLike) -> None:
+    """Raise :class:`InputError` (field ``stack``) unless the data can be fitted: at least 3
+    finite points, non-negative, pressure rising with strain (every law's curve rises)."""
+    _check(strain, pressure)
 
 
 def _quality(law: RadialModulusLaw, eps: np.ndarray, p: np.ndarray) -> StackFit:
@@ -176,4 +225,21 @@ def fit_stack(strain: ArrayLike, pressure: ArrayLike, law: str = "pfeiffer") -> 
     if not sol.success or not np.all(np.isfinite(sol.x)):
         raise ConvergenceError(f"Pfeiffer stack fit did not converge: {sol.message}")
     k1, k2 = (float(v) for v in np.exp(sol.x))
-    return _quality(Pfeiffer(K1=k1, K2=k2), eps, p)
+    fit = _quality(Pfeiffer(K1=k1, K2=k2), eps, p)
+    return replace(fit, covariance=_log_covariance(sol, np.exp(sol.x)))
+
+
+def _log_covariance(sol: Any, k: np.ndarray) -> tuple[tuple[float, ...], ...] | None:
+    """Covariance of K from a least-squares fit in ln K: ``D s^2 (J^T J)^-1 D``, D = diag(K),
+    s^2 the residual variance with n - 2 degrees of freedom (first order, Gauss-Newton)."""
+    J = np.asarray(sol.jac, dtype=float)
+    dof = J.shape[0] - J.shape[1]
+    if dof <= 0:
+        return None
+    s2 = float(np.sum(sol.fun**2)) / dof
+    try:
+        cov_x = s2 * np.linalg.inv(J.T @ J)
+    except np.linalg.LinAlgError:
+        return None
+    cov = cov_x * np.outer(k, k)
+    return tuple(tuple(float(v) for v in row) for row in cov)

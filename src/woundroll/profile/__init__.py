@@ -1,9 +1,11 @@
-"""CMD (cross-machine direction) profiles: thickness input, nip, hardness profile, statistics.
+"""CMD (cross-machine direction) profiles: nip, hardness profile, statistics.
+
+The CMD thickness profile is an input of the winding model and lives beside the web and the
+core (:mod:`woundroll.materials.thickness_profile`); it is re-exported here, where the
+profile API is documented (docs/profile.md).
 
 Modules
 -------
-:mod:`woundroll.profile.thickness`
-    read and validate a CMD thickness profile or a full CMD x MD map; resample onto sectors.
 :mod:`woundroll.profile.stats`
     profile statistics as practitioners read them (mean, SD, CoV and its acceptance band).
 :mod:`woundroll.profile.nip`
@@ -14,21 +16,21 @@ Modules
 
 from typing import Any
 
-from woundroll.profile.nip import NipRoller, roller_from_induced_tension, solve_nip
-from woundroll.profile.stats import ProfileStats, profile_stats
-from woundroll.profile.thickness import (
+from woundroll.materials.thickness_profile import (
     ThicknessProfile,
     bundled_profile,
     read_thickness_map,
     read_thickness_profile,
 )
+from woundroll.profile.nip import NipRoller, roller_from_induced_tension, solve_nip
+from woundroll.profile.stats import ProfileStats, profile_stats
 
 _LAZY = {"NipSpec", "ProfileResult", "predict_profile"}
 
 
 def __getattr__(name: str) -> Any:
-    # woundroll.profile.hardness imports woundroll.winding.axisymmetric, which imports
-    # woundroll.profile.thickness: loaded on first use to keep the import graph acyclic
+    # woundroll.profile.hardness imports the winding model (scipy): loaded on first use so
+    # that importing woundroll.profile stays light
     if name in _LAZY:
         from woundroll.profile import hardness
 

@@ -27,7 +27,6 @@ distribution recomputed for every winding increment from the current outer-radiu
 from __future__ import annotations
 
 import concurrent.futures as cf
-import multiprocessing
 import pickle
 import time
 from collections.abc import Callable, Sequence
@@ -40,11 +39,11 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from woundroll.errors import InputError
+from woundroll.materials.thickness_profile import ThicknessProfile
 from woundroll.materials.web import Core, Web
 from woundroll.profile.compare import MeasuredProfile, ProfileComparison, compare_profiles
 from woundroll.profile.nip import NipRoller, nip_hook, solve_nip
 from woundroll.profile.stats import ProfileStats, profile_stats
-from woundroll.profile.thickness import ThicknessProfile
 from woundroll.winding.axisymmetric import AxisymmetricResult, wind_axisymmetric
 from woundroll.winding.tension import TensionSchedule
 
@@ -394,15 +393,15 @@ def map_sectors(
                 progress(done, n)
         return out[:, 0], out[:, 1]
     if _picklable(fn):
+        from woundroll._pool import process_pool
+
         try:
             return _run_pool(
                 fn,
                 profiles,
                 out,
                 progress,
-                cf.ProcessPoolExecutor(
-                    max_workers=workers, mp_context=multiprocessing.get_context("spawn")
-                ),
+                process_pool(workers),  # woundroll._pool: stops cleanly on SIGINT/SIGTERM
             )
         except (ImportError, AttributeError, pickle.PicklingError, BrokenProcessPool):
             # the callable pickles here but cannot be rebuilt in a fresh process (defined in

@@ -98,35 +98,163 @@ def _sweep(e0, e1, b, invr, dlog, invd, F, dF, w, kp, ke, slope, Et, floor, alph
 
 
 @njit(cache=True)
-def _deep_sweep(e1, c, invr, dlog, invd, F, Pflush, w_deep, kp, ke, slope, Et, floor, alpha, beta):
-    """Freeze the deep elements 0..e1-1 and run the Riccati recursion over them from the core.
+def _flush_band(hi, lo, S, r, F, st, alpha, beta, c):
+    """Apply the pending increment ``S`` at node ``hi`` to nodes hi-1 .. lo (frozen shape).
 
-    Each modulus is taken at ``P + w_deep * (P - Pflush)``: ``P - Pflush`` is the change since
-    the last flush, so with ``w_deep = 1/2`` the modulus is the one of the middle of the next
-    period (if it is as long). Sets ``Pflush = P``.
+    Returns the increment given to node ``lo`` (``S`` itself for an empty band), which is
+    the pending increment at the top of the band below.
     """
-    b = c
-    for e in range(e1):
-        P = -0.5 * (F[e] * invr[e] + F[e + 1] * invr[e + 1])
-        E = modulus(P + w_deep * (P - Pflush[e]), kp, ke, floor, slope)
-        Pflush[e] = P
-        p, q = element_pq(Et / E, dlog[e], invd[e])
-        a = q / (p + b)
-        b = p - q * a
-        alpha[e] = a
-        beta[e] = b
-
-
-@njit(cache=True)
-def flush(J, S, r, F, st, alpha, beta, c):
-    """Apply the accumulated deep increment ``S`` (at node J) to nodes 0..J-1."""
     phi = 1.0
-    for i in range(J - 1, -1, -1):
+    for i in range(hi - 1, lo - 1, -1):
         phi *= alpha[i]
         d = phi * S
         F[i] += d
         bl = beta[i - 1] if i > 0 else c
         st[i] += bl * d / r[i]
+    return phi * S
+
+
+@njit(cache=True)
+def flush_all(nlev, B, S, r, F, st, alpha, beta, c):
+    """Apply every level's pending increment, top down (end of the roll)."""
+    for lev in range(1, nlev):
+        if B[lev - 1] <= 0:
+            break
+        d = _flush_band(B[lev - 1], B[lev], S[lev], r, F, st, alpha, beta, c)
+        S[lev] = 0.0
+        if B[lev] > 0:
+            S[lev + 1] += d
+
+
+@njit(cache=True)
+def _push(P, t, e, hist, thist):
+    """Record element e's pressure P at time t (keeps the last two distinct times)."""
+    if thist[e, 0] == t:
+        hist[e, 0] = P
+        return
+    hist[e, 1] = hist[e, 0]
+    thist[e, 1] = thist[e, 0]
+    hist[e, 0] = P
+    thist[e, 0] = t
+
+
+@njit(cache=True)
+def _refresh(
+    t,
+    k,
+    top,
+    wnodes,
+    flush_every,
+    B,
+    S,
+    r,
+    invr,
+    dlog,
+    invd,
+    F,
+    st,
+    hist,
+    thist,
+    w_deep,
+    kp,
+    ke,
+    slope,
+    Et,
+    floor,
+    alpha,
+    beta,
+    c,
+    state_i,
+):
+    """Refresh number ``k`` (at increment ``t``, surface node ``top``): levels 1..L, L = 1 +
+    (trailing zero bits of k).
+
+    Level l >= 1 is the band of elements B[l] <= e < B[l-1]; level 0 (e >= B[0]) is the
+    window re-solved every increment. Band l is refreshed every 2^(l-1) refreshes and, once
+    placed, starts wnodes 2^(l-1) nodes below the surface, so the period over which its
+    moduli stay frozen is a fixed fraction (flush_every / window) of its depth at every
+    level: O(log N) work per increment, amortised.
+
+    1. The pending increments of levels 1..L are applied with their frozen shapes, top down.
+    2. The boundaries B[0..L-1] are placed at wnodes 2^l below the surface (not below B[L]).
+    3. Elements B[L] .. B[0]-1 get moduli at the pressure predicted for the middle of their
+       next frozen period (rate of change since their last refresh x half the period), and
+       the Riccati recursion is re-run over them from beta[B[L]-1].
+    """
+    nlev = B.shape[0] - 1
+    L = 1
+    kk = k
+    while kk % 2 == 0 and L < nlev - 1:
+        kk //= 2
+        L += 1
+    for lev in range(1, L + 1):
+        hi = B[lev - 1]
+        lo = B[lev]
+        if hi > lo:
+            d = _flush_band(hi, lo, S[lev], r, F, st, alpha, beta, c)
+        else:
+            d = S[lev]
+        S[lev] = 0.0
+        if lo > 0:
+            S[lev + 1] += d
+    lo = B[L]
+    span = wnodes
+    for lev in range(L):
+        b_new = top - span
+        if b_new < lo:
+            b_new = lo
+        B[lev] = b_new
+        if span < top:
+            span *= 2
+    state_i[4] += B[0] - lo
+    b = beta[lo - 1] if lo > 0 else c
+    lev = L
+    period = flush_every * (1 << (L - 1))
+    # pressure predicted at time ts from now (t, P) and the last two refreshes (t1, P1),
+    # (t2, P2), Newton form: P + c1 (P - P1) - c2 (P1 - P2) (quadratic; linear with one
+    # earlier value, P with none). c1, c2 depend on the times only: shared by a band.
+    key1 = -2
+    key2 = -2
+    key_ts = -1.0
+    c1 = 0.0
+    c2 = 0.0
+    for e in range(lo, B[0]):
+        while lev > 1 and e >= B[lev - 1]:
+            lev -= 1
+            period //= 2
+        P = -0.5 * (F[e] * invr[e] + F[e + 1] * invr[e + 1])
+        t1 = thist[e, 0]
+        t2 = thist[e, 1]
+        ts = t + 0.5 * (period - 1) + w_deep
+        if t1 != key1 or t2 != key2 or ts != key_ts:
+            key1 = t1
+            key2 = t2
+            key_ts = ts
+            x = ts - t
+            if t1 < 0 or t1 >= t:
+                c1 = 0.0
+                c2 = 0.0
+            elif t2 < 0 or t2 >= t1:
+                c1 = x / (t - t1)
+                c2 = 0.0
+            else:
+                y = x * (ts - t1) / (t - t2)
+                c1 = x / (t - t1) + y / (t - t1)
+                c2 = y / (t1 - t2)
+        P1 = hist[e, 0]
+        E = modulus(P + c1 * (P - P1) - c2 * (P1 - hist[e, 1]), kp, ke, floor, slope)
+        if t1 != t:
+            hist[e, 1] = P1
+            thist[e, 1] = t1
+            thist[e, 0] = t
+        hist[e, 0] = P
+        p, q = element_pq(Et / E, dlog[e], invd[e])
+        a = q / (p + b)
+        b = p - q * a
+        alpha[e] = a
+        beta[e] = b
+    for e in range(B[0], top):
+        _push(-0.5 * (F[e] * invr[e] + F[e + 1] * invr[e + 1]), t, e, hist, thist)
 
 
 @njit(cache=True)
@@ -144,7 +272,8 @@ def run_groups(
     stself,
     alpha,
     beta,
-    Pflush,
+    hist,
+    thist,
     dF,
     dFold,
     kp,
@@ -160,31 +289,39 @@ def run_groups(
     wnodes,
     flush_every,
     nsub,
+    body,
+    B,
+    S,
     state_i,
-    state_f,
 ):
     """Wind groups g0..g1-1 (one increment each). Returns -1, or the group that failed.
 
-    ``state_i = [J, increments since flush, max iterations used]``, ``state_f = [S]``
-    carry the lazy deep part between calls. ``wnodes < 0``: no lazy part (J = 0).
+    ``state_i = [increments since the last refresh, refreshes so far, max iterations used,
+    element evaluations in the window, in refreshes]``
+    and the level boundaries ``B`` and pending increments ``S`` carry the lazy deep part
+    between calls (:func:`_refresh`). ``wnodes < 0``: no lazy part (the window reaches the
+    core). ``body``: the new group is part of the elastic body and its load acts on its
+    outer face (node ``top``) instead of its inner face (node ``m``, the default).
     """
     slope = last_slope(kp, ke)
-    J = state_i[0]
-    count = state_i[1]
-    S = state_f[0]
+    count = state_i[0]
+    k = state_i[1]
     for g in range(g0, g1):
         m = gnode[g]
         top = gnode[g + 1]
         dtop = Fself[m]
-        if m > 0 and dtop != 0.0:
+        n_inc = top if body else m
+        if n_inc > 0 and dtop != 0.0:
+            J = B[0]
             if J > m:
                 J = m
             dsub = dtop / nsub
             for _sub in range(nsub):
                 for it in range(maxit + 1):
+                    state_i[3] += n_inc - J
                     _sweep(
                         J,
-                        m,
+                        n_inc,
                         beta[J - 1] if J > 0 else c,
                         invr,
                         dlog,
@@ -200,14 +337,14 @@ def run_groups(
                         alpha,
                         beta,
                     )
-                    dF[m] = dsub
-                    for e in range(m - 1, J - 1, -1):
+                    dF[n_inc] = dsub
+                    for e in range(n_inc - 1, J - 1, -1):
                         dF[e] = alpha[e] * dF[e + 1]
                     if not iterate:
                         break
                     if it > 0:
                         err = 0.0
-                        for e in range(J, m):
+                        for e in range(J, n_inc):
                             d = abs(dF[e] - dFold[e])
                             if d > err:
                                 err = d
@@ -216,43 +353,61 @@ def run_groups(
                                 state_i[2] = it
                             break
                         if it == maxit:
-                            state_i[0] = J
-                            state_i[1] = count
-                            state_f[0] = S
+                            state_i[0] = count
+                            state_i[1] = k
                             return g
-                    for e in range(J, m):
+                    for e in range(J, n_inc):
                         dFold[e] = dF[e]
-                for i in range(J, m):
+                for i in range(J, n_inc):
                     F[i] += dF[i]
                     bl = beta[i - 1] if i > 0 else c
                     st[i] += bl * dF[i] / r[i]
                 if J > 0:
-                    S += dF[J]
-                F[m] += dsub
+                    S[1] += dF[J]
+                F[n_inc] += dsub
         # the new group's own state (for g = 0 its pressure acts on the core alone)
-        for i in range(m, top + 1):
-            F[i] = Fself[i]
-            st[i] = stself[i]
+        if body:
+            for i in range(m, top + 1):
+                st[i] = stself[i]
+        else:
+            for i in range(m, top + 1):
+                F[i] = Fself[i]
+                st[i] = stself[i]
         for e in range(m, top):
-            Pflush[e] = -0.5 * (F[e] / r[e] + F[e + 1] / r[e + 1])
+            hist[e, 0] = -0.5 * (F[e] * invr[e] + F[e + 1] * invr[e + 1])
+            thist[e, 0] = g
+            thist[e, 1] = -1
         count += 1
         if wnodes >= 0 and count >= flush_every:
-            if J > 0:
-                flush(J, S, r, F, st, alpha, beta, c)
-            S = 0.0
-            newJ = top - wnodes
-            if newJ < 0:
-                newJ = 0
-            # freeze the deep elements at the pressure predicted for the middle of the
-            # next period: P + w_deep * (change over the last period)
-            _deep_sweep(
-                newJ, c, invr, dlog, invd, F, Pflush, w_deep, kp, ke, slope, Et, floor, alpha, beta
+            k += 1
+            _refresh(
+                g,
+                k,
+                top,
+                wnodes,
+                flush_every,
+                B,
+                S,
+                r,
+                invr,
+                dlog,
+                invd,
+                F,
+                st,
+                hist,
+                thist,
+                w_deep,
+                kp,
+                ke,
+                slope,
+                Et,
+                floor,
+                alpha,
+                beta,
+                c,
+                state_i,
             )
-            for e in range(newJ, top):
-                Pflush[e] = -0.5 * (F[e] / r[e] + F[e + 1] / r[e + 1])
-            J = newJ
             count = 0
-    state_i[0] = J
-    state_i[1] = count
-    state_f[0] = S
+    state_i[0] = count
+    state_i[1] = k
     return -1

@@ -79,7 +79,7 @@ from scipy.linalg import LinAlgError, solveh_banded
 
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.materials.web import Core, Web
-from woundroll.profile.thickness import ThicknessProfile
+from woundroll.materials.thickness_profile import ThicknessProfile
 from woundroll.winding import _axisym_fe as _fe
 from woundroll.winding.tension import TensionSchedule
 
@@ -441,7 +441,7 @@ def wind_axisymmetric(
         thickness = ThicknessProfile.uniform(web.thickness, web.width)
     elif not isinstance(thickness, ThicknessProfile):
         raise InputError(
-            "must be a ThicknessProfile (see woundroll.profile.thickness)",
+            "must be a ThicknessProfile (see woundroll.materials.thickness_profile)",
             "winding.thickness_profile",
         )
     if not (isinstance(n_sectors, int | np.integer) and n_sectors >= 1):

@@ -74,6 +74,8 @@ FloatArray = NDArray[np.float64]
 
 _MODES = {"midpoint": 0.5, "end": 1.0, "explicit": 0.0}
 _MAX_NODES = 20_000_000
+_MAX_LEVELS = 48
+_NEW_LAYER = ("laid_on", "elastic")
 
 
 @dataclass(frozen=True)
@@ -102,6 +104,13 @@ class WindingOptions:
     load_substeps : int
         Apply each increment's pressure in this many equal steps, updating E_r in between
         (a check on the E_r rule: many substeps integrate the tangent law exactly).
+    new_layer : {"laid_on", "elastic"}
+        How a new layer enters its own increment (docs/assumptions.md): ``"laid_on"``
+        (default) the layer is laid on at its wound-on tension and presses ``T h / s`` on
+        the roll below (it is not part of the elastic body during its own increment);
+        ``"elastic"``: the layer is part of the elastic body and ``F = -T h`` acts on its
+        outer face (Hakiel's finite-difference boundary condition; the surface then keeps
+        ``sigma_r = -T h / R``).
     """
 
     subdivisions: int = 2
@@ -110,9 +119,10 @@ class WindingOptions:
     rtol: float = 1e-9
     max_iterations: int = 60
     modulus_floor: float = 1e-6
-    window_layers: int | None = 64
-    flush_interval: int = 8
+    window_layers: int | None = 8
+    flush_interval: int = 1
     load_substeps: int = 1
+    new_layer: str = "laid_on"
 
     def __post_init__(self) -> None:
         f = "options"
@@ -132,6 +142,11 @@ class WindingOptions:
             raise InputError(
                 f"choose one of {', '.join(_MODES)}, got {self.modulus_update!r}",
                 f"{f}.modulus_update",
+            )
+        if self.new_layer not in _NEW_LAYER:
+            raise InputError(
+                f"choose one of {', '.join(_NEW_LAYER)}, got {self.new_layer!r}",
+                f"{f}.new_layer",
             )
         if not (isinstance(self.rtol, float | int) and 0 < self.rtol < 1e-2):
             raise InputError(f"must lie in (0, 0.01), got {self.rtol!r}", f"{f}.rtol")
@@ -278,7 +293,8 @@ def _result(
 ) -> WindingResult:
     r = prob.r
     sr = F / r
-    sr[-1] = 0.0
+    if options.new_layer == "laid_on":
+        sr[-1] = 0.0
     E = np.maximum(np.interp(-sr, prob.kp, prob.ke), prob.floor)
     beyond = -sr > prob.kp[-1]
     if np.any(beyond):
@@ -369,21 +385,27 @@ def wind(
     st = np.zeros(nn)
     alpha = np.zeros(max(nn - 1, 1))
     beta = np.zeros_like(alpha)
-    Pflush = np.zeros_like(alpha)
+    hist = np.zeros((alpha.size, 2))  # pressure of each element at its last two refreshes
+    thist = np.full((alpha.size, 2), -1, dtype=np.int64)  # and when (increments; -1: none)
     invr = 1.0 / prob.r
     invd = 1.0 / prob.dlog if nn > 1 else np.ones(1)
     dF = np.zeros(nn)
     dFold = np.zeros(nn)
     w = _MODES[options.modulus_update]
     iterate = options.modulus_update != "explicit"
+    # a frozen deep element stands for the moduli of every (sub)step of its period: the
+    # rule evaluates substep j of nsub at fraction (j - 1 + w) / nsub of the increment
+    nsub = options.load_substeps
+    w_deep = ((nsub - 1) / 2 + w) / nsub
     if options.window_layers is None:
         wnodes = -1
     else:
         # the window must hold the groups added since the last flush
         wl = max(options.window_layers, 2 * options.flush_interval * options.layers_per_increment)
         wnodes = wl * options.subdivisions
-    state_i = np.zeros(3, dtype=np.int64)
-    state_f = np.zeros(1)
+    state_i = np.zeros(5, dtype=np.int64)
+    B = np.zeros(_MAX_LEVELS + 1, dtype=np.int64)  # level boundaries (elements)
+    S = np.zeros(_MAX_LEVELS + 1)  # pending increment at the top of each level
     n_groups = prob.gnode.size - 1
     n_chunks = 1 if progress is None else min(n_groups, 50)
     bounds = np.linspace(0, n_groups, n_chunks + 1).round().astype(np.int64)
@@ -402,7 +424,8 @@ def wind(
             prob.stself,
             alpha,
             beta,
-            Pflush,
+            hist,
+            thist,
             dF,
             dFold,
             prob.kp,
@@ -412,14 +435,16 @@ def wind(
             prob.floor,
             w,
             iterate,
-            w,
+            w_deep,
             options.rtol,
             options.max_iterations,
             wnodes,
             options.flush_interval,
             options.load_substeps,
+            options.new_layer == "elastic",
+            B,
+            S,
             state_i,
-            state_f,
         )
         if failed >= 0:
             raise ConvergenceError(
@@ -429,9 +454,14 @@ def wind(
             )
         if progress is not None:
             progress(float(g1) / n_groups)
-    if state_i[0] > 0:
-        K.flush(int(state_i[0]), float(state_f[0]), prob.r, F, st, alpha, beta, prob.c)
-    stats = {"increments": int(n_groups), "max_iterations_used": int(state_i[2]), "nodes": int(nn)}
+    K.flush_all(_MAX_LEVELS, B, S, prob.r, F, st, alpha, beta, prob.c)
+    stats = {
+        "increments": int(n_groups),
+        "max_iterations_used": int(state_i[2]),
+        "nodes": int(nn),
+        "element_evaluations_window": int(state_i[3]),
+        "element_evaluations_refresh": int(state_i[4]),
+    }
     return _result(prob, F, st, web, core, tension, options, stats)
 
 
@@ -481,29 +511,31 @@ def wind_reference(
         )
         return p, q
 
+    elastic = options.new_layer == "elastic"
     for g in range(prob.gnode.size - 1):
         m, top = int(prob.gnode[g]), int(prob.gnode[g + 1])
         dtop = prob.Fself[m]
-        for _sub in range(options.load_substeps if m > 0 and dtop != 0.0 else 0):
+        n = top if elastic else m  # the node the group's load acts on
+        for _sub in range(options.load_substeps if n > 0 and dtop != 0.0 else 0):
             dsub = dtop / options.load_substeps
-            P0 = -F[: m + 1] / r[: m + 1]
+            P0 = -F[: n + 1] / r[: n + 1]
             P0e = 0.5 * (P0[:-1] + P0[1:])
             d_old: FloatArray | None = None
-            d_full = np.zeros(m + 1)
+            d_full = np.zeros(n + 1)
             for it in range(options.max_iterations + 1):
                 if it == 0:
                     Pe = P0e
                 else:
-                    dP = -d_full / r[: m + 1]
+                    dP = -d_full / r[: n + 1]
                     Pe = P0e + w * 0.5 * (dP[:-1] + dP[1:])
-                p, q = pq(prob.E_theta / moduli(Pe), dlog[:m])
-                # unknowns dF_0..dF_{m-1}; node i: q_{i-1} dF_{i-1} - (p_{i-1} + p_i) dF_i
+                p, q = pq(prob.E_theta / moduli(Pe), dlog[:n])
+                # unknowns dF_0..dF_{n-1}; node i: q_{i-1} dF_{i-1} - (p_{i-1} + p_i) dF_i
                 # + q_i dF_{i+1} = 0, node 0: -(p_0 + c) dF_0 + q_0 dF_1 = 0
-                ab = np.zeros((3, m))
+                ab = np.zeros((3, n))
                 ab[1, :] = -(p + np.concatenate(([c], p[:-1])))
                 ab[0, 1:] = q[:-1]
                 ab[2, :-1] = q[:-1]
-                rhs = np.zeros(m)
+                rhs = np.zeros(n)
                 rhs[-1] = -q[-1] * dsub
                 d_full = np.append(solve_banded((1, 1), ab, rhs), dsub)
                 if options.modulus_update == "explicit":
@@ -515,13 +547,14 @@ def wind_reference(
                     if it == options.max_iterations:
                         raise ConvergenceError(f"E_r iteration did not converge in group {g}")
                 d_old = d_full
-            flux = np.empty(m)
+            flux = np.empty(n)
             flux[0] = c * d_full[0]
-            flux[1:] = p[:-1] * d_full[1:m] - q[:-1] * d_full[: m - 1]
-            F[:m] += d_full[:m]
-            st[:m] += flux / r[:m]
-            F[m] += dsub
-        F[m : top + 1] = prob.Fself[m : top + 1]
+            flux[1:] = p[:-1] * d_full[1:n] - q[:-1] * d_full[: n - 1]
+            F[:n] += d_full[:n]
+            st[:n] += flux / r[:n]
+            F[n] += dsub
+        if not elastic:
+            F[m : top + 1] = prob.Fself[m : top + 1]
         st[m : top + 1] = prob.stself[m : top + 1]
     stats = {
         "increments": int(prob.gnode.size - 1),

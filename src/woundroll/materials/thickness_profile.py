@@ -1,5 +1,8 @@
 """CMD thickness profiles: reading, validation, MD averaging and resampling onto sectors.
 
+An input of the winding model, beside the web and the core: the axisymmetric model
+(:mod:`woundroll.winding.axisymmetric`) winds each CMD sector at its own thickness.
+
 Two inputs are accepted.
 
 CMD profile (CSV)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from woundroll.errors import InputError
-from woundroll.profile.thickness import (
+from woundroll.materials.thickness_profile import (
     FIELD,
     ThicknessProfile,
     bundled_profile,

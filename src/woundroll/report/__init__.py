@@ -1,0 +1,507 @@
+"""A self-contained HTML report of one run: ``woundroll report CASE --out DIR``.
+
+One file, ``DIR/report.html``: the inputs with their units and sources (material and
+instrument presets, case file, model defaults), the stresses wound into the roll, the
+predicted hardness (and across the CMD the profile), the measured readings and the
+diagnosis when given, the warnings and assumptions, the woundroll version and a hash of the
+case. Figures are PNG embedded as base64 data URIs; the CSS is inline; nothing is fetched
+from the network. The page prints on A4 and Letter (``@page`` margins, no fixed page size,
+figures and tables kept whole).
+
+Templating: Jinja2 (autoescaping of every string that comes from a user's file: titles,
+file names, notes; loops and optional sections without string surgery; the same engine the
+web page renders with, :mod:`woundroll.web`).
+
+Readings and diagnosis come from the reverse road (``woundroll.readings`` and the diagnosis
+module): any object with ``to_dict()`` is accepted, and the sections render what it holds
+(:func:`readings_section`, :func:`diagnosis_section`), so the report needs no change when
+those results grow fields.
+"""
+
+from __future__ import annotations
+
+import base64
+import hashlib
+import io
+import json
+import math
+from dataclasses import dataclass
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from woundroll.errors import InputError
+
+if TYPE_CHECKING:
+    from woundroll.case import Case
+    from woundroll.pipeline import RunResult
+
+__all__ = [
+    "Row",
+    "build_report",
+    "case_hash",
+    "diagnosis_section",
+    "input_sections",
+    "readings_section",
+    "write_report",
+]
+
+
+@dataclass(frozen=True)
+class Row:
+    """One input row: dotted key, value in display units, unit, and where it came from."""
+
+    key: str
+    value: str
+    unit: str
+    source: str
+
+
+# display unit per SI kind: (unit label, factor SI -> display)
+_DISPLAY: dict[str, tuple[str, float]] = {
+    "thickness": ("um", 1e6),
+    "length": ("mm", 1e3),
+    "radius": ("cm", 1e2),
+    "modulus": ("MPa", 1e-6),
+    "pressure": ("kPa", 1e-3),
+    "density": ("kg/m^3", 1.0),
+    "force_per_length": ("N/m", 1.0),
+    "force": ("N", 1.0),
+    "stress": ("MPa", 1e-6),
+    "dimensionless": ("", 1.0),
+    "mass": ("g", 1e3),
+    "stiffness": ("N/m", 1.0),
+    "frequency": ("rad/s", 1.0),
+    "bending": ("N m^2", 1.0),
+}
+
+_WEB_FIELDS = {
+    "thickness": "thickness",
+    "width": "length",
+    "E_theta": "modulus",
+    "E_z": "modulus",
+    "density": "density",
+    "nu_theta_r": "dimensionless",
+    "nu_z_r": "dimensionless",
+    "nu_theta_z": "dimensionless",
+    "G_r_theta": "modulus",
+    "G_r_z": "modulus",
+    "G_theta_z": "modulus",
+}
+_CORE_FIELDS = {
+    "outer_radius": "radius",
+    "inner_radius": "radius",
+    "stiffness": "modulus",
+    "E": "modulus",
+    "nu": "dimensionless",
+}
+_INSTRUMENT_FIELDS = {
+    "mass": "mass",
+    "spring_stiffness": "stiffness",
+    "natural_frequency": "frequency",
+    "release_position": "length",
+    "contact_position": "length",
+    "head_radius": "length",
+    "head_length": "length",
+    "rho_per_g": "dimensionless",
+}
+
+
+def _fmt(value: float, kind: str) -> tuple[str, str]:
+    unit, factor = _DISPLAY[kind]
+    v = value * factor
+    if not math.isfinite(v):
+        return ("rigid" if v > 0 else str(v)), ""
+    return f"{v:.5g}", unit
+
+
+def _row(key: str, value: Any, kind: str, source: str) -> Row:
+    if isinstance(value, int | float):
+        text, unit = _fmt(float(value), kind)
+    else:
+        text, unit = str(value), ""
+    return Row(key, text, unit, source)
+
+
+def input_sections(case: Case) -> list[tuple[str, list[Row]]]:
+    """The case's inputs in display units, by section, each with its source.
+
+    Source of a web value: ``preset NAME (its source)`` when it equals the preset's value,
+    ``case file`` when the case sets it, ``default`` when neither does. The instrument's
+    values carry the preset's own ``[sources]`` entry per field.
+    """
+    from woundroll.case import WebSpec
+    from woundroll.materials.presets import list_materials
+
+    sections: list[tuple[str, list[Row]]] = []
+    web = case.web
+    preset_spec = None
+    preset_label = ""
+    if web.preset:
+        table = list_materials().get(web.preset.upper(), {})
+        preset_label = f"preset {web.preset.upper()} ({table.get('source', 'no source given')})"
+        try:
+            preset_spec = WebSpec.model_validate({"preset": web.preset})
+        except Exception:  # a preset that does not validate alone: no per-field attribution
+            preset_spec = None
+    defaults = {n: f.default for n, f in WebSpec.model_fields.items()}
+
+    def web_source(name: str, value: Any) -> str:
+        if preset_spec is not None and getattr(preset_spec, name) == value:
+            return preset_label
+        if defaults.get(name) is not None and defaults[name] == value:
+            return "default"
+        return "case file"
+
+    rows = []
+    for name, kind in _WEB_FIELDS.items():
+        v = getattr(web, name)
+        if v is None:
+            rows.append(
+                Row(f"web.{name}", "-", "", "not given: model default (docs/case-files.md)")
+            )
+            continue
+        rows.append(_row(f"web.{name}", v, kind, web_source(name, v)))
+    law = web.radial_modulus
+    law_src = (
+        preset_label
+        if preset_spec is not None and preset_spec.radial_modulus == law
+        else "case file"
+    )
+    rows.append(Row("web.radial_modulus", _law_text(law), "", law_src))
+    sections.append(("Web", rows))
+
+    rows = []
+    for name, kind in _CORE_FIELDS.items():
+        v = getattr(case.core, name)
+        if v is not None:
+            rows.append(_row(f"core.{name}", v, kind, "case file"))
+    if case.core.rigid:
+        rows.append(Row("core.rigid", "true", "", "case file"))
+    sections.append(("Core", rows))
+
+    w = case.winding
+    kind, t = w.tension
+    tkind = {"force": "force", "force_per_length": "force_per_length", "pressure": "stress"}[kind]
+    rows = [_row("winding.tension", t, tkind, "case file")]
+    if w.outer_radius is not None:
+        rows.append(_row("winding.outer_radius", w.outer_radius, "radius", "case file"))
+    if w.length is not None:
+        rows.append(Row("winding.length", f"{w.length:.5g}", "m", "case file"))
+    rows.append(Row("winding.taper", _taper_text(w.taper), "", "case file or default"))
+    rows.append(_row("winding.nip_load", w.nip_load, "force_per_length", "case file or default"))
+    rows.append(_row("winding.friction", w.friction, "dimensionless", "case file or default"))
+    if w.thickness_profile:
+        rows.append(Row("winding.thickness_profile", w.thickness_profile, "", "case file"))
+    sections.append(("Winding", rows))
+
+    setup = case.tester_setup
+    if setup is not None:
+        inst = setup.instrument
+        rows = [Row("tester.instrument", inst.title or inst.name, "", "preset " + inst.name)]
+        own = case.tester or {}
+        for name, kind in _INSTRUMENT_FIELDS.items():
+            v = getattr(inst, name, None)
+            if v is None:
+                continue
+            src = "case file" if name in own else inst.sources.get(name, "preset " + inst.name)
+            rows.append(_row(f"tester.{name}", v, kind, src))
+        rows.append(Row("tester.readout", inst.readout, "", "preset " + inst.name))
+        if not inst.calibrated:
+            rows.append(Row("tester.calibrated", "false", "", "no calibration data for rolls"))
+        sections.append(("Tester", rows))
+    c = case.contact
+    rows = [
+        _row("contact.friction", c.friction, "dimensionless", "case file or default"),
+        Row("contact.no_update", str(c.no_update).lower(), "", "case file or default"),
+    ]
+    if c.depth_max is not None:
+        rows.append(_row("contact.depth_max", c.depth_max, "length", "case file"))
+    if setup is not None:
+        sections.append(("Contact model", rows))
+    return sections
+
+
+def _law_text(law: Any) -> str:
+    try:
+        d = law.to_dict()
+    except AttributeError:
+        return str(law)
+    parts = [str(d.get("law", type(law).__name__))]
+    for k, v in d.items():
+        if k == "law":
+            continue
+        if k.endswith("_Pa") and isinstance(v, int | float):
+            parts.append(f"{k.removesuffix('_Pa')} = {v / 1e3:.5g} kPa")
+        elif isinstance(v, int | float):
+            parts.append(f"{k} = {v:.5g}")
+        elif isinstance(v, str):
+            parts.append(f"{k} = {v}")
+    return ", ".join(parts)
+
+
+def _taper_text(taper: Any) -> str:
+    if taper.kind == "none":
+        return "none"
+    if taper.kind == "table":
+        return f"table ({len(taper.radius)} points)"
+    return f"{taper.kind}, {100 * taper.fraction:.3g} %"
+
+
+def _canonical(obj: Any) -> Any:
+    if hasattr(obj, "to_dict"):
+        return _canonical(obj.to_dict())
+    if isinstance(obj, dict):
+        return {str(k): _canonical(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [_canonical(v) for v in obj]
+    if isinstance(obj, float):
+        # 12 significant digits: a value given in other units hashes alike despite the
+        # last bit of its conversion to SI
+        return float(f"{obj:.12g}") if math.isfinite(obj) else repr(obj)
+    if isinstance(obj, str | int | float | bool) or obj is None:
+        return obj
+    return repr(obj)
+
+
+def case_hash(case: Case) -> str:
+    """SHA-256 (first 16 hex digits) of the validated case in SI plus the bytes of the
+    files it reads (thickness profile, measured profile).
+
+    Two case files that differ only in units, comments or key order hash alike (the
+    validated values are what the models see); a changed profile file changes the hash.
+    """
+    data = case.model_dump(exclude={"base_dir"})
+    h = hashlib.sha256(json.dumps(_canonical(data), sort_keys=True).encode())
+    for name in (case.winding.thickness_profile, case.profile.measured):
+        if name:
+            try:
+                h.update(case._path(name).read_bytes())
+            except OSError:  # bundled profile names are not files
+                h.update(name.encode())
+    return h.hexdigest()[:16]
+
+
+def _png(fig: Any, dpi: int = 110) -> str:
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=dpi)
+    return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
+
+
+def _figures(part: Any, captions: list[str]) -> list[dict[str, str]]:
+    figs = part.plot()
+    figs = list(figs) if isinstance(figs, list | tuple) else [figs]
+    out = []
+    for i, fig in enumerate(figs):
+        cap = captions[i] if i < len(captions) else ""
+        out.append({"src": _png(fig), "caption": cap})
+    return out
+
+
+def readings_section(readings: Any) -> dict[str, Any]:
+    """Table rows (position in mm and in, mean, SD, count) and a figure of measured readings.
+
+    ``readings``: a :class:`woundroll.readings.Readings`, or any object whose ``to_dict()``
+    has ``position_m``, ``mean``, ``sd``, ``count`` and ``scale``.
+    """
+    d = readings.to_dict()
+    rows = []
+    for x, m, s, n in zip(d["position_m"], d["mean"], d["sd"], d["count"], strict=True):
+        rows.append(
+            (f"{x * 1e3:.1f}", f"{x / 0.0254:.2f}", f"{m:.2f}", f"{s:.2f}" if n > 1 else "-", n)
+        )
+    figs = []
+    if hasattr(readings, "plot"):
+        figs = _figures(readings, ["Measured readings across the roll (dots: passes)."])
+    return {
+        "source": d.get("source", ""),
+        "scale": d.get("scale", ""),
+        "passes": d.get("passes", ""),
+        "pooled_sd": d.get("pooled_sd"),
+        "rows": rows,
+        "figures": figs,
+    }
+
+
+def _flatten(d: Any, prefix: str = "") -> list[tuple[str, str]]:
+    out: list[tuple[str, str]] = []
+    if isinstance(d, dict):
+        for k, v in d.items():
+            out += _flatten(v, f"{prefix}{k}.")
+        return out
+    key = prefix.rstrip(".")
+    if isinstance(d, list):
+        if len(d) > 12 or any(isinstance(v, dict | list) for v in d):
+            return [(key, f"({len(d)} values)")]
+        return [(key, ", ".join(_short(v) for v in d))]
+    return [(key, _short(d))]
+
+
+def _short(v: Any) -> str:
+    if isinstance(v, float):
+        return f"{v:.5g}"
+    return str(v)
+
+
+def diagnosis_section(diagnosis: Any) -> dict[str, Any]:
+    """The diagnosis as text: its ``summary`` (if any), defect-risk flags, and every scalar.
+
+    Defect-risk flags are read from a ``defect_risks``/``risks`` list in ``to_dict()``: each
+    item a dict with ``name``/``defect``, ``level``/``risk`` and ``reason``/``message``, or a
+    string.
+    """
+    d = diagnosis.to_dict() if hasattr(diagnosis, "to_dict") else dict(diagnosis)
+    risks = []
+    for item in d.get("defect_risks", d.get("risks", [])) or []:
+        if isinstance(item, dict):
+            risks.append(
+                {
+                    "name": str(item.get("name", item.get("defect", ""))),
+                    "level": str(item.get("level", item.get("risk", ""))),
+                    "reason": str(item.get("reason", item.get("message", ""))),
+                }
+            )
+        else:
+            risks.append({"name": str(item), "level": "", "reason": ""})
+    rest = {k: v for k, v in d.items() if k not in ("defect_risks", "risks", "summary")}
+    figs = []
+    if hasattr(diagnosis, "plot"):
+        try:
+            figs = _figures(diagnosis, ["Diagnosis."])
+        except TypeError:
+            figs = []
+    return {
+        "summary": d.get("summary", ""),
+        "risks": risks,
+        "rows": _flatten(rest),
+        "figures": figs,
+    }
+
+
+def _assumptions(result: RunResult) -> list[str]:
+    """The main modelling assumptions of the parts that ran (full list: docs/assumptions.md)."""
+    out = [
+        "Winding (1D, Hakiel): plane stress, axisymmetric; no air entrainment, creep or "
+        "temperature; E_theta constant, E_r from the radial-modulus law at mid-increment.",
+        "Nip in the 1D model acts only through the wound-on tension WOT = T_w + mu N / h.",
+    ]
+    if result.contact is not None:
+        out.append(
+            "Contact (2D): plane strain in the CMD, frictionless rigid cylindrical head, "
+            "quasi-static F(d), no interlayer slip in the solution (the slip factor {23} "
+            "only flags it)."
+        )
+    if result.hardness is not None:
+        out.append(
+            "Striker: spring-mass {1}; roll spring F = alpha d^2 + beta d {3}; active roll "
+            "mass from the tapered column {14}-{18}; elastic roll unless a restitution is given."
+        )
+    if result.profile is not None:
+        out.append(
+            "CMD profile: axisymmetric (r, z) winding; each CMD sector a plane-strain roll "
+            "under the head (docs/profile.md)."
+        )
+    out.append("Every assumption and its effect: docs/assumptions.md of woundroll.")
+    return out
+
+
+def _warnings(result: RunResult) -> list[str]:
+    w = list(result.notes)
+    setup = result.case.tester_setup
+    if setup is not None and not setup.instrument.calibrated:
+        w.append(
+            f"{setup.instrument.name}: no calibration data for rolls; the reading is model "
+            "output only"
+        )
+    p = result.profile
+    if p is not None:
+        n = int(p.slack.sum())
+        if n:
+            w.append(f"{n} CMD sector(s) wound slack: their reading is set by the E_r floor")
+    return w
+
+
+def build_report(
+    result: RunResult,
+    *,
+    readings: Any = None,
+    diagnosis: Any = None,
+    generated: datetime | None = None,
+) -> str:
+    """The report as one HTML string (no external resources)."""
+    import jinja2
+
+    from woundroll import __version__
+    from woundroll.cli import result_summary
+
+    case = result.case
+    figures: list[dict[str, Any]] = []
+    captions = {
+        "winding": ["Stresses wound into the roll: sigma_r, sigma_theta and E_r against radius."],
+        "contact": [
+            "Roll under the striker: force against depth with the fitted spring {3}, and the "
+            "contact half-width.",
+            "Slip factor {23} at the impact's maximum depth.",
+        ],
+        "hardness": ["Impact: contact force and striker deceleration against time."],
+        "profile": [
+            "Thickness and predicted reading across the CMD.",
+            "Radial stress map sigma_r(r, z).",
+        ],
+    }
+    sections = []
+    for name, title in (
+        ("winding", "Stresses in the roll"),
+        ("contact", "Roll stiffness under the striker"),
+        ("hardness", "Predicted hardness"),
+        ("profile", "Across the CMD"),
+    ):
+        part = getattr(result, name)
+        if part is None or not hasattr(part, "plot"):
+            continue
+        sections.append({"title": title, "figures": _figures(part, captions[name])})
+    env = jinja2.Environment(
+        loader=jinja2.PackageLoader("woundroll.report", "templates"),
+        autoescape=True,
+        undefined=jinja2.StrictUndefined,
+    )
+    when = generated or datetime.now(UTC)
+    return env.get_template("report.html").render(
+        title=case.title or "woundroll run",
+        version=__version__,
+        case_hash=case_hash(case),
+        generated=when.strftime("%Y-%m-%d %H:%M UTC"),
+        inputs=input_sections(case),
+        summary=result_summary(result),
+        sections=sections,
+        figures=figures,
+        readings=None if readings is None else readings_section(readings),
+        diagnosis=None if diagnosis is None else diagnosis_section(diagnosis),
+        warnings=_warnings(result),
+        assumptions=_assumptions(result),
+    )
+
+
+def write_report(
+    result: RunResult,
+    out_dir: str | Path,
+    *,
+    readings: Any = None,
+    diagnosis: Any = None,
+) -> Path:
+    """Write ``out_dir/report.html`` and return its path.
+
+    Raises
+    ------
+    InputError
+        ``out_dir`` cannot be created or written (field ``--out``).
+    """
+    html = build_report(result, readings=readings, diagnosis=diagnosis)
+    out = Path(out_dir)
+    path = out / "report.html"
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        path.write_text(html, encoding="utf-8")
+    except OSError as exc:
+        raise InputError(f"cannot write to {out}: {exc.strerror or exc}", "--out") from None
+    return path

@@ -1,0 +1,502 @@
+"""The shop-floor web page: ``woundroll serve [--host 127.0.0.1] [--port 8000]``.
+
+FastAPI (request validation, JSON endpoints, a test client) with Jinja2 templates, served
+by uvicorn. One page: pick a bundled case or edit its TOML, set the common inputs in a
+form with units, paste or upload readings across the roll, press run; a background job
+runs :func:`woundroll.pipeline.run` and the page polls its progress (cancellable), then
+shows the stresses, the predicted (and measured) profile, the headline numbers and a link
+to the HTML report (:mod:`woundroll.report`).
+
+Safety (the page may be opened by anyone who can reach the port; it listens on 127.0.0.1
+unless told otherwise):
+
+* it never takes a file path: ``winding.thickness_profile``, ``profile.measured`` and
+  ``web.radial_modulus.file`` may only name the files the bundled cases use
+  (:data:`BUNDLED_FILE_REFS`); readings are pasted or uploaded as text, never opened from a
+  path;
+* it never takes code: the case is TOML parsed by :mod:`tomllib`, readings are CSV text,
+  every value goes through the same validation as the CLI;
+* a case is at most :data:`MAX_CASE_BYTES`, readings at most :data:`MAX_READINGS_BYTES`;
+  at most :data:`MAX_RUNNING` runs at a time and :data:`MAX_JOBS` kept;
+* bad input answers 422 with the CLI's one-line message (``field: message``) and the
+  offending field, which the page shows beside that field; the server keeps serving.
+"""
+
+# no "from __future__ import annotations": FastAPI reads the endpoints' annotations at runtime,
+# and their types are imported inside create_app()
+
+import math
+import tempfile
+import threading
+import time
+import tomllib
+import uuid
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from woundroll.errors import ConvergenceError, InputError
+
+#: Largest case (TOML text) the page accepts [bytes].
+MAX_CASE_BYTES = 64 * 1024
+#: Largest readings text the page accepts [bytes] (some 10 000 readings).
+MAX_READINGS_BYTES = 256 * 1024
+#: Runs at a time; more get "busy".
+MAX_RUNNING = 2
+#: Finished jobs kept (oldest dropped first).
+MAX_JOBS = 50
+
+#: Quick inputs of the form: dotted key -> (label, example with units).
+FORM_FIELDS: dict[str, tuple[str, str]] = {
+    "winding.tension": ("web tension", "26.7 N, 2 pli, 1.75 MPa"),
+    "winding.outer_radius": ("final outer radius", "13.34 cm, 5.25 in"),
+    "winding.nip_load": ("nip load", "0 N/m, 1 pli"),
+    "winding.friction": ("friction (nip)", "0.3"),
+    "web.thickness": ("web thickness", "100 um, 4 mil"),
+    "web.width": ("web width", "15.24 cm, 6 in"),
+    "web.E_theta": ("web MD modulus E_theta", "5681 MPa"),
+}
+
+_FILE_KEYS = ("winding.thickness_profile", "profile.measured", "web.radial_modulus.file")
+
+
+def _cases_dir() -> Path:
+    return Path(str(resources.files("woundroll.data.cases")))
+
+
+def _get(data: dict[str, Any], key: str) -> Any:
+    node: Any = data
+    for p in key.split("."):
+        if not isinstance(node, dict) or p not in node:
+            return None
+        node = node[p]
+    return node
+
+
+def _bundled_file_refs() -> set[tuple[str, str]]:
+    refs = set()
+    for p in _cases_dir().glob("*.toml"):
+        data = tomllib.loads(p.read_text(encoding="utf-8"))
+        for key in _FILE_KEYS:
+            v = _get(data, key)
+            if isinstance(v, str):
+                refs.add((key, v))
+    return refs
+
+
+#: (key, value) pairs of file references the bundled cases make: the only ones allowed.
+BUNDLED_FILE_REFS = _bundled_file_refs()
+
+
+def case_from_text(text: str, overrides: dict[str, str] | None = None) -> Any:
+    """Validate a case given as TOML text plus form overrides, as the CLI would.
+
+    Raises
+    ------
+    InputError
+        ``case``: too large or not TOML; ``<key>``: a file path that is not one of the
+        bundled cases' files; any error of :func:`woundroll.case.case_from_dict`.
+    """
+    from woundroll.case import case_from_dict, parse_override, set_dotted
+
+    size = len(text.encode("utf-8"))
+    if size > MAX_CASE_BYTES:
+        raise InputError(
+            f"the case is {size} bytes; the page takes at most {MAX_CASE_BYTES} bytes", "case"
+        )
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"not valid TOML: {exc}", "case") from None
+    for key, value in (overrides or {}).items():
+        if key not in FORM_FIELDS:
+            raise InputError("not a field of this form", key)
+        if value is not None and str(value).strip():
+            set_dotted(data, key, parse_override(f"{key}={value}")[1])
+    for key in _FILE_KEYS:
+        v = _get(data, key)
+        if v is not None and (key, v) not in BUNDLED_FILE_REFS:
+            raise InputError(
+                "the web page takes no file paths (only the bundled cases' files); "
+                "run such a case with the CLI",
+                key,
+            )
+    # relative references resolve against the bundled cases (the only ones allowed)
+    return case_from_dict(data, _cases_dir())
+
+
+def readings_from_text(text: str, case: Any) -> Any:
+    """Pasted or uploaded readings (CSV text) as a
+    :class:`~woundroll.profile.compare.MeasuredProfile` (position [m], mean reading).
+
+    With :mod:`woundroll.readings` (the reverse road) its reader is used (passes, lanes,
+    scales); without it the measured-profile reader (``position [in],rho``).
+
+    Raises
+    ------
+    InputError
+        field ``readings``: too large, or anything the reader rejects.
+    """
+    from woundroll.profile.compare import MeasuredProfile
+
+    size = len(text.encode("utf-8"))
+    if size > MAX_READINGS_BYTES:
+        raise InputError(
+            f"the readings are {size} bytes; the page takes at most {MAX_READINGS_BYTES}",
+            "readings",
+        )
+    with tempfile.TemporaryDirectory(prefix="woundroll-web-") as tmp:
+        path = Path(tmp) / "readings.csv"
+        path.write_text(text, encoding="utf-8")
+        try:
+            try:
+                from woundroll.readings import read_readings
+            except ImportError:
+                from woundroll.profile.compare import read_measured_profile
+
+                m = read_measured_profile(path, field="readings")
+                return MeasuredProfile(m.position, m.reading, "pasted readings")
+            r = read_readings(path, width=case.web.width, field="readings")
+            return MeasuredProfile(r.position, r.mean, "pasted readings")
+        except InputError as exc:
+            # the temporary directory is nobody's business: name the sheet, not the path
+            raise InputError(exc.message.replace(str(path), "readings.csv"), "readings") from None
+
+
+class _MeasuredSheet:
+    """Pasted readings in the shape the report's readings section reads (``to_dict()``)."""
+
+    def __new__(cls, measured: Any) -> Any:
+        return None if measured is None else super().__new__(cls)
+
+    def __init__(self, measured: Any) -> None:
+        self.m = measured
+
+    def to_dict(self) -> dict[str, Any]:
+        n = int(self.m.position.size)
+        return {
+            "source": "readings pasted on the web page",
+            "scale": "Rho",
+            "passes": 1,
+            "pooled_sd": None,
+            "position_m": self.m.position.tolist(),
+            "mean": self.m.reading.tolist(),
+            "sd": [0.0] * n,
+            "count": [1] * n,
+        }
+
+
+class Cancelled(Exception):
+    """Raised inside a run's progress callback when its job was cancelled."""
+
+
+@dataclass
+class Job:
+    id: str
+    state: str = "queued"  # queued, running, done, error, cancelled
+    stage: str = ""
+    fraction: float = 0.0
+    started: float = field(default_factory=time.time)
+    cancel: threading.Event = field(default_factory=threading.Event)
+    result: Any = None
+    measured: Any = None
+    payload: dict[str, Any] | None = None
+    error: dict[str, Any] | None = None
+    report: str | None = None
+
+    def status(self) -> dict[str, Any]:
+        out: dict[str, Any] = {
+            "id": self.id,
+            "state": self.state,
+            "stage": self.stage,
+            "fraction": round(self.fraction, 4),
+            "elapsed_s": round(time.time() - self.started, 2),
+        }
+        if self.state == "done":
+            out["result"] = self.payload
+            out["report_url"] = f"/jobs/{self.id}/report"
+        if self.error is not None:
+            out["error"] = self.error
+        return out
+
+
+class JobStore:
+    """Background runs in threads; progress, cancellation, a bounded history."""
+
+    def __init__(self) -> None:
+        self.jobs: dict[str, Job] = {}
+        self.lock = threading.Lock()
+
+    def running(self) -> int:
+        return sum(j.state in ("queued", "running") for j in self.jobs.values())
+
+    def start(self, case: Any, measured: Any) -> Job:
+        with self.lock:
+            if self.running() >= MAX_RUNNING:
+                raise InputError(
+                    f"the server is busy ({MAX_RUNNING} runs going): wait or cancel one", "run"
+                )
+            job = Job(uuid.uuid4().hex[:12], measured=measured)
+            self.jobs[job.id] = job
+            done = [k for k, j in self.jobs.items() if j.state not in ("queued", "running")]
+            for k in done[: max(0, len(self.jobs) - MAX_JOBS)]:
+                del self.jobs[k]
+        threading.Thread(target=self._run, args=(job, case), daemon=True).start()
+        return job
+
+    def get(self, job_id: str) -> Job | None:
+        return self.jobs.get(job_id)
+
+    def _run(self, job: Job, case: Any) -> None:
+        from woundroll.pipeline import run
+
+        def progress(stage: str, fraction: float) -> None:
+            if job.cancel.is_set():
+                raise Cancelled
+            job.stage, job.fraction = stage, float(fraction)
+
+        job.state = "running"
+        try:
+            result = run(case, progress=progress)
+            if job.cancel.is_set():
+                raise Cancelled
+            if job.measured is not None and result.profile is not None:
+                from dataclasses import replace
+
+                result = replace(result, profile=result.profile.compare(job.measured))
+            job.result = result
+            job.payload = result_payload(result, job.measured)
+            job.state = "done"
+        except Cancelled:
+            job.state = "cancelled"
+        except (InputError, ConvergenceError) as exc:
+            job.error = _error(exc)
+            job.state = "error"
+        except Exception as exc:  # the server keeps serving; the page shows what happened
+            job.error = {"field": "run", "message": f"{type(exc).__name__}: {exc}"}
+            job.error["line"] = f"run: {job.error['message']}"
+            job.state = "error"
+
+
+def _error(exc: InputError | ConvergenceError) -> dict[str, Any]:
+    fld = getattr(exc, "field", None) or ("run" if isinstance(exc, ConvergenceError) else "case")
+    msg = getattr(exc, "message", str(exc))
+    return {"field": fld, "message": msg, "line": str(exc)}
+
+
+def _scalars(d: Any, prefix: str = "") -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    if isinstance(d, dict):
+        for k, v in d.items():
+            out.update(_scalars(v, f"{prefix}{k}."))
+    elif isinstance(d, bool | str) or d is None:
+        pass
+    elif isinstance(d, int | float) and math.isfinite(d):
+        out[prefix.rstrip(".")] = d
+    return out
+
+
+def _series(x: Any, y: Any, label: str, style: str = "line") -> dict[str, Any]:
+    return {"x": [float(v) for v in x], "y": [float(v) for v in y], "label": label, "style": style}
+
+
+def result_payload(result: Any, measured: Any = None) -> dict[str, Any]:
+    """What the page shows: summary rows, every scalar of the CLI's JSON, plot series."""
+    from woundroll.cli import result_summary
+
+    d = result.to_dict()
+    plots = []
+    w = result.winding
+    if w is not None:
+        plots.append(
+            {
+                "id": "plot-sigma-r",
+                "title": "radial stress wound into the roll",
+                "xlabel": "radius [cm]",
+                "ylabel": "sigma_r [kPa]",
+                "series": [_series(w.radius * 100, w.sigma_r / 1e3, "sigma_r")],
+            }
+        )
+        plots.append(
+            {
+                "id": "plot-sigma-t",
+                "title": "hoop stress",
+                "xlabel": "radius [cm]",
+                "ylabel": "sigma_theta [kPa]",
+                "series": [_series(w.radius * 100, w.sigma_theta / 1e3, "sigma_theta")],
+            }
+        )
+    p = result.profile
+    measured_rows = None
+    if p is not None:
+        s = [_series(p.z * 100, p.rho, "predicted (energy model)")]
+        if p.rho_fd is not None:
+            s.append(_series(p.z * 100, p.rho_fd, "predicted (FD model)"))
+        if measured is not None:
+            s.append(_series(measured.position * 100, measured.reading, "measured", "dots"))
+        plots.append(
+            {
+                "id": "plot-profile",
+                "title": "hardness across the roll (scroll to zoom into a lane)",
+                "xlabel": "CMD position [cm]",
+                "ylabel": "reading",
+                "series": s,
+            }
+        )
+    elif measured is not None and result.hardness is not None:
+        pred = result.hardness.to_dict()["reading"]
+        xs = measured.position * 100
+        plots.append(
+            {
+                "id": "plot-profile",
+                "title": "measured readings and the predicted reading",
+                "xlabel": "CMD position [cm]",
+                "ylabel": "reading",
+                "series": [
+                    _series([xs.min(), xs.max()], [pred, pred], "predicted"),
+                    _series(xs, measured.reading, "measured", "dots"),
+                ],
+            }
+        )
+    if measured is not None:
+        import numpy as np
+
+        measured_rows = {
+            "n": int(measured.position.size),
+            "mean": float(np.mean(measured.reading)),
+            "min": float(np.min(measured.reading)),
+            "max": float(np.max(measured.reading)),
+        }
+        if result.hardness is not None:
+            measured_rows["predicted_minus_measured"] = (
+                float(result.hardness.to_dict()["reading"]) - measured_rows["mean"]
+            )
+    if result.hardness is not None:
+        h = d["hardness"]
+        plots.append(
+            {
+                "id": "plot-impact",
+                "title": "impact: contact force against time",
+                "xlabel": "time [ms]",
+                "ylabel": "force [N]",
+                "series": [_series([t * 1e3 for t in h["time_s"]], h["force_N"], "FD model")],
+            }
+        )
+    from woundroll.report import case_hash
+
+    return {
+        "title": result.case.title,
+        "case_hash": case_hash(result.case),
+        "summary": [{"label": k, "value": v} for k, v in result_summary(result)],
+        "numbers": _scalars({k: v for k, v in d.items() if k != "case"}),
+        "notes": list(result.notes),
+        "plots": plots,
+        "measured": measured_rows,
+    }
+
+
+def create_app() -> Any:
+    """The FastAPI application (``uvicorn woundroll.web:create_app --factory``)."""
+    from fastapi import FastAPI, Request
+    from fastapi.responses import HTMLResponse, JSONResponse, PlainTextResponse
+    from fastapi.templating import Jinja2Templates
+    from pydantic import BaseModel, Field
+
+    from woundroll import __version__
+    from woundroll.case import bundled_cases
+
+    app = FastAPI(title="woundroll", version=__version__, docs_url=None, redoc_url=None)
+    # Jinja2Templates autoescapes .html templates
+    templates = Jinja2Templates(directory=str(resources.files("woundroll.web") / "templates"))
+    store = JobStore()
+    app.state.jobs = store
+
+    class RunRequest(BaseModel):
+        case: str = Field(max_length=MAX_CASE_BYTES * 2)
+        overrides: dict[str, str] = Field(default_factory=dict, max_length=len(FORM_FIELDS) + 5)
+        readings: str = Field(default="", max_length=MAX_READINGS_BYTES * 2)
+
+    def bad(exc: InputError | ConvergenceError, status: int = 422) -> JSONResponse:
+        return JSONResponse({"error": _error(exc)}, status_code=status)
+
+    async def _unprocessable(request: Request, exc: Exception) -> JSONResponse:
+        # FastAPI's own validation (a field too long, a wrong type): one line too
+        errs = getattr(exc, "errors", lambda: [])()
+        first = errs[0] if errs else {"loc": ("body",), "msg": str(exc)}
+        loc = [str(p) for p in first.get("loc", ()) if p != "body"]
+        fld = loc[0] if loc else "request"
+        msg = str(first.get("msg", "invalid request"))
+        if first.get("type") == "string_too_long":
+            limit = MAX_CASE_BYTES if fld == "case" else MAX_READINGS_BYTES
+            msg = f"too large: the page takes at most {limit} bytes"
+        return bad(InputError(msg, fld))
+
+    from fastapi.exceptions import RequestValidationError
+
+    app.add_exception_handler(RequestValidationError, _unprocessable)
+
+    @app.get("/", response_class=HTMLResponse)
+    def index(request: Request) -> Any:
+        return templates.TemplateResponse(
+            request,
+            "index.html",
+            {
+                "cases": bundled_cases(),
+                "fields": FORM_FIELDS,
+                "version": __version__,
+                "max_case": MAX_CASE_BYTES,
+                "max_readings": MAX_READINGS_BYTES,
+            },
+        )
+
+    @app.get("/api/cases/{name}", response_class=PlainTextResponse)
+    def case_text(name: str) -> Any:
+        if name not in bundled_cases():
+            return bad(InputError(f"no bundled case named {name!r}", "CASE"), 404)
+        return (_cases_dir() / f"{name}.toml").read_text(encoding="utf-8")
+
+    @app.post("/api/run")
+    def start_run(req: RunRequest) -> Any:
+        try:
+            case = case_from_text(req.case, req.overrides)
+            measured = readings_from_text(req.readings, case) if req.readings.strip() else None
+            job = store.start(case, measured)
+        except InputError as exc:
+            return bad(exc, 429 if exc.field == "run" else 422)
+        return {"job": job.id, "status_url": f"/api/jobs/{job.id}"}
+
+    @app.get("/api/jobs/{job_id}")
+    def job_status(job_id: str) -> Any:
+        job = store.get(job_id)
+        if job is None:
+            return bad(InputError("no such run (finished runs are kept for a while)", "job"), 404)
+        return job.status()
+
+    @app.post("/api/jobs/{job_id}/cancel")
+    def cancel(job_id: str) -> Any:
+        job = store.get(job_id)
+        if job is None:
+            return bad(InputError("no such run", "job"), 404)
+        job.cancel.set()
+        return {"id": job_id, "state": job.state, "cancel_requested": True}
+
+    @app.get("/jobs/{job_id}/report", response_class=HTMLResponse)
+    def report(job_id: str) -> Any:
+        job = store.get(job_id)
+        if job is None or job.result is None:
+            return HTMLResponse("<p>No finished run with this id.</p>", status_code=404)
+        if job.report is None:
+            from woundroll.report import build_report
+
+            job.report = build_report(job.result, readings=_MeasuredSheet(job.measured))
+        return HTMLResponse(job.report)
+
+    return app
+
+
+def serve(host: str = "127.0.0.1", port: int = 8000) -> None:
+    """Run the page with uvicorn until interrupted."""
+    import uvicorn
+
+    uvicorn.run(create_app(), host=host, port=port, log_level="warning")

@@ -1,0 +1,212 @@
+"""Readings -> stresses: the tabulated forward curve, its inversion, intervals, round trips."""
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from woundroll.case import load_case
+from woundroll.cli import app
+from woundroll.diagnosis import (
+    ForwardCurve,
+    ForwardPoint,
+    RollModel,
+    diagnose,
+    forward_curve,
+    near_surface_pressure,
+)
+from woundroll.errors import InputError
+from woundroll.readings import readings_from_arrays
+
+DATA = Path(__file__).resolve().parents[1] / "examples" / "data"
+
+
+def synthetic_curve(readings, tensions=(1e6, 2e6, 4e6, 8e6)):
+    pts = tuple(
+        ForwardPoint(t, 1.1 * t, 0.01 * t, r, r, False)
+        for t, r in zip(tensions, readings, strict=True)
+    )
+    return ForwardCurve(pts, "Rho")
+
+
+def test_near_surface_pressure_linear_profile():
+    r = np.linspace(0.1, 0.2, 101)
+    sigma = -1e5 * (0.2 - r)  # P grows linearly with depth: 1e5 Pa per m
+    assert near_surface_pressure(r, sigma, 0.0065) == pytest.approx(650.0, rel=1e-9)
+    # thinner than the depth: the pressure at the core
+    assert near_surface_pressure(r, sigma, 0.5) == pytest.approx(1e4, rel=1e-12)
+
+
+def test_inversion_is_exact_at_grid_points_and_monotone_between():
+    c = synthetic_curve([30.0, 40.0, 55.0, 80.0])
+    np.testing.assert_allclose(c.tension_for([30.0, 40.0, 55.0, 80.0]), c.web_stress, rtol=1e-10)
+    t = c.tension_for(np.linspace(30, 80, 51))
+    assert np.all(np.diff(t) > 0)
+    # round trip through the interpolant (Brent to xtol 1e-12 in ln T)
+    np.testing.assert_allclose(c.reading_at(t), np.linspace(30, 80, 51), atol=1e-8)
+    # outside the curve: NaN, not an extrapolated guess
+    assert np.isnan(c.tension_for([29.0, 81.0])).all()
+
+
+def test_non_monotone_curve_is_not_invertible():
+    c = synthetic_curve([940.8, 940.5, 940.1, 940.4])  # Parotester L on a PET roll
+    assert not c.monotone
+    with pytest.raises(InputError, match="not invertible"):
+        c.tension_for([940.3])
+
+
+def test_scale_must_match_the_instrument():
+    case = load_case("pet1-26.7N")
+    with pytest.raises(InputError, match="reads Rho"):
+        RollModel.from_case(case, "R")
+    # Rho and g come from the same accelerometer: accepted
+    assert RollModel.from_case(case, "g").scale == "g"
+
+
+def test_bad_confidence_and_no_readings():
+    with pytest.raises(InputError, match="no readings"):
+        diagnose("pet1-26.7N")
+    r = readings_from_arrays([0.05], [50.0])
+    with pytest.raises(InputError) as exc:
+        diagnose("pet1-26.7N", r, confidence=1.5)
+    assert exc.value.field == "--confidence"
+
+
+def _round_trip(case, factor, scale="Rho", noise=(-0.6, 0.0, 0.6), rtol=1e-2):
+    """Readings made by the full forward chain at ``factor`` x the case's tension, with
+    symmetric scatter (the mean is the noiseless reading), come back to that tension."""
+    model = RollModel.from_case(case, scale)
+    t_true = factor * model.tension
+    truth = model.evaluate(t_true)
+    x = np.repeat([0.02, 0.06], len(noise))
+    v = truth.reading + np.tile(noise, 2) * (truth.reading / 50.0)
+    d = diagnose(case, readings_from_arrays(x, v, scale=scale), verify=False)
+    for i in range(2):
+        assert d.status[i] == "ok"
+        # 1 %: the forward chain itself jumps by up to 0.3 Rho (~0.5 % in tension) where the
+        # contact solve deepens (docs/diagnosis.md); the interpolant adds < 0.1 Rho
+        assert d.web_tension[i] == pytest.approx(t_true, rel=rtol)
+        assert d.web_tension_low[i] < t_true < d.web_tension_high[i]
+        assert d.wound_on_tension[i] == pytest.approx(truth.wound_on_tension, rel=rtol)
+        assert d.surface_pressure_low[i] < truth.surface_pressure < d.surface_pressure_high[i]
+        assert d.surface_pressure[i] == pytest.approx(truth.surface_pressure, rel=3 * rtol)
+    return d, truth
+
+
+def test_round_trip_pet1_rho():
+    d, truth = _round_trip(load_case("pet1-26.7N"), 1.3)
+    js = d.to_dict()
+    for key in (
+        "position_m",
+        "wound_on_tension_Pa",
+        "wound_on_tension_low_Pa",
+        "wound_on_tension_high_Pa",
+        "surface_pressure_Pa",
+        "surface_pressure_low_Pa",
+        "surface_pressure_high_Pa",
+    ):
+        assert len(js[key]) == 2
+    json.dumps(js)
+    # no taper, no nip: the effective WOT is the web tension itself
+    assert d.wound_on_tension[0] == pytest.approx(d.web_tension[0], rel=1e-12)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(
+    ("name", "overrides", "factor", "scale"),
+    [
+        ("pet2-53.4N", [], 0.7, "g"),
+        ("pet1-40N", ["winding.taper.kind='linear'", "winding.taper.fraction=0.3"], 1.6, "Rho"),
+        (
+            "pet3-2.3MPa",
+            ["winding.thickness_profile=''", "winding.nip_load='5 pli'", "winding.friction=0.2"],
+            2.5,
+            "Rho",
+        ),
+    ],
+)
+def test_round_trip_rolls_and_instruments(name, overrides, factor, scale):
+    if "winding.thickness_profile=''" in overrides:
+        overrides = [o for o in overrides if not o.startswith("winding.thickness_profile")]
+        case = load_case(name, overrides)
+        case = case.model_copy(
+            update={"winding": case.winding.model_copy(update={"thickness_profile": None})}
+        )
+    else:
+        case = load_case(name, overrides)
+    _round_trip(case, factor, scale)
+
+
+@pytest.mark.slow
+def test_interpolant_against_full_forward_runs_at_midpoints():
+    model = RollModel.from_case(load_case("pet1-26.7N"))
+    curve = forward_curve(model)
+    mids = np.sqrt(curve.web_stress[1:] * curve.web_stress[:-1])
+    full = np.array([model.evaluate(t).reading for t in mids])
+    err = curve.reading_at(mids) - full
+    # factor-2 grid without refinement: within 0.35 Rho over 29-116 Rho (docs/diagnosis.md)
+    assert np.max(np.abs(err)) < 0.6
+
+
+@pytest.mark.slow
+def test_readings_beyond_the_chain_are_flagged_not_guessed():
+    r = readings_from_arrays([0.02, 0.05, 0.08], [5.0, 50.0, 50.0])
+    d = diagnose("pet1-26.7N", r, verify=False)
+    assert d.status[0] == "below range"
+    assert math.isnan(d.web_tension[0])
+    assert d.to_dict()["wound_on_tension_Pa"][0] is None
+    assert d.status[1] == "ok"
+
+
+@pytest.mark.slow
+def test_material_uncertainty_widens_the_interval():
+    from scipy.stats import norm
+
+    case = load_case("pet1-26.7N", ["uncertainty.K2=10"])
+    model = RollModel.from_case(case)
+    truth = model.evaluate(model.tension)
+    r = readings_from_arrays([0.05, 0.05], [truth.reading - 0.3, truth.reading + 0.3])
+    d = diagnose(case, r, verify=False)
+    # first order: ln T moves by (d ln T / d K2) x SD; a stiffer web (K2 up) reads harder at
+    # the same tension, so the same reading means less tension
+    sd, dlnt = d.material_sensitivity["K2"]
+    assert sd == 10.0 and dlnt[0] < 0
+    # the reading-only upper end, from the same curve
+    t_read = d.curve.tension_for([d.reading_high[0]])[0]
+    ln_read = np.log(t_read / d.web_tension[0])
+    half = norm.ppf(0.975) * abs(dlnt[0]) * sd
+    assert np.log(d.web_tension_high[0] / d.web_tension[0]) == pytest.approx(
+        math.hypot(ln_read, half), rel=1e-9
+    )
+    assert half > 0.2 * ln_read  # the material term matters at this SD (not a no-op)
+
+
+def test_cli_diagnose_json_and_bad_readings(tmp_path):
+    runner = CliRunner()
+    bad = tmp_path / "bad.csv"
+    bad.write_text("position [in],rho\n1,50\n2,inf\n", encoding="utf-8")
+    res = runner.invoke(app, ["diagnose", "pet1-26.7N", "--readings", str(bad)])
+    assert res.exit_code == 2
+    lines = [line for line in res.output.splitlines() if line.strip()]
+    assert len(lines) == 1 and "bad.csv line 3" in lines[0], res.output
+    res = runner.invoke(
+        app,
+        ["diagnose", "pet1-26.7N", "--readings", str(DATA / "readings_rho_3passes.csv"), "--json"],
+    )
+    assert res.exit_code == 0, res.output
+    d = json.loads(res.output)["diagnosis"]
+    assert len(d["position_m"]) == 4
+    assert all(
+        lo < m < hi
+        for lo, m, hi in zip(
+            d["wound_on_tension_low_Pa"],
+            d["wound_on_tension_Pa"],
+            d["wound_on_tension_high_Pa"],
+            strict=True,
+        )
+    )
+    # the interpolant reproduces the full chain at the median result
+    assert abs(d["verification"]["error"]) < 0.05

@@ -1,0 +1,108 @@
+"""Monte Carlo bands: exact scaling of a linear roll, the surrogate against full runs, CLI."""
+
+import json
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from woundroll.case import load_case
+from woundroll.cli import app
+from woundroll.errors import InputError
+from woundroll.uncertainty import draw_samples, propagate, uncertain_parameters
+
+LINEAR = {
+    "title": "linear roll",
+    "web": {
+        "thickness": "50 um",
+        "width": "20 cm",
+        "E_theta": "5 GPa",
+        "radial_modulus": {"law": "constant", "E_r": "20 MPa"},
+    },
+    "core": {"outer_radius": "5 cm", "rigid": True},
+    "winding": {"outer_radius": "7 cm", "tension": "2 MPa"},
+    "uncertainty": {"tension": "5 %"},
+}
+
+
+def test_linear_roll_stresses_scale_exactly_with_the_sampled_tension():
+    # a constant E_r makes the winding model linear in the tension: every sample's stresses
+    # are the nominal ones times (1 + 0.05 u), to round-off
+    case = load_case(LINEAR)
+    res = propagate(case, 20, seed=4)
+    u = res.samples["tension"]
+    factor = 1.0 + 0.05 * u
+    np.testing.assert_allclose(
+        res.sigma_r, factor[:, None] * res.nominal_sigma_r[None, :], rtol=1e-9, atol=1e-6
+    )
+    assert res.reading is None and "no [tester]" in res.notes[-1]
+    d = res.to_dict()
+    assert d["parameters_sd"]["tension"] == pytest.approx(0.05 * 2e6)
+    assert len(d["sigma_r_Pa"]["p97_5"]) == res.radius.size
+
+
+def test_correlated_k1_k2_samples():
+    case = load_case(
+        "pet1-26.7N",
+        ["uncertainty.K1='0.3 kPa'", "uncertainty.K2=5", "uncertainty.K1_K2_correlation=-0.9"],
+    )
+    z = draw_samples(case, 4000, seed=1)
+    # sample correlation of 4000 draws: SD ~ (1 - rho^2)/sqrt(n) = 0.003
+    assert np.corrcoef(z["K1"], z["K2"])[0, 1] == pytest.approx(-0.9, abs=0.015)
+    assert np.std(z["K2"]) == pytest.approx(1.0, abs=0.04)
+
+
+def test_missing_or_wrong_tolerances():
+    with pytest.raises(InputError) as exc:
+        uncertain_parameters(load_case("pet1-26.7N"))
+    assert exc.value.field == "uncertainty"
+    with pytest.raises(InputError) as exc:
+        uncertain_parameters(load_case({**LINEAR, "uncertainty": {"K2": 3}}))
+    assert exc.value.field == "uncertainty.K2"
+    with pytest.raises(InputError):
+        load_case({**LINEAR, "uncertainty": {"thickness": "3 psi"}})
+    with pytest.raises(InputError):
+        propagate(load_case(LINEAR), 3)
+
+
+def test_reading_surrogate_checked_against_full_runs():
+    case = load_case("pet1-26.7N", ["uncertainty.tension='5 %'"])
+    res = propagate(case, 30, verify=2)
+    # quadratic surrogate from steps of 2 SD; the forward chain's own steps are <= 0.3 Rho
+    assert res.surrogate["max_abs_error"] < 0.3
+    lo, hi = np.percentile(res.reading, [2.5, 97.5])
+    assert lo < res.reading_nominal < hi
+    # tension +5 % SD: dRho/dlnT ~ 37 Rho at 26.7 N (docs/diagnosis.md): SD ~ 1.8 Rho
+    assert 1.0 < np.std(res.reading) < 3.0
+
+
+@pytest.mark.slow
+def test_surrogate_against_full_monte_carlo():
+    case = load_case(
+        "pet1-26.7N",
+        ["uncertainty.K2=8", "uncertainty.thickness='3 %'", "uncertainty.tension='4 %'"],
+    )
+    res = propagate(case, 40, verify=12)
+    errs = [abs(c["full"] - c["surrogate"]) for c in res.surrogate["checks"]]
+    full = np.array([c["full"] for c in res.surrogate["checks"]])
+    assert max(errs) < 0.3
+    # the surrogate's SD over the same 12 samples matches the full runs' to 10 %
+    sur = res.reading[:12]
+    assert np.std(sur) == pytest.approx(np.std(full), rel=0.1)
+
+
+def test_cli_run_uncertainty_json(tmp_path):
+    p = tmp_path / "lin.toml"
+    p.write_text(
+        'title = "lin"\n[web]\nthickness = "50 um"\nwidth = "20 cm"\nE_theta = "5 GPa"\n'
+        'radial_modulus = { law = "constant", E_r = "20 MPa" }\n[core]\nouter_radius = "5 cm"\n'
+        'rigid = true\n[winding]\nouter_radius = "7 cm"\ntension = "2 MPa"\n'
+        '[uncertainty]\ntension = "5 %"\nthickness = "1 um"\n',
+        encoding="utf-8",
+    )
+    res = CliRunner().invoke(app, ["run", str(p), "--uncertainty", "12", "--json"])
+    assert res.exit_code == 0, res.output
+    d = json.loads(res.output)
+    assert d["uncertainty"]["n"] == 12 and "winding" in d
+    res = CliRunner().invoke(app, ["run", "pet1-26.7N", "--uncertainty", "12", "--json"])
+    assert res.exit_code == 2 and "uncertainty:" in res.output
