@@ -93,6 +93,13 @@ def run(
     report: Annotated[
         bool, typer.Option("--report", help="With --out: also write the HTML report.html.")
     ] = False,
+    no_update: Annotated[
+        bool,
+        typer.Option(
+            "--no-update",
+            help="Also solve with E_r frozen at its pre-impact value (contact.no_update).",
+        ),
+    ] = False,
 ) -> None:
     """Run the models a case asks for: winding, and with a tester section the hardness reading."""
     from woundroll._pool import Interrupted, clean_stop
@@ -103,7 +110,7 @@ def run(
         try:
             if report and out_dir is None:
                 raise InputError("the report goes into the --out directory: give --out", "--report")
-            c = load_case(case, set_ or [])
+            c = load_case(case, [*(set_ or []), *(["contact.no_update=true"] if no_update else [])])
             if out_dir is not None:
                 from woundroll._output import check_out_dir
 
@@ -117,9 +124,12 @@ def run(
             written = result.write(out_dir) if out_dir is not None else []
             uq = _cli_diagnose.run_uncertainty(c, uncertainty, out_dir, written, quiet or as_json)
             if report:
+                from woundroll.defects import defect_report
                 from woundroll.report import write_report
 
-                written.append(write_report(result, out_dir))
+                defects = defect_report(c, winding=result.winding)
+                readings = c.measured_readings
+                written.append(write_report(result, out_dir, readings=readings, defects=defects))
         except InputError as exc:
             _fail(exc, 2)
         except ConvergenceError as exc:
@@ -270,12 +280,21 @@ def study(
         int, typer.Option(help="Rolls run in parallel (processes).", min=1, max=64)
     ] = 1,
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar.")] = False,
+    model: Annotated[
+        str, typer.Option(help="Contact model of the pile-height study: 2d or 3d.")
+    ] = "2d",
 ) -> None:
     """Run one of the reference paper's studies on its Table 2 rolls; print its tables."""
     from woundroll._output import strict_json
     from woundroll.studies import run_study
 
     def job(progress):  # type: ignore[no-untyped-def]
+        if model != "2d" or name == "pile-height":
+            from woundroll.studies.pile_height import pile_height_study
+
+            if name != "pile-height" or model not in ("2d", "3d"):
+                raise InputError("--model 3d is for the pile-height study; 2d or 3d", "--model")
+            return pile_height_study(progress=progress, workers=workers, model=model)
         return run_study(name, progress=progress, workers=workers)
 
     try:

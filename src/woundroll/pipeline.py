@@ -16,7 +16,8 @@ typed results into :class:`RunResult`:
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -353,9 +354,12 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         "depth_max": spec.depth_max,
         "friction": spec.friction,
         "options": spec.contact_options(),
+        "model": spec.model,
+        "options3d": spec.contact3d_options(),
     }
     report("contact", 0.0)
-    stiff = roll_stiffness(web, core, winding.radius, winding.sigma_r, setup.instrument, **args)
+    with _user_fields(case, H):
+        stiff = roll_stiffness(web, core, winding.radius, winding.sigma_r, setup.instrument, **args)
     unloading_notes: list[str] = []
     if web.radial_unloading is not None and not _restitution_given(case):
         p_peak = float(np.max(-stiff.at_impact.sigma_r))
@@ -365,16 +369,17 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     if spec.no_update:
         report("contact", 0.5)
         # E_r frozen is softer: the striker goes at least as deep, start where that ended
-        frozen = roll_stiffness(
-            web,
-            core,
-            winding.radius,
-            winding.sigma_r,
-            setup.instrument,
-            update_modulus=False,
-            start_depth=float(stiff.contact.delta[-1]),
-            **args,
-        )
+        with _user_fields(case, H):
+            frozen = roll_stiffness(
+                web,
+                core,
+                winding.radius,
+                winding.sigma_r,
+                setup.instrument,
+                update_modulus=False,
+                start_depth=float(stiff.contact.delta[-1]),
+                **args,
+            )
         no_update = NoUpdate(
             frozen,
             hardness_on_roll(setup, frozen, H, web.density, semi_contact_width_given=a_given),
@@ -398,6 +403,11 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
             options=spec.dynamic_settings(),
         )
         report("dynamic", 1.0)
+        if spec.model == "3d":
+            unloading_notes.append(
+                "dynamic: the impact in time runs on the 2D FE roll (the 3D dynamic model is "
+                "not implemented); the 1.5D models used the 3D contact spring"
+            )
     return RunResult(
         case=case,
         winding=winding,
@@ -409,6 +419,26 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         flags=flags,
         dynamic=dynamic,
     )
+
+
+@contextmanager
+def _user_fields(case: Case, wound: float) -> Iterator[None]:
+    """Errors of the contact model that name an option the user did not set (its defaults
+    follow the roll: ``surface_size`` is the web thickness) are about the roll being too thin
+    for the model: say so, naming the case's field."""
+    try:
+        yield
+    except InputError as exc:
+        fld = exc.field or ""
+        name = fld.removeprefix("contact.options.")
+        user_set = fld.startswith("contact.options.") and name in case.contact.options
+        if user_set or not (fld.startswith("contact.options.") or fld == "contact.radius"):
+            raise
+        raise InputError(
+            f"the roll is too thin for the contact model under the head: {wound * 1e3:.3g} mm "
+            f"wound ({exc.message}); wind a larger roll",
+            "winding.outer_radius" if case.winding.outer_radius is not None else "winding.length",
+        ) from None
 
 
 def _run_profile(

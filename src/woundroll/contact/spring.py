@@ -81,10 +81,22 @@ class SpringFit:
 
 
 def _nnls_quadratic(d: NDArray[np.float64], f: NDArray[np.float64]) -> tuple[float, float]:
-    from scipy.optimize import nnls
-
+    """Least squares ``f ~ alpha d^2 + beta d`` with alpha, beta >= 0: the unconstrained
+    fit if both are >= 0, else the better of the two one-term fits (the exact non-negative
+    solution of a two-column problem)."""
     dm = max(float(d.max()), 1e-300)
-    coef, _ = nnls(np.stack([(d / dm) ** 2, d / dm], axis=1), f)
+    A = np.stack([(d / dm) ** 2, d / dm], axis=1)
+    coef = np.linalg.lstsq(A, f, rcond=None)[0]
+    if coef[0] < 0 or coef[1] < 0:
+        best = None
+        for j in (0, 1):
+            c = np.zeros(2)
+            c[j] = max(float(A[:, j] @ f) / float(A[:, j] @ A[:, j]), 0.0)
+            res = float(np.sum((A @ c - f) ** 2))
+            if best is None or res < best[0]:
+                best = (res, c)
+        assert best is not None
+        coef = best[1]
     return float(coef[0] / dm**2), float(coef[1] / dm)
 
 
@@ -269,6 +281,8 @@ def roll_stiffness(
     update_modulus: bool = True,
     options: Any = None,
     field: str = "contact",
+    model: str = "2d",
+    options3d: Any = None,
 ) -> RollStiffness:
     """The 2D contact solve that gives the roll spring {3} under the instrument's head.
 
@@ -293,6 +307,12 @@ def roll_stiffness(
         As :func:`woundroll.contact.indent`.
     field : str
         Table named in error messages (``"contact"``, ``"profile"``).
+    model : {"2d", "3d", "auto"}
+        The contact model: the plane-strain 2D model, the 3D model
+        (:func:`woundroll.contact.solver3d.indent3d`, any head), or ``"auto"``: 2D for a
+        cylindrical head, 3D for the heads 2D cannot represent (sphere, punch).
+    options3d : Contact3DOptions, optional
+        Settings of the 3D model.
 
     Raises
     ------
@@ -303,10 +323,27 @@ def roll_stiffness(
     """
     from woundroll.contact.solver import indent
 
-    head_length = head_length_of(instrument)
+    if model not in ("2d", "3d", "auto"):
+        raise InputError(f"must be '2d', '3d' or 'auto', got {model!r}", f"{field}.model")
+    use_3d = model == "3d" or (model == "auto" and instrument.head_shape != "cylinder")
+    if use_3d:
+        from woundroll.contact.heads import Head
+        from woundroll.contact.solver3d import indent3d
+
+        head = Head.from_instrument(instrument)
+
+        def indent(web, core, r, sigma_r, *, head_radius, head_length, options, **kw):  # noqa: ARG001
+            return indent3d(web, core, r, sigma_r, head=head, options=options3d, **kw)
+
+        head_length = float(instrument.head_length or 0.0)
+    else:
+        head_length = head_length_of(instrument)
     r = np.asarray(radius, dtype=float)
     # the model's reach: below half the head radius and a quarter of the wound thickness
-    reach = 0.98 * min(0.5 * instrument.head_radius, 0.25 * float(r[-1] - r[0]))
+    reach = 0.98 * min(
+        0.5 * instrument.head_radius if instrument.head_shape != "punch" else np.inf,
+        0.25 * float(r[-1] - r[0]),
+    )
     if depth_max is not None:
         depth = depth_max
     elif start_depth is not None:

@@ -47,12 +47,13 @@ QUANTITY_FIELDS: dict[str, str] = {
     "contact_position": "length",
     "head_radius": "length",
     "head_length": "length",
+    "head_edge_radius": "length",
     "rho_per_g": "dimensionless",
 }  # "g" (an acceleration) is converted separately in _convert
 _TEXT_FIELDS = ("name", "title", "readout", "head_shape", "notes")
 #: Relative tolerance of ``k/m = omega^2`` {1} for an instrument that gives all three.
 EQ1_RTOL = 1e-3
-_HEAD_SHAPES = ("cylinder", "sphere")
+_HEAD_SHAPES = ("cylinder", "sphere", "punch")  # punch: 3D contact model only
 #: Scale of each readout (what the instrument can show): a simulated reading outside it is
 #: flagged (the instrument would read its end stop or nothing). Rho-meter: dial 0-100 Rho;
 #: Schmidt hammers: rebound number R 10-100; Parotester: L = 1000 v_out/v_in, 0-1000 by
@@ -87,7 +88,10 @@ class Instrument:
         Cylinder length along the CMD (None for a spherical tip). Also the CMD length that
         multiplies the tapered-column volume {17} for the roll's active mass.
     head_shape : str
-        "cylinder" (axis along the CMD) or "sphere".
+        "cylinder" (axis along the CMD), "sphere" or "punch" (flat face of radius
+        ``head_radius``; the 3D contact model only).
+    head_edge_radius : float or None [m]
+        Rounding of a cylinder's ends or a punch's edge (3D contact model; None: sharp).
     readout : str
         One of :data:`woundroll.instruments.readout.READOUTS`.
     natural_frequency : float or None [rad/s]
@@ -115,6 +119,7 @@ class Instrument:
     g: float = G_STANDARD
     calibrated: bool = True
     notes: str = ""
+    head_edge_radius: float | None = None
     sources: dict[str, str] = field(default_factory=dict, compare=False)
 
     def __post_init__(self) -> None:
@@ -131,6 +136,8 @@ class Instrument:
         _check(self.contact_position, f"{p}.contact_position", positive=False)
         if self.head_length is not None:
             _check(self.head_length, f"{p}.head_length", positive=True)
+        if self.head_edge_radius is not None:
+            _check(self.head_edge_radius, f"{p}.head_edge_radius", positive=False)
         if self.natural_frequency is not None:
             _check(self.natural_frequency, f"{p}.natural_frequency", positive=True)
             w2 = self.spring_stiffness / self.mass
@@ -278,15 +285,8 @@ def _convert(key: str, value: Any, fld: str) -> Any:
             raise InputError(f"must be true or false, got {value!r}", fld)
         return value
     if key == "g":
-        from woundroll.units import parse_quantity, ureg
-
-        q = parse_quantity(value, fld)
-        if q.unitless:
-            return float(q.magnitude)
-        if q.dimensionality != ureg.get_dimensionality("[length] / [time] ** 2"):
-            raise InputError(f"{value!r} is not an acceleration; use e.g. '9.81 m/s^2'", fld)
-        return float(q.to_base_units().magnitude)
-    if key in ("head_length", "natural_frequency") and value is None:
+        return to_si(value, "acceleration", fld)
+    if key in ("head_length", "natural_frequency", "head_edge_radius") and value is None:
         return None
     return to_si(value, QUANTITY_FIELDS[key], fld)
 

@@ -100,7 +100,9 @@ class PileHeightStudy:
                     f"{r['rho_fd']:.1f}",
                     f"{r['rho_energy']:.1f}",
                     f"{r['rho_fd_ref_mass']:.1f}",
-                    f"{r['rho_fd_ref_prestress_mass']:.1f}",
+                    "-"
+                    if r["rho_fd_ref_prestress_mass"] is None
+                    else f"{r['rho_fd_ref_prestress_mass']:.1f}",
                     f"{r['effective_mass_kg'] * 1e3:.2f}",
                     f"{r['alpha_N_per_m2']:.3g}",
                     f"{r['beta_N_per_m']:.3g}",
@@ -127,6 +129,7 @@ class PileHeightStudy:
         from matplotlib.figure import Figure
 
         base = _prefix(prefix, "pile_height")
+        paths_head = self._plot_under_head(base)
         fig = Figure(figsize=(10, 4.0), layout="constrained")
         ax1, ax2 = fig.subplots(1, 2)
         for i, p in enumerate(self.profiles):
@@ -171,7 +174,35 @@ class PileHeightStudy:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
         paths.append(_savefig(fig, Path(f"{base}_rho.png")))
-        return paths
+        return paths + paths_head
+
+    def _plot_under_head(self, base: str) -> list[Path]:
+        """``pile_height_under_head.png``: pressure under the head against depth at the
+        impact's maximum depth (cf. the paper's Figure 10)."""
+        from matplotlib.figure import Figure
+
+        fig = Figure(figsize=(6.4, 4.2), layout="constrained")
+        ax = fig.subplots()
+        for i, p in enumerate(self.profiles):
+            a = p.get("under_head_at_impact")
+            if not a:
+                continue
+            d = np.asarray(a["depth_m"]) * 1e3
+            ax.plot(
+                d,
+                np.asarray(a["pressure_Pa"]) / 1e6,
+                color=f"C{i}",
+                label=f"H = {p['pile_height_m'] * 100:.2f} cm",
+            )
+            ax.plot(d, np.asarray(a["pre_impact_pressure_Pa"]) / 1e6, ":", color=f"C{i}")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("depth below the surface [mm]")
+        ax.set_ylabel("radial pressure under the head [MPa]")
+        ax.set_title(f"{self.case}: at the impact's depth (dotted: before impact)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+        return [_savefig(fig, Path(f"{base}_under_head.png"))]
 
     def write(self, out_dir: str | Path) -> list[Path]:
         """Write ``study.json`` and the PNGs into ``out_dir``; return the paths."""
@@ -190,6 +221,9 @@ def _axis_locality(contact: Any, web: Any) -> dict[str, float]:
     """
     theta = np.abs(np.asarray(contact.element_theta))  # half or whole-annulus mesh
     on_axis = np.isclose(theta, theta.min(), rtol=1e-9, atol=0.0)
+    z = getattr(contact, "element_z", None)  # 3D model: the column under the head's centre
+    if z is not None:
+        on_axis &= np.isclose(np.asarray(z), np.min(z), rtol=1e-9, atol=0.0)
     r = np.asarray(contact.element_r)[on_axis]
     p_pre = np.maximum(-np.asarray(contact.sigma_r_pre)[on_axis], 0.0)
     p_end = np.maximum(-np.asarray(contact.sigma_r)[on_axis], 0.0)
@@ -214,6 +248,25 @@ def _axis_locality(contact: Any, web: Any) -> dict[str, float]:
     }
 
 
+def _axis_pressure(c: Any, depth: float) -> dict[str, list[float]]:
+    """Radial pressure under the head's centre against depth below the surface with the
+    head at ``depth`` (the impact's maximum depth, FD): total -sigma_r on the contact axis
+    (the paper's Figure 10 view, quasi-static)."""
+    st = c.at_depth(min(depth, float(c.delta[-1])))
+    theta = np.abs(np.asarray(c.element_theta))
+    on = np.isclose(theta, theta.min(), rtol=1e-9, atol=0.0)
+    z = getattr(c, "element_z", None)
+    if z is not None:
+        on &= np.isclose(np.asarray(z), np.min(z), rtol=1e-9, atol=0.0)
+    depth = float(c.outer_radius) - np.asarray(c.element_r)[on]
+    order = np.argsort(depth)
+    return {
+        "depth_m": depth[order].tolist(),
+        "pressure_Pa": (-np.asarray(st.sigma_r)[on][order]).tolist(),
+        "pre_impact_pressure_Pa": (-np.asarray(c.sigma_r_pre)[on][order]).tolist(),
+    }
+
+
 def _pile_height_job(
     name: str,
     overrides: tuple[str, ...],
@@ -234,7 +287,9 @@ def _pile_height_job(
     radius, sigma_r = out["radius"], out["sigma_r"]
     case = load_case(name, list(overrides))
     web, core = case.web.build(), case.core.build()
+    out["axis_pressure"] = _axis_pressure(out["contact"], row["delta_max_m"])
     row.update(_axis_locality(out.pop("contact"), web))
+    row["contact_model"] = case.contact.model
     setup = case.tester_setup
     ins = setup.instrument
     depth = radius[-1] - radius
@@ -250,6 +305,12 @@ def _pile_height_job(
     row["rho_fd_ref_mass"] = hardness_from_spring(
         setup, row["alpha_N_per_m2"], row["beta_N_per_m"], m_ref
     ).fd.rho
+    if case.contact.model == "3d":
+        # the pre-stress decomposition is a plane-strain question (ring and core under a
+        # line load); the 3D study reports the locality columns instead
+        row["alpha_ref_prestress_N_per_m2"] = row["beta_ref_prestress_N_per_m"] = None
+        row["rho_fd_ref_prestress_mass"] = None
+        return out
     # the reference roll's pre-impact sigma_r, by depth below the surface
     sigma_ref = np.interp(depth, ref["depth"], ref["sigma_r"])
     stiff = roll_stiffness(
@@ -293,6 +354,7 @@ def pile_height_study(
     progress: Progress | None = None,
     *,
     workers: int = 1,
+    model: str = "2d",
 ) -> PileHeightStudy:
     """Figures 16/17: wind ``case`` to outer radius = core radius + H for each pile height.
 
@@ -305,6 +367,9 @@ def pile_height_study(
     progress : callable(stage, fraction), optional
     workers : int
         1: serial; 2: a spawned 2-process pool (the reference roll always runs first).
+    model : {"2d", "3d"}
+        Contact model of the roll spring (``contact.model``); with ``"3d"`` the
+        pre-stress decomposition column is not computed.
 
     The no-update solve is switched off (``contact.no_update=false``): not needed here.
     """
@@ -317,7 +382,14 @@ def pile_height_study(
     base = load_case(case)
     r_core = base.core.build().outer_radius
     jobs = [
-        (case, (f"winding.outer_radius={r_core + h!r} m", "contact.no_update=false"))
+        (
+            case,
+            (
+                f"winding.outer_radius={r_core + h!r} m",
+                "contact.no_update=false",
+                f"contact.model='{model}'",
+            ),
+        )
         for h in heights
     ]
     n = len(jobs)
@@ -341,7 +413,14 @@ def pile_height_study(
     profiles = []
     for h, o in zip(heights, outs, strict=True):
         rr, pp = _thin(o["radius"], -o["sigma_r"])
-        profiles.append({"pile_height_m": h, "radius_m": rr, "pressure_Pa": pp})
+        profiles.append(
+            {
+                "pile_height_m": h,
+                "radius_m": rr,
+                "pressure_Pa": pp,
+                "under_head_at_impact": o["axis_pressure"],
+            }
+        )
     _report(progress, "done", 1.0)
     return PileHeightStudy(
         case=case,
