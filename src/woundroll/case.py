@@ -618,6 +618,12 @@ def _check_options(case: Case) -> None:
                 "winding.thickness_profile or contact.dynamic",
                 "contact.dynamic",
             )
+        if case.tester_setup is not None and case.tester_setup.instrument.head_shape != "cylinder":
+            raise InputError(
+                "the impact in time runs on the 2D (plane-strain) FE roll, which takes a "
+                "cylindrical head; the 3D dynamic impact is not implemented",
+                "contact.dynamic",
+            )
     _read_file(case, "thickness_profile", "winding.thickness_profile")
     if case.profile.measured is not None:
         if case.winding.thickness_profile is None:

@@ -411,6 +411,11 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
             options=spec.dynamic_settings(),
         )
         report("dynamic", 1.0)
+        if spec.model == "3d":
+            unloading_notes.append(
+                "dynamic: the impact in time runs on the 2D FE roll (the 3D dynamic model is "
+                "not implemented); the 1.5D models used the 3D contact spring"
+            )
     return RunResult(
         case=case,
         winding=winding,
