@@ -130,7 +130,10 @@ def test_write_produces_json_and_pngs(subset, slip, piles, tmp_path):
     expected = {
         "tension": (subset, {"tension_rho.png", "tension_impulse.png"}),
         "slip": (slip, {"slip_factor.png"}),
-        "pile-height": (piles, {"pile_height_pressure.png", "pile_height_rho.png"}),
+        "pile-height": (
+            piles,
+            {"pile_height_pressure.png", "pile_height_rho.png", "pile_height_under_head.png"},
+        ),
     }
     for name, (study, pngs) in expected.items():
         out = tmp_path / name
@@ -235,6 +238,7 @@ def test_full_table2_study_and_all(tmp_path):
         "tension_impulse.png",
         "pile_height_pressure.png",
         "pile_height_rho.png",
+        "pile_height_under_head.png",
         "slip_factor.png",
     }
     data = json.loads((tmp_path / "study.json").read_text(encoding="utf-8"))
