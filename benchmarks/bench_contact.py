@@ -11,6 +11,8 @@ Prints
    (``load_case("pet1-26.7N")``) with the Rho-meter head (6.565 mm, 2.54 cm), 1 mm deep;
 2. solve time against mesh size on the Rho-meter case (all element sizes divided by a
    factor, growth ratios raised to 1/factor) with the fitted scaling exponent t ~ n_dof^p;
+2b. the step control: the default predicted mid-step modulus (about one factorisation per
+   load step) against the explicit midpoint scheme (two per step) at 24 and 48 steps;
 3. the stiffness assembly: the vectorised assembler (geometric element matrices once, one
    fused multiply-add and a bincount per increment) against a straightforward
    loop-over-elements assembly of the same matrix, for the default curved element (assumed
@@ -199,6 +201,21 @@ def main() -> None:
     )
     t, res = best_of(lambda: indent(web, core, radius, sigma_r, **head, update_modulus=False))
     print(f"  the same without the modulus update (one factorisation): {t:.3f} s")
+
+    print("\nstep control, Rho-meter case, 1 mm (issue 14: one factorisation per load step):")
+    ref = None
+    for label, kw in (
+        ("explicit midpoint, 48 steps (reference)", {"n_steps": 48, "predictor": False}),
+        ("explicit midpoint, 24 steps", {"predictor": False}),
+        ("predicted mid-step, 24 steps (default)", {}),
+    ):
+        o = ContactOptions(**kw)
+        t, res = best_of(lambda o=o: indent(web, core, radius, sigma_r, **head, options=o))
+        ref = res.force[-1] if ref is None else ref
+        print(
+            f"  {label:42s} {t:6.3f} s  {res.factorisations:3d} factorisations  "
+            f"F = {res.force[-1]:.2f} N ({100 * (res.force[-1] / ref - 1):+.2f} %)"
+        )
 
     print("\nsolve time vs mesh size, Rho-meter case (sizes / factor, growth ** (1 / factor)):")
     rows = []

@@ -44,6 +44,55 @@ CORE = Core.tube(0.1016, 0.095, 69e9, 0.33)
 R_OUT = 0.2032
 
 
+CASES = [
+    "pet1-26.7N",
+    "pet1-33.4N",
+    "pet1-40N",
+    "pet1-46.7N",
+    "pet2-26.7N",
+    "pet2-53.4N",
+    "pet2-80N",
+    "pet3-2.3MPa",
+    "pet3-3.45MPa",
+]
+
+
+def window_factorisation(repeat: int = 5) -> None:
+    """The window solve of one increment (Table 3: 25 groups x 61 sectors, 3,100 unknowns):
+    banded Cholesky in the mesh's order against SuperLU (fill-reducing order), same matrix,
+    same run."""
+    from scipy.linalg import cho_solve_banded, cholesky_banded
+    from scipy.sparse import csc_matrix
+    from scipy.sparse.linalg import splu
+
+    from woundroll.winding import _axisym_fe as fe
+
+    prof = bundled_profile()
+    _, h = prof.sector_average(61)
+    w = np.diff(prof.sector_edges(61))
+    st = fe.Stack(w, CORE.stiffness, (WEB.E_theta, WEB.E_z, 0.01, 0.01, 0.3), WEB.shear_r_z)
+    rn = 0.15 + np.arange(26)[:, None] * 2 * h[None, :]
+    E = np.full((25, 61), 2e6)
+    ab, *_ = st._system(rn, E, None)
+    u, n = ab.shape[0] - 1, ab.shape[1]
+    i, j = np.nonzero(ab)
+    rows, cols = j + i - u, j
+    A = csc_matrix((ab[i, j], (rows, cols)), shape=(n, n))
+    A = A + csc_matrix((ab[i, j][rows != cols], (cols[rows != cols], rows[rows != cols])), (n, n))
+    b = np.ones(n)
+    t_chol = min(
+        timed(lambda: cho_solve_banded((cholesky_banded(ab), False), b))[0] for _ in range(repeat)
+    )
+    t_lu = min(
+        timed(lambda: splu(A.tocsc(), permc_spec="MMD_AT_PLUS_A").solve(b))[0]
+        for _ in range(repeat)
+    )
+    print(
+        f"   window solve, {n} unknowns: banded Cholesky {1e3 * t_chol:.1f} ms, SuperLU"
+        f" {1e3 * t_lu:.1f} ms (ratio {t_lu / t_chol:.2f}, same run)"
+    )
+
+
 def timed(fn):
     t0 = time.perf_counter()
     out = fn()
@@ -64,7 +113,7 @@ def main() -> None:
         f" {'sigma_r outer 1 mm, sector 20 [kPa]':>36} {'slack':>6}"
     )
     runs = {}
-    for G in (100, 200, 400):
+    for G in (200, None):  # the former default, the default (at most 2 layers per group)
         t, w = timed(
             lambda G=G: wind_axisymmetric(
                 WEB, CORE, R_OUT, TensionSchedule(web_stress=2.3e6), prof, n_groups=G
@@ -75,75 +124,49 @@ def main() -> None:
         r = w.radius[:, 20]
         near = np.interp(R_OUT - 1e-3, r, w.sigma_r[:, 20])
         print(
-            f"{G:7d} {t:9.2f} {-w.sigma_r_core[jt] / 1e3:22.1f} {-w.sigma_r_core[jn] / 1e3:16.1f}"
-            f" {-near / 1e3:36.2f} {int(w.slack.sum()):6d}"
-        )
-    for G in (100, 200):
-        a, b = runs[G], runs[2 * G]
-        d = 0.0
-        for j in range(a.z.size):
-            sel = a.radius[:, j] >= a.build_radius[j] - 5e-3
-            sb = np.interp(a.radius[sel, j], b.radius[:, j], b.sigma_r[:, j])
-            d = max(d, float(np.max(np.abs(a.sigma_r[sel, j] - sb))))
-        ref = max(
-            float(np.max(np.abs(b.sigma_r[b.radius[:, j] >= b.build_radius[j] - 5e-3, j])))
-            for j in range(b.z.size)
-        )
-        print(
-            f"   {G} -> {2 * G} groups: outer 5 mm sigma_r changes by"
-            f" {100 * d / ref:.2f} % of its peak"
+            f"{w.layers_per_group.size:7d} {t:9.2f} {w.core_pressure[jt] / 1e3:22.1f}"
+            f" {w.core_pressure[jn] / 1e3:16.1f} {-near / 1e3:36.2f} {int(w.slack.sum()):6d}"
         )
     if not args.quick:
-        t, w = timed(
-            lambda: wind_axisymmetric(
-                WEB, CORE, R_OUT, TensionSchedule(web_stress=2.3e6), prof, window=None
-            )
-        )
-        b = runs[200]
-        diff = np.max(np.abs(b.sigma_r - w.sigma_r)) / np.max(np.abs(w.sigma_r))
-        print(
-            f"   200 groups, whole stack solved every increment (window=None): {t:.2f} s;"
-            f" lazy deep part differs by {100 * diff:.2f} % of max |sigma_r|"
-        )
         t, w = timed(
             lambda: wind_axisymmetric(
                 WEB, CORE, R_OUT, TensionSchedule(web_stress=2.3e6), prof, shear_coupling=False
             )
         )
-        print(f"   independent plane-stress sectors (shear_coupling=False), 200 groups: {t:.2f} s")
+        print(f"   independent plane-stress sectors (shear_coupling=False): {t:.2f} s")
+    window_factorisation()
 
-    print("\n2. uniform thickness vs the 1D Hakiel model (layer by layer)")
-    try:
-        from woundroll.winding.hakiel import wind
-    except ImportError:
-        print("   woundroll.winding.hakiel not available")
-    else:
-        from dataclasses import replace
+    print("\n2. uniform web, nu_z_r = nu_theta_z = 0 (plane stress like the 1D model), default")
+    print("   options, vs the 1D model (layer by layer) on every bundled Table 2 / 3 roll")
+    n_sectors = 1 if args.quick else 5
+    print(
+        f"   {'case':14s} {'groups':>6} {'P_core 1D':>10} {'P_core (r,z)':>13} {'max dev':>8}"
+        f" {'time':>7}   ({n_sectors} sector(s), middle one; dev pointwise at group centres)"
+    )
+    from dataclasses import replace
 
-        plane = replace(WEB, nu_z_r=0.0, nu_theta_z=0.0)
-        for label, web in (("Table 3", WEB), ("nu_z_r = nu_theta_z = 0", plane)):
-            for T in (2.3e6, 3.45e6):
-                ten = TensionSchedule(web_stress=T)
-                t1, ref = timed(lambda ten=ten, web=web: wind(web, CORE, R_OUT, ten))
-                for ns in (1, 5, 15):
-                    t2, a = timed(
-                        lambda ten=ten, ns=ns, web=web: wind_axisymmetric(
-                            web, CORE, R_OUT, ten, n_sectors=ns
-                        )
-                    )
-                    j = ns // 2
-                    r = a.radius[:, j]
-                    s1 = np.interp(r, ref.radius, ref.sigma_r)
-                    dev = np.abs(a.sigma_r[:, j] - s1)
-                    o = r > R_OUT - 0.005
-                    print(
-                        f"   {label:24s} T_w {T / 1e6:4.2f} MPa, {ns:2d} sectors (mid):"
-                        " max |d sigma_r|"
-                        f" = {100 * dev.max() / ref.core_pressure:5.2f} % of P_core"
-                        f" ({ref.core_pressure / 1e3:.1f} kPa), outer 5 mm pointwise"
-                        f" {100 * np.max(dev[o] / np.abs(s1[o])):5.2f} %, sigma_z core"
-                        f" {a.sigma_z[0, j] / 1e3:7.1f} kPa; 1D {t1:.2f} s, axisym {t2:.2f} s"
-                    )
+    from woundroll.case import load_case
+    from woundroll.winding.hakiel import wind
+
+    for name in CASES:
+        case = load_case(name)
+        web = replace(case.web.build(), nu_z_r=0.0, nu_theta_z=0.0)
+        core = case.core.build()
+        r_out = case.winding.final_radius(web, core)
+        ten = case.winding.schedule(web)
+        ref = wind(web, core, r_out, ten)
+        t, a = timed(
+            lambda web=web, core=core, r_out=r_out, ten=ten: wind_axisymmetric(
+                web, core, r_out, ten, n_sectors=n_sectors
+            )
+        )
+        j = n_sectors // 2
+        s1 = np.interp(a.radius[:, j], ref.radius, ref.sigma_r)
+        dev = np.abs(a.sigma_r[:-1, j] / s1[:-1] - 1)
+        print(
+            f"   {name:14s} {a.layers_per_group.size:6d} {ref.core_pressure / 1e3:10.1f}"
+            f" {a.core_pressure[j] / 1e3:13.1f} {100 * dev.max():7.2f}% {t:6.2f}s"
+        )
     if args.winding:
         return
 

@@ -92,3 +92,67 @@ def test_bracketed_text_survives_in_messages():
     res = runner.invoke(app, ["run", "pet1-26.7N", "--set", "web.density='1 m'"])
     assert res.exit_code == 2
     assert "[length]" in res.output
+
+
+def test_version():
+    res = runner.invoke(app, ["--version"])
+    assert res.exit_code == 0
+    assert res.output.startswith("woundroll ")
+
+
+def test_fit_stack_help_keeps_brackets():
+    res = runner.invoke(app, ["fit-stack", "--help"], env={"COLUMNS": "200"})
+    assert "[kPa]" in res.output
+
+
+@pytest.mark.parametrize(
+    ("rows", "words"),
+    [
+        ("0.1,5\n0.2,5\n0.3,5\n0.4,5\n", "does not rise"),  # constant: NaN R^2 before
+        ("0.1,50\n0.2,20\n0.3,10\n0.4,5\n", "does not rise"),  # falling
+        ("0.1,5\n0.2,10\n", "at least 3 points"),  # two points
+        ("0.1,5\n0.2,10\n0.3,8\n0.4,20\n", "falls from"),  # a dip
+    ],
+)
+def test_fit_stack_rejects_data_no_law_fits(tmp_path, rows, words):
+    f = tmp_path / "stack.csv"
+    f.write_text("strain,pressure [kPa]\n" + rows)
+    res = runner.invoke(app, ["fit-stack", str(f), "--json"])
+    assert res.exit_code == 2, res.output
+    lines = [line for line in res.output.splitlines() if line.strip()]
+    assert len(lines) == 1 and lines[0].startswith("error: CSV_FILE:") and words in lines[0]
+
+
+def test_bad_out_is_found_before_the_run(tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    # --out below a regular file cannot be created: exit 2 at once, naming --out
+    res = runner.invoke(app, ["run", "pet1-26.7N", "--out", str(blocker / "sub")])
+    assert res.exit_code == 2
+    assert "--out:" in res.output
+
+
+def test_implausible_tension_warns_but_runs(tmp_path):
+    # the README's former example: 12 um film, 0.9 pli plus a 10 pli nip -> 57 MPa wound on
+    case = tmp_path / "old.toml"
+    case.write_text(
+        """
+[web]
+thickness = "12 um"
+width = "1.2 m"
+E_theta = "4.9 GPa"
+radial_modulus = { law = "pfeiffer", K1 = "10 kPa", K2 = 100 }
+[core]
+outer_radius = "3.8 cm"
+stiffness = "20 GPa"
+[winding]
+outer_radius = "4 cm"
+tension = "0.9 pli"
+nip_load = "10 pli"
+friction = 0.3
+"""
+    )
+    res = runner.invoke(app, ["run", str(case), "--json"])
+    assert res.exit_code == 0, res.output
+    assert "warning: winding.tension: wound-on stress 56.9 MPa" in res.output
+    assert "mu N / h = 43.8 MPa" in res.output

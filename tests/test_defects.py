@@ -126,6 +126,11 @@ def test_lanes_flag_the_slack_lane():
     assert [ln["slack_lane"] for ln in rep.lanes] == [False, False, True]
     assert rep.lanes[2]["wot_over_median"] == pytest.approx(0.9 / 1.75)
     assert any(row[0] == "slack lanes" and "4.7 in" in row[2] for row in rep.summary())
+    import matplotlib.pyplot as plt
+
+    fig = rep.plot()
+    assert len(fig.axes) == 2  # roll margins, and the margins per lane
+    plt.close(fig)
 
 
 def test_cli_defects():
@@ -139,3 +144,12 @@ def test_cli_defects():
     assert all(c["source"].startswith("docs/diagnosis.md#") for c in d["roll"])
     res = CliRunner().invoke(app, ["defects", "pet2-80N", "--set", "defects.core_strength=-1"])
     assert res.exit_code == 2 and "defects.core_strength" in res.output
+
+
+def test_plot_with_and_without_lanes(tmp_path):
+    import matplotlib.pyplot as plt
+
+    rep = defect_report(load_case("pet2-80N", ["defects.core_strength='150 kPa'"]))
+    fig = rep.plot(tmp_path / "d.png")
+    assert (tmp_path / "d.png").stat().st_size > 1000 and len(fig.axes) == 1
+    plt.close(fig)

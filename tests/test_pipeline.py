@@ -22,7 +22,7 @@ runner = CliRunner()
 
 @pytest.fixture(scope="module")
 def pet1():
-    return woundroll.run("pet1-26.7N")
+    return woundroll.run(woundroll.load_case("pet1-26.7N", ["contact.no_update=true"]))
 
 
 def test_coupled_json_has_every_documented_key(pet1):
@@ -259,3 +259,78 @@ def test_measured_profile_is_compared(tmp_path):
     assert m["bias"] == pytest.approx(diff.mean(), rel=1e-9)
     assert m["rms_difference"] == pytest.approx(np.sqrt(np.mean(diff**2)), rel=1e-9)
     assert -1.0 <= m["correlation"] <= 1.0
+
+
+def test_output_atomic_files_recorded_and_stale_removed(tmp_path):
+    import json
+
+    from woundroll.case import load_case
+    from woundroll.pipeline import run
+
+    base = {
+        "web": {
+            "thickness": "100 um",
+            "width": "15 cm",
+            "E_theta": "5 GPa",
+            "radial_modulus": {"law": "pfeiffer", "K1": "5 kPa", "K2": 100},
+        },
+        "core": {"outer_radius": "4 cm", "rigid": True},
+        "winding": {"outer_radius": "6 cm", "tension": "1 MPa"},
+        "tester": {
+            "instrument": "rho-meter",
+            "roll_spring": {"alpha": "1e9 N/m^2", "beta": "2e5 N/m"},
+        },
+    }
+    out = tmp_path / "out"
+    first = run(load_case(base)).write(out)
+    names = sorted(p.name for p in first)
+    assert names == ["hardness.png", "result.json", "winding.png"]
+    data = json.loads((out / "result.json").read_text())
+    assert sorted(data["files"]) == names
+    assert set(data["flags"]) >= {"reading_outside_range", "spring_extrapolated"}
+    # a second run without the tester: the first run's hardness.png is removed
+    (out / "profile_cmd.png").write_bytes(b"")  # a stray plot nobody recorded: reported
+    del base["tester"]
+    second = run(load_case(base))
+    written = second.write(out)
+    assert sorted(p.name for p in written) == ["result.json", "winding.png"]
+    assert not (out / "hardness.png").exists()
+    assert any("profile_cmd.png" in n for n in second.notes)
+    assert sorted(p.name for p in out.iterdir()) == [
+        "profile_cmd.png",
+        "result.json",
+        "winding.png",
+    ]
+
+
+def test_strict_json_has_no_nan_tokens():
+    import json
+    import math
+
+    from woundroll._output import strict_json
+
+    text = strict_json({"a": math.nan, "b": [1.0, math.inf], "c": np.float64("nan")})
+    assert json.loads(text) == {"a": None, "b": [1.0, None], "c": None}
+
+
+def test_reading_outside_the_instrument_range_is_flagged():
+    from woundroll.case import load_case
+    from woundroll.pipeline import run
+
+    case = {
+        "web": {
+            "thickness": "100 um",
+            "width": "15 cm",
+            "E_theta": "5 GPa",
+            "radial_modulus": {"law": "pfeiffer", "K1": "5 kPa", "K2": 100},
+        },
+        "core": {"outer_radius": "4 cm", "rigid": True},
+        "winding": {"outer_radius": "6 cm", "tension": "1 MPa"},
+        # a steel-block-like spring: far beyond 100 Rho
+        "tester": {"instrument": "rho-meter", "roll_spring": {"alpha": 1e13, "beta": 1e8}},
+    }
+    r = run(load_case(case))
+    assert r.hardness.reading > 100
+    assert r.flags["reading_outside_range"]
+    assert any("outside the rho-meter's range 0-100" in w for w in r.warnings)
+    assert r.to_dict()["flags"]["reading_outside_range"] is True

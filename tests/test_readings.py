@@ -174,3 +174,14 @@ def test_plot_writes_png(tmp_path):
     assert len(fig.axes[0].lines) >= 3  # one marker series per pass (+ the mean)
     plt.close(fig)
     assert r.to_table().splitlines()[0] == "position [m],mean [Rho],sd [Rho],count"
+
+
+@pytest.mark.parametrize("sep", [";", "\t"])
+def test_spreadsheet_exports_semicolon_or_tab_and_decimal_comma(tmp_path, sep):
+    text = f"# export\nposition [cm]{sep}reading [Rho]\n5{sep}52,5\n15{sep}53\n5{sep}51,5\n"
+    r = read_readings(write(tmp_path, text))
+    np.testing.assert_allclose(r.position, [0.05, 0.15])
+    assert r.mean[0] == pytest.approx(52.0) and r.sd[0] == pytest.approx(np.sqrt(0.5))
+    bad = write(tmp_path, f"position [cm]{sep}rho\n5{sep}52,x\n", "bad.csv")
+    with pytest.raises(InputError, match="bad.csv line 2"):
+        read_readings(bad)

@@ -56,3 +56,59 @@ def test_bad_quantities_name_the_field(text, kind, fragment):
     assert info.value.field == "web.thickness"
     assert fragment in str(info.value)
     assert str(info.value).startswith("web.thickness: ")
+
+
+def test_fast_table_agrees_with_pint():
+    # every unit of the pint-free fast path (woundroll.units._UNITS), alone and in the
+    # compound forms case files use, gives pint's SI value and dimension; 1e-12 relative:
+    # floating-point rounding only
+    from woundroll import units
+
+    ureg = units.registry()
+    dims = {"[length]": 0, "[mass]": 1, "[time]": 2}
+    texts = [f"2.5 {u}" for u in units._UNITS] + [
+        "1.4 g/cm^3",
+        "28 N/cm",
+        "1e9 N/m^2",
+        "5.8e5 N m^2",
+        "5.8e5 N*m**2",
+        "9.81 m/s^2",
+        "149.5 rad/s",
+        "3 mils",
+        "1 1/s",
+        "12um",
+        "-4 kPa",
+    ]
+    for text in texts:
+        fast = units._fast_parse(text)
+        assert fast is not None, text
+        q = ureg.Quantity(units._MIL.sub("thou", text)).to_base_units()
+        expo = [0, 0, 0]
+        for name, e in q.dimensionality.items():
+            expo[dims[name]] = e
+        assert fast[1] == tuple(expo), text
+        assert math.isclose(fast[0], q.magnitude, rel_tol=1e-12), text
+
+
+def test_units_outside_the_table_go_to_pint():
+    from woundroll import units
+
+    for text in ("3 furlongs", "3 milliseconds", "2 * 3 m", "1 N/m/s", "3 m ^ 2"):
+        assert units._fast_parse(text) is None, text
+    assert math.isclose(to_si("3 milliseconds", "time"), 3e-3, rel_tol=1e-12)
+
+
+def test_import_woundroll_is_light():
+    # issue 14: nothing heavy behind ``import woundroll`` (a fresh interpreter: the test
+    # process itself has imported everything)
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, woundroll, woundroll.cli; from woundroll.units import to_si;"
+        "to_si('2 pli', 'force_per_length');"
+        "print(','.join(m for m in ('pint', 'scipy', 'numba', 'matplotlib', 'pydantic')"
+        " if m in sys.modules))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == ""

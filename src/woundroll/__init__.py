@@ -12,11 +12,35 @@ winder settings (:mod:`woundroll.case`)
 :class:`~woundroll.pipeline.RunResult`.
 """
 
-from woundroll.case import Case, load_case
+from typing import TYPE_CHECKING, Any
+
 from woundroll.errors import ConvergenceError, InputError, WoundrollError
-from woundroll.pipeline import RunResult, run
+
+if TYPE_CHECKING:
+    from woundroll.case import Case, load_case
+    from woundroll.pipeline import RunResult, run
 
 __version__ = "0.1.0"
+
+# loaded on first use: ``import woundroll`` (and so ``woundroll --help``) stays light,
+# with no pydantic, pint registry, scipy or numba behind it
+_LAZY = {
+    "Case": "woundroll.case",
+    "load_case": "woundroll.case",
+    "RunResult": "woundroll.pipeline",
+    "run": "woundroll.pipeline",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        import importlib
+
+        value = getattr(importlib.import_module(_LAZY[name]), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'woundroll' has no attribute {name!r}")
+
 
 __all__ = [
     "Case",

@@ -31,7 +31,7 @@ from woundroll.errors import InputError
 from woundroll.materials.presets import material_preset
 from woundroll.materials.radial_modulus import RadialModulusLaw, law_from_spec
 from woundroll.materials.web import Core, Web
-from woundroll.units import parse_quantity, to_si
+from woundroll.units import quantity_kind, to_si
 from woundroll.winding.tension import Taper, TensionSchedule
 
 
@@ -69,12 +69,18 @@ class WebSpec(_Section):
     G_r_theta: Q("pressure") | None = None
     G_r_z: Q("pressure") | None = None
     G_theta_z: Q("pressure") | None = None
+    radial_unloading: Any = None
 
     @model_validator(mode="before")
     @classmethod
     def _apply_preset(cls, data: Any) -> Any:
         if isinstance(data, dict) and data.get("preset"):
             data = _merge(material_preset(data["preset"]), data)
+        if isinstance(data, dict) and data.get("radial_unloading") is not None:
+            from woundroll.materials.unloading import unloading_from_spec
+
+            data = dict(data)
+            data["radial_unloading"] = unloading_from_spec(data["radial_unloading"])
         if isinstance(data, dict) and isinstance(data.get("radial_modulus"), dict):
             _check_tabulated_types(data["radial_modulus"])
             data = dict(data)
@@ -94,6 +100,8 @@ def _check_tabulated_types(spec: dict[str, Any]) -> None:
     """Types of a tabulated law's keys, before the law reads them (a clear message, no
     TypeError from deep inside)."""
     f = "web.radial_modulus"
+    if "law" in spec and not isinstance(spec["law"], str):
+        raise InputError(f"must be the name of a law (text), got {spec['law']!r}", f"{f}.law")
     if "file" in spec and not isinstance(spec["file"], str):
         raise InputError(f"must be a file name (text), got {spec['file']!r}", f"{f}.file")
     for key in ("strain", "pressure"):
@@ -154,26 +162,20 @@ class TaperSpec(_Section):
 
 def _tension(value: Any) -> tuple[str, float]:
     """Classify the tension by its dimension: force, force per width, or stress."""
-    q = parse_quantity(value)
-    if not math.isfinite(float(q.magnitude)):
-        raise ValueError(f"must be a finite number, got {value!r}")
-    for kind in ("force", "force_per_length", "pressure"):
-        try:
-            v = to_si(q, kind)
-        except InputError:
-            continue
-        if q.unitless:
-            raise ValueError(
-                "needs a unit: a force over the whole width ('26.7 N'), a force per "
-                "width ('2 pli', '175 N/m') or a stress ('1.75 MPa')"
-            )
-        if not (v >= 0):
-            raise ValueError(f"must be zero or positive, got {value!r}")
-        return kind, v
-    raise ValueError(
-        f"{value!r} is neither a force ('26.7 N'), a force per width ('2 pli') nor a "
-        "stress ('1.75 MPa')"
-    )
+    kind, v = quantity_kind(value, ("force", "force_per_length", "pressure"))
+    if kind is None:
+        raise ValueError(
+            f"{value!r} is neither a force ('26.7 N'), a force per width ('2 pli') nor a "
+            "stress ('1.75 MPa')"
+        )
+    if not kind:
+        raise ValueError(
+            "needs a unit: a force over the whole width ('26.7 N'), a force per "
+            "width ('2 pli', '175 N/m') or a stress ('1.75 MPa')"
+        )
+    if not (v >= 0):
+        raise ValueError(f"must be zero or positive, got {value!r}")
+    return kind, v
 
 
 class NipRollerSpec(_Section):
@@ -292,7 +294,8 @@ class ContactSpec(_Section):
     contact is solved to 1.25 x the impact's maximum depth, see
     :func:`woundroll.pipeline.roll_stiffness`). ``friction``: interlayer mu of the slip
     factor {23}. ``no_update``: also solve with E_r frozen at its pre-impact value (the
-    paper's Figure 8 comparison). ``options``: :class:`woundroll.contact.ContactOptions`.
+    paper's Figure 8 comparison; off by default, it costs a second contact solve).
+    ``options``: :class:`woundroll.contact.ContactOptions`.
     ``dynamic``: also solve the impact in time on the FE roll (the paper's dynamic reference,
     :func:`woundroll.contact.dynamic.impact_dynamic`); ``dynamic_options``:
     :class:`woundroll.contact.dynamic.DynamicOptions` (time step, mass matrix, damping).
@@ -300,7 +303,7 @@ class ContactSpec(_Section):
 
     depth_max: Q("length") | None = None
     friction: Q("dimensionless", "nonnegative") = 0.3
-    no_update: bool = True
+    no_update: bool = False
     options: dict[str, Any] = Field(default_factory=dict)
     #: "2d" plane strain, "3d" (any head), "auto": 2D for cylinders, 3D for other heads
     model: Literal["2d", "3d", "auto"] = "auto"
@@ -400,6 +403,8 @@ class ReadingsSpec(_Section):
 
 def _tolerance(value: Any) -> tuple[str, float]:
     """A tolerance (1 SD): relative (``"2 %"``, ``0.02``) or absolute (``"1.5 um"``)."""
+    from woundroll.units import parse_quantity
+
     q = parse_quantity(value)
     for kind, tag in (("dimensionless", "relative"), ("length", "absolute")):
         try:

@@ -93,6 +93,13 @@ def run(
     report: Annotated[
         bool, typer.Option("--report", help="With --out: also write the HTML report.html.")
     ] = False,
+    no_update: Annotated[
+        bool,
+        typer.Option(
+            "--no-update",
+            help="Also solve with E_r frozen at its pre-impact value (contact.no_update).",
+        ),
+    ] = False,
 ) -> None:
     """Run the models a case asks for: winding, and with a tester section the hardness reading."""
     from woundroll._pool import Interrupted, clean_stop
@@ -103,7 +110,7 @@ def run(
         try:
             if report and out_dir is None:
                 raise InputError("the report goes into the --out directory: give --out", "--report")
-            c = load_case(case, set_ or [])
+            c = load_case(case, [*(set_ or []), *(["contact.no_update=true"] if no_update else [])])
             if out_dir is not None:
                 from woundroll._output import check_out_dir
 
@@ -117,9 +124,12 @@ def run(
             written = result.write(out_dir) if out_dir is not None else []
             uq = _cli_diagnose.run_uncertainty(c, uncertainty, out_dir, written, quiet or as_json)
             if report:
+                from woundroll.defects import defect_report
                 from woundroll.report import write_report
 
-                written.append(write_report(result, out_dir))
+                defects = defect_report(c, winding=result.winding)
+                readings = c.measured_readings
+                written.append(write_report(result, out_dir, readings=readings, defects=defects))
         except InputError as exc:
             _fail(exc, 2)
         except ConvergenceError as exc:
@@ -255,7 +265,10 @@ def result_summary(result: RunResult) -> list[tuple[str, str]]:
 def study(
     name: Annotated[
         str,
-        typer.Argument(help="tension (Figures 14/15), pile-height (16/17), slip (18), or all."),
+        typer.Argument(
+            help="tension (Figures 14/15), pile-height (16/17), slip (18), all, or dynamic "
+            "(the FE impact in time against the 1.5D models)."
+        ),
     ],
     out_dir: Annotated[
         Path | None, typer.Option("--out", help="Write study.json and PNG plots here.")
@@ -345,8 +358,22 @@ def fit_stack_cmd(
     ],
     law: Annotated[str, typer.Option(help="pfeiffer, polynomial, constant, or all.")] = "all",
     as_json: Annotated[bool, typer.Option("--json")] = False,
+    unloading: Annotated[
+        bool,
+        typer.Option(
+            "--unloading",
+            help="One loading/unloading cycle: fit Pfeiffer loading and the unloading branch "
+            "(web.radial_unloading).",
+        ),
+    ] = False,
 ) -> None:
     """Fit radial-modulus laws to a stack test and print their parameters and fit quality."""
+    if unloading:
+        from woundroll.cli_unloading import fit_cycle_cmd
+
+        fit_cycle_cmd(csv_file, as_json, out, _fail)
+        return
+
     from woundroll._output import strict_json
     from woundroll.materials.radial_modulus import read_stack_csv
     from woundroll.materials.stack_fit import FIT_LAWS, check_stack_data, fit_stack

@@ -6,6 +6,7 @@ numpy-heavy modules happen inside the commands (``woundroll --help`` stays light
 
 from __future__ import annotations
 
+import math
 import sys
 from pathlib import Path
 from typing import Annotated
@@ -106,6 +107,17 @@ def diagnose_cmd(
     ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress or table.")] = False,
+    causes: Annotated[
+        bool,
+        typer.Option(
+            "--causes",
+            help="Also fit the profile's causes (thickness bands, tension level, nip "
+            "deflection) with the reduced axisymmetric model (~20-40 forward runs).",
+        ),
+    ] = False,
+    bands: Annotated[
+        int | None, typer.Option(help="Thickness bands fitted with --causes (default n/2, <= 8).")
+    ] = None,
 ) -> None:
     """Readings -> the effective wound-on tension and near-surface pressure at each position."""
     from woundroll.case import load_case
@@ -135,7 +147,23 @@ def diagnose_cmd(
             "readings": d.readings.to_dict(),
             "diagnosis": {**d.to_dict(), "defects": defects.to_dict()},
         }
+        fit = None
+        if causes:
+            from woundroll.causes import fit_causes
+
+            fit = fit_causes(c, d.readings, n_bands=bands)
+            fd = fit.to_dict()
+            payload["diagnosis"]["profile"] = fd["profile"]
+            payload["diagnosis"]["causes"] = fd["causes"]
+            payload["diagnosis"]["cause_fit"] = {
+                k: fd[k] for k in ("parameters", "verification", "forward_runs", "notes")
+            }
         written = _write(out_dir, payload, d, defects) if out_dir is not None else []
+        if fit is not None and out_dir is not None:
+            import matplotlib.pyplot as plt
+
+            plt.close(fit.plot(out_dir / "causes.png"))
+            written.append(out_dir / "causes.png")
     except InputError as exc:
         _fail(exc, 2)
     except ConvergenceError as exc:
@@ -170,6 +198,18 @@ def diagnose_cmd(
     for note in d.notes:
         out.print(f"note: {escape(note)}", highlight=False)
     _print_defects(defects)
+    if fit is not None:
+        tc = Table("rank", "cause", title="causes of the CMD profile (reduced axisymmetric model)")
+        for i, cz in enumerate(fit.causes, 1):
+            tc.add_row(f"{i}", escape(cz["sentence"]))
+        out.print(tc)
+        out.print(
+            f"fit: residual RMS {fit.residual_rms:.2f} {d.curve.scale}, "
+            f"{fit.forward_runs} forward runs",
+            highlight=False,
+        )
+        for note in fit.notes:
+            out.print(f"note: {escape(note)}", highlight=False)
     for p in written:
         out.print(f"wrote {p}")
 
@@ -275,11 +315,9 @@ def json_with_uncertainty(result, uq) -> str:  # type: ignore[no-untyped-def]
     """The run's JSON, with ``uncertainty`` added when it was propagated."""
     if uq is None:
         return result.to_json()
-    import json
+    from woundroll._output import strict_json
 
-    from woundroll.pipeline import _json_default
-
-    return json.dumps({**result.to_dict(), "uncertainty": uq.to_dict()}, default=_json_default)
+    return strict_json({**result.to_dict(), "uncertainty": uq.to_dict()})
 
 
 def print_uncertainty(uq) -> None:  # type: ignore[no-untyped-def]
@@ -295,8 +333,142 @@ def print_uncertainty(uq) -> None:  # type: ignore[no-untyped-def]
         out.print(f"note: {escape(note)}", highlight=False)
 
 
+def _range(text: str | None, kind: str, field: str, convert=None) -> tuple[float, float] | None:  # type: ignore[no-untyped-def]
+    """``"10 kPa..300 kPa"`` -> (1e4, 3e5) in SI (``convert`` for tensions)."""
+    if text is None:
+        return None
+    lo, sep, hi = text.partition("..")
+    if not sep:
+        raise InputError(f"expected low..high, e.g. '10 kPa..300 kPa', got {text!r}", field)
+    from woundroll.units import to_si
+
+    def one(v: str) -> float:
+        return convert(v.strip()) if convert else to_si(v.strip(), kind, field)
+
+    return one(lo), one(hi)
+
+
+def design_cmd(
+    case: Annotated[
+        str, typer.Argument(help="Case file (TOML) or bundled case name (see `woundroll cases`).")
+    ],
+    target: Annotated[
+        str, typer.Option(help="Target surface hardness with its scale: '60 Rho' (or g).")
+    ],
+    pressure: Annotated[
+        str | None,
+        typer.Option(help="Interlayer pressure window, core to near-surface: '10 kPa..300 kPa'."),
+    ] = None,
+    tension: Annotated[
+        str | None,
+        typer.Option(
+            help="Winder tension range: '0.5 pli..4 pli', '100 N..500 N', '1 MPa..8 MPa'."
+        ),
+    ] = None,
+    nip: Annotated[
+        str | None, typer.Option(help="Nip load range: '0 pli..3 pli' (needs winding.friction).")
+    ] = None,
+    taper: Annotated[str, typer.Option(help="Taper law: linear or hyperbolic.")] = "linear",
+    max_taper: Annotated[float, typer.Option(help="Largest taper fraction (0-1).")] = 0.6,
+    tolerance: Annotated[float, typer.Option(help="Accepted |reading - target|.")] = 1.0,
+    allow_negative_hoop: Annotated[
+        bool, typer.Option(help="Do not require a non-negative hoop stress.")
+    ] = False,
+    set_: Annotated[
+        list[str] | None,
+        typer.Option("--set", help="Override a case key: dotted.key=value (repeatable)."),
+    ] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
+    out_dir: Annotated[
+        Path | None, typer.Option("--out", help="Write design.json and design.png here.")
+    ] = None,
+) -> None:
+    """Setpoint design: tension, taper and nip load for a target hardness, a pressure
+    window and no negative hoop stress, within the winder's ranges."""
+    import json
+
+    from woundroll.case import _tension, load_case
+    from woundroll.cli import _fail, out
+    from woundroll.design import DesignTarget, design_setpoints
+    from woundroll.readings import _scale_of
+
+    try:
+        c = load_case(case, set_ or [])
+        web = c.web.build()
+        value, _, unit = target.strip().partition(" ")
+        scale = _scale_of(unit) if unit else None
+        try:
+            reading = float(value)
+        except ValueError:
+            reading = math.nan
+        if scale is None or not math.isfinite(reading):
+            raise InputError(
+                f"expected a reading with its scale, e.g. '60 Rho', got {target!r}", "--target"
+            )
+
+        def stress(text: str) -> float:
+            try:
+                kind, v = _tension(text)
+            except ValueError as exc:
+                raise InputError(str(exc), "--tension") from None
+            return {
+                "force": v / (web.width * web.thickness),
+                "force_per_length": v / web.thickness,
+                "pressure": v,
+            }[kind]
+
+        p = _range(pressure, "pressure", "--pressure") or (0.0, math.inf)
+        t = _range(tension, "pressure", "--tension", stress) or (0.0, math.inf)
+        n = _range(nip, "force_per_length", "--nip") or (c.winding.nip_load, c.winding.nip_load)
+        tgt = DesignTarget(
+            reading=reading,
+            scale=scale,
+            tolerance=tolerance,
+            pressure_min=p[0],
+            pressure_max=p[1],
+            tension_min=t[0],
+            tension_max=t[1],
+            nip_min=n[0],
+            nip_max=n[1],
+            taper_kind=taper,
+            taper_max=max_taper,
+            allow_negative_hoop=allow_negative_hoop,
+        )
+        d = design_setpoints(c, tgt)
+        if out_dir is not None:
+            import matplotlib
+
+            matplotlib.use("Agg", force=False)
+            import matplotlib.pyplot as plt
+
+            try:
+                out_dir.mkdir(parents=True, exist_ok=True)
+                (out_dir / "design.json").write_text(json.dumps(d.to_dict()), encoding="utf-8")
+                plt.close(d.plot(out_dir / "design.png"))
+            except OSError as exc:
+                raise InputError(
+                    f"cannot write to {out_dir}: {exc.strerror or exc}", "--out"
+                ) from None
+    except InputError as exc:
+        _fail(exc, 2)
+    except ConvergenceError as exc:
+        _fail(exc, 1)
+    if as_json:
+        sys.stdout.write(json.dumps({"design": d.to_dict()}) + "\n")
+        return
+    tb = Table("quantity", "value", title=escape(f"{c.title or case}: setpoint design"))
+    for name, value in d.summary():
+        tb.add_row(escape(name), escape(value))
+    out.print(tb)
+    for note in d.notes:
+        out.print(f"note: {escape(note)}", highlight=False)
+    if out_dir is not None:
+        out.print(f"wrote {out_dir / 'design.json'}\nwrote {out_dir / 'design.png'}")
+
+
 def register(app: typer.Typer) -> None:
     """Add the reverse-road commands to the ``woundroll`` app."""
     app.command("readings")(readings_cmd)
     app.command("diagnose")(diagnose_cmd)
     app.command("defects")(defects_cmd)
+    app.command("design")(design_cmd)

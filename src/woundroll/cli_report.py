@@ -14,21 +14,25 @@ import typer
 from woundroll.errors import ConvergenceError, InputError
 
 
-def load_readings(path: str | Path, case: Any, field: str = "--readings") -> Any:
-    """Readings of ``path`` for ``case`` (positions checked against the web width).
+def load_readings(
+    path: str | Path,
+    case: Any,
+    lane_width: float | None = None,
+    *,
+    fmt: str = "auto",
+    roll: str | None = None,
+    field: str = "--readings",
+) -> Any:
+    """Readings of one roll from a tester file (:func:`woundroll.tester_files.read_tester_file`:
+    generic CSV, TAPPI T 834 sheet, dense profile export), positions checked against the web
+    width; lane numbers use ``lane_width`` or the case's ``readings.lane_width``."""
+    from woundroll.tester_files import read_tester_file
 
-    Raises
-    ------
-    InputError
-        The file cannot be read, or this build has no readings reader (``woundroll.readings``).
-    """
-    try:
-        from woundroll.readings import read_readings
-    except ImportError:
-        raise InputError(
-            "reading files need woundroll.readings, which this build does not have", field
-        ) from None
-    return read_readings(path, width=case.web.width, field=field)
+    if lane_width is None and case.readings is not None:
+        lane_width = case.readings.lane_width
+    return read_tester_file(
+        path, format=fmt, roll=roll, width=case.web.width, lane_width=lane_width, field=field
+    )
 
 
 def report_cmd(
@@ -38,7 +42,23 @@ def report_cmd(
     out_dir: Annotated[Path, typer.Option("--out", help="Write DIR/report.html here.")],
     readings: Annotated[
         str | None,
-        typer.Option("--readings", help="CSV of measured readings across the roll."),
+        typer.Option(
+            "--readings",
+            help="Readings CSV (default: the case's [readings]); adds the measured profile, "
+            "the diagnosis and per-lane defect risk.",
+        ),
+    ] = None,
+    lane_width: Annotated[
+        str | None, typer.Option("--lane-width", help="Lane width for lane numbers ('6 in').")
+    ] = None,
+    fmt: Annotated[
+        str,
+        typer.Option(
+            "--format", help="Readings file layout: auto, generic, tappi (T 834 sheet), profile."
+        ),
+    ] = "auto",
+    roll: Annotated[
+        str | None, typer.Option("--roll", help="Roll id on a TAPPI sheet with several rolls.")
     ] = None,
     set_: Annotated[
         list[str] | None,
@@ -52,14 +72,30 @@ def report_cmd(
     from woundroll.pipeline import run as run_case
     from woundroll.report import write_report
 
+    def job(progress):  # type: ignore[no-untyped-def]
+        from woundroll.defects import defect_report
+        from woundroll.diagnosis import diagnose
+
+        result = run_case(c, progress=progress)
+        d = diagnose(c, r, progress=progress) if r is not None else None
+        return result, d, defect_report(c, d, winding=result.winding)
+
     try:
         c = load_case(case, set_ or [])
-        r = load_readings(readings, c) if readings is not None else None
-        if quiet or not sys.stderr.isatty():
-            result = run_case(c)
+        lw = None
+        if lane_width is not None:
+            from woundroll.units import to_si
+
+            lw = to_si(lane_width, "length", "--lane-width")
+        if readings is not None:
+            r = load_readings(readings, c, lw, fmt=fmt, roll=roll)
         else:
-            result = _with_progress(lambda progress: run_case(c, progress=progress))
-        path = write_report(result, out_dir, readings=r)
+            r = c.measured_readings
+        if quiet or not sys.stderr.isatty():
+            result, d, defects = job(None)
+        else:
+            result, d, defects = _with_progress(job)
+        path = write_report(result, out_dir, readings=r, diagnosis=d, defects=defects)
     except InputError as exc:
         _fail(exc, 2)
     except ConvergenceError as exc:

@@ -432,12 +432,43 @@ class DefectReport:
                     rows.append((f"{name} (lanes)", risk, f"worst lane at {where}"))
         return rows
 
+    def _plot_lanes(self, ax: Any) -> None:
+        """Per-lane margins against CMD position, one line per criterion; slack lanes shaded."""
+        x = np.array([ln["position_m"] for ln in self.lanes]) / 0.0254
+        names = sorted({c["name"] for ln in self.lanes for c in ln.get("criteria", [])})
+        for name in names:
+            m = [
+                next(
+                    (c["margin"] for c in ln.get("criteria", []) if c["name"] == name),
+                    None,
+                )
+                for ln in self.lanes
+            ]
+            y = np.array([np.nan if v is None else v for v in m], dtype=float)
+            if np.any(np.isfinite(y)):
+                ax.plot(x, y, "o-", ms=3, label=name)
+        for xi, ln in zip(x, self.lanes, strict=True):
+            if ln.get("slack_lane"):
+                ax.axvspan(xi - 0.3, xi + 0.3, color="C3", alpha=0.2, lw=0)
+        ax.axhline(1.0, color="k", lw=1.0)
+        ax.axhline(WATCH_MARGIN, color="k", ls="--", lw=0.8)
+        ax.set_yscale("log")
+        ax.set_xlabel("CMD position [in] (red: slack lane)")
+        ax.set_ylabel("margin per lane")
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=7, ncol=3)
+
     def plot(self, path: str | Path | None = None) -> Any:
-        """Margins of every roll criterion (log scale, 1 and the watch line marked)."""
+        """Margins of every roll criterion (log scale, 1 and the watch line marked); with
+        lanes, the margins per lane across the CMD below."""
         import matplotlib.pyplot as plt
 
         crit = [c for c in self.roll if c.margin is not None and math.isfinite(c.margin)]
-        fig, ax = plt.subplots(figsize=(6.4, 3.2))
+        if self.lanes:
+            fig, (ax, ax2) = plt.subplots(2, 1, figsize=(6.4, 6.0))
+            self._plot_lanes(ax2)
+        else:
+            fig, ax = plt.subplots(figsize=(6.4, 3.2))
         colors = {"high": "C3", "watch": "C1", "low": "C2"}
         names = [c.name for c in crit]
         ax.barh(names, [c.margin for c in crit], color=[colors.get(c.risk, "C7") for c in crit])

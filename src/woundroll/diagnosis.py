@@ -345,19 +345,22 @@ def forward_curve(
     targets = targets[np.isfinite(targets)]
     if tensions is None and targets.size:
         lo, hi = float(targets.min()), float(targets.max())
+        stuck = {"low": False, "high": False}
         while True:
             ts = sorted(pts)
             r = [pts[t].reading for t in ts]
-            if lo < min(r) and ts[0] / 2 >= t_case * MIN_FACTOR * (1 - 1e-9):
-                t_new = ts[0] / 2
-            elif hi > max(r) and ts[-1] * 2 <= t_case * MAX_FACTOR * (1 + 1e-9):
-                t_new = ts[-1] * 2
+            if not stuck["low"] and lo < min(r) and ts[0] / 2 >= t_case * MIN_FACTOR * (1 - 1e-9):
+                side, t_new = "low", ts[0] / 2
+            elif (
+                not stuck["high"] and hi > max(r) and ts[-1] * 2 <= t_case * MAX_FACTOR * (1 + 1e-9)
+            ):
+                side, t_new = "high", ts[-1] * 2
             else:
                 break
             try:
                 pts[t_new] = model.evaluate(t_new)
             except (ConvergenceError, InputError):
-                break  # the chain has no answer there (e.g. a roll too slack to solve)
+                stuck[side] = True  # the chain has no answer there (e.g. too slack to solve)
     if tensions is None and targets.size and refine > 1.0:
         # subdivide (geometric midpoints) the intervals that hold a target reading until
         # their tension ratio is at most ``refine``: the interpolant is exact at grid points
@@ -468,22 +471,40 @@ class Diagnosis:
         }
 
     def summary(self) -> list[tuple[str, ...]]:
-        """Rows for a table: position [in], reading, T0, WOT and P with their intervals."""
+        """Rows for a table: position [in], reading, WOT [MPa] and P [kPa] with intervals
+        (an interval end beyond what the chain can produce is open: ``<=`` / ``>=``)."""
+
+        def fmt(v: float, lo: float, hi: float, scale: float, spec: str = ".3g") -> str:
+            if not math.isfinite(v):
+                return "-"
+            mid = f"{v * scale:{spec}}"
+            a, b = math.isfinite(lo), math.isfinite(hi)
+            if a and b:
+                return f"{mid} ({lo * scale:{spec}}-{hi * scale:{spec}})"
+            if b:
+                return f"{mid} (<= {hi * scale:{spec}})"
+            if a:
+                return f"{mid} (>= {lo * scale:{spec}})"
+            return f"{mid} (unbounded)"
+
         rows = []
         for i in range(self.position.size):
-
-            def f(v: float, scale: float, fmt: str = ".3g") -> str:
-                return "-" if not math.isfinite(v) else f"{v * scale:{fmt}}"
-
             rows.append(
                 (
                     f"{self.position[i] / 0.0254:.2f}",
-                    f"{self.reading[i]:.1f} ({f(self.reading_low[i], 1, '.1f')}-"
-                    f"{f(self.reading_high[i], 1, '.1f')})",
-                    f"{f(self.wound_on_tension[i], 1e-6)} ({f(self.wound_on_tension_low[i], 1e-6)}"
-                    f"-{f(self.wound_on_tension_high[i], 1e-6)})",
-                    f"{f(self.surface_pressure[i], 1e-3)} ({f(self.surface_pressure_low[i], 1e-3)}"
-                    f"-{f(self.surface_pressure_high[i], 1e-3)})",
+                    fmt(self.reading[i], self.reading_low[i], self.reading_high[i], 1, ".1f"),
+                    fmt(
+                        self.wound_on_tension[i],
+                        self.wound_on_tension_low[i],
+                        self.wound_on_tension_high[i],
+                        1e-6,
+                    ),
+                    fmt(
+                        self.surface_pressure[i],
+                        self.surface_pressure_low[i],
+                        self.surface_pressure_high[i],
+                        1e-3,
+                    ),
                     self.status[i],
                 )
             )

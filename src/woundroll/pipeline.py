@@ -15,7 +15,9 @@ typed results into :class:`RunResult`:
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import math
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -254,6 +256,28 @@ def hardness_on_roll(
     )
 
 
+def _restitution_given(case: Case) -> bool:
+    t = case.tester or {}
+    rs = t.get("roll_spring")
+    return "restitution" in t or (isinstance(rs, dict) and "restitution" in rs)
+
+
+def _with_unloading(setup: TesterSetup, web: Web, pressure: float, notes: list[str]) -> TesterSetup:
+    """The setup with the roll spring's restitution from the web's unloading law
+    (:func:`woundroll.materials.unloading.restitution_at_pressure` at ``pressure``)."""
+    from woundroll.materials.unloading import restitution_at_pressure
+
+    e = restitution_at_pressure(web, pressure)
+    notes.append(
+        f"roll unloading: web.radial_unloading gives e = {e:.3f} for a stack cycle to "
+        f"{pressure / 1e6:.3g} MPa (the pressure under the head), used by the FD model"
+    )
+    rs = setup.roll_spring
+    return replace(
+        setup, restitution=e, roll_spring=None if rs is None else replace(rs, restitution=e)
+    )
+
+
 def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResult:
     """Run every model the case asks for.
 
@@ -300,13 +324,23 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         hardness = hardness_from_spring(
             setup, pile_height=r_out - core.outer_radius, density=web.density
         )
+        notes = ["roll spring given explicitly: contact model bypassed"]
+        if web.radial_unloading is not None and not _restitution_given(case):
+            # the web's unloading law at the mean pressure under the head, F / contact area
+            a = setup.semi_contact_width
+            L = setup.instrument.head_length
+            area = 2.0 * a * L if L else math.pi * a * a
+            setup = _with_unloading(setup, web, hardness.energy.peak_force / area, notes)
+            hardness = hardness_from_spring(
+                setup, pile_height=r_out - core.outer_radius, density=web.density
+            )
         report("impact", 1.0)
         flags, warns = result_flags(setup.instrument, hardness.reading, [], case.warnings, max_p)
         return RunResult(
             case=case,
             winding=winding,
             hardness=hardness,
-            notes=("roll spring given explicitly: contact model bypassed",),
+            notes=tuple(notes),
             warnings=tuple(warns),
             flags=flags,
         )
@@ -324,22 +358,28 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         "options3d": spec.contact3d_options(),
     }
     report("contact", 0.0)
-    stiff = roll_stiffness(web, core, winding.radius, winding.sigma_r, setup.instrument, **args)
+    with _user_fields(case, H):
+        stiff = roll_stiffness(web, core, winding.radius, winding.sigma_r, setup.instrument, **args)
+    unloading_notes: list[str] = []
+    if web.radial_unloading is not None and not _restitution_given(case):
+        p_peak = float(np.max(-stiff.at_impact.sigma_r))
+        setup = _with_unloading(setup, web, p_peak, unloading_notes)
     hardness = hardness_on_roll(setup, stiff, H, web.density, semi_contact_width_given=a_given)
     no_update = None
     if spec.no_update:
         report("contact", 0.5)
         # E_r frozen is softer: the striker goes at least as deep, start where that ended
-        frozen = roll_stiffness(
-            web,
-            core,
-            winding.radius,
-            winding.sigma_r,
-            setup.instrument,
-            update_modulus=False,
-            start_depth=float(stiff.contact.delta[-1]),
-            **args,
-        )
+        with _user_fields(case, H):
+            frozen = roll_stiffness(
+                web,
+                core,
+                winding.radius,
+                winding.sigma_r,
+                setup.instrument,
+                update_modulus=False,
+                start_depth=float(stiff.contact.delta[-1]),
+                **args,
+            )
         no_update = NoUpdate(
             frozen,
             hardness_on_roll(setup, frozen, H, web.density, semi_contact_width_given=a_given),
@@ -369,10 +409,31 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         contact=stiff,
         hardness=hardness,
         no_update=no_update,
+        notes=tuple(unloading_notes),
         warnings=tuple(warns),
         flags=flags,
         dynamic=dynamic,
     )
+
+
+@contextmanager
+def _user_fields(case: Case, wound: float) -> Iterator[None]:
+    """Errors of the contact model that name an option the user did not set (its defaults
+    follow the roll: ``surface_size`` is the web thickness) are about the roll being too thin
+    for the model: say so, naming the case's field."""
+    try:
+        yield
+    except InputError as exc:
+        fld = exc.field or ""
+        name = fld.removeprefix("contact.options.")
+        user_set = fld.startswith("contact.options.") and name in case.contact.options
+        if user_set or not (fld.startswith("contact.options.") or fld == "contact.radius"):
+            raise
+        raise InputError(
+            f"the roll is too thin for the contact model under the head: {wound * 1e3:.3g} mm "
+            f"wound ({exc.message}); wind a larger roll",
+            "winding.outer_radius" if case.winding.outer_radius is not None else "winding.length",
+        ) from None
 
 
 def _run_profile(

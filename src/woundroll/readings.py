@@ -403,15 +403,21 @@ def read_readings(
     if not path.is_file():
         raise InputError(f"file not found: {path}", field)
     try:
-        with path.open(newline="", encoding="utf-8-sig") as fh:
-            reader = csv.reader(fh)
-            rows: list[tuple[int, list[str]]] = []
-            for row in reader:
-                if not row or not "".join(row).strip():
-                    continue
-                if row[0].lstrip().startswith("#"):
-                    continue
-                rows.append((reader.line_num, [c.strip() for c in row]))
+        text = path.read_text(encoding="utf-8-sig")
+        delimiter = _delimiter(text)
+        reader = csv.reader(text.splitlines(), delimiter=delimiter)
+        rows: list[tuple[int, list[str]]] = []
+        for row in reader:
+            if not row or not "".join(row).strip():
+                continue
+            if row[0].lstrip().startswith("#"):
+                continue
+            cells = [c.strip() for c in row]
+            if delimiter != ",":  # spreadsheet exports with a decimal comma: "52,5"
+                cells = [
+                    c.replace(",", ".") if _is_number(c.replace(",", ".")) else c for c in cells
+                ]
+            rows.append((reader.line_num, cells))
     except (OSError, UnicodeDecodeError, csv.Error) as exc:
         raise InputError(f"cannot read {name}: {exc}", field) from None
     if not rows:
@@ -540,6 +546,20 @@ def read_readings(
         lane_width if is_lane else None,
         name,
     )
+
+
+def _delimiter(text: str) -> str:
+    """``,`` unless the header line (first non-comment line) is split by ``;`` or a tab
+    and has no comma outside a bracket (spreadsheet exports in locales with a decimal
+    comma use ``;``)."""
+    for line in text.splitlines():
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        for d in (";", "\t"):
+            if d in line and "," not in line:
+                return d
+        return ","
+    return ","
 
 
 def _is_number(text: str) -> bool:

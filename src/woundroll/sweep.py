@@ -342,7 +342,8 @@ class SweepResult:
             if name == "error" or any(isinstance(v, str) for v in col if v is not None):
                 data[name] = pa.array([None if v is None else str(v) for v in col], pa.string())
             elif any(isinstance(v, bool) for v in col):
-                data[name] = pa.array(col, pa.bool_())
+                # a failed roll has no flag: null, not NaN
+                data[name] = pa.array([v if isinstance(v, bool) else None for v in col], pa.bool_())
             else:
                 data[name] = pa.array([math.nan if v is None else float(v) for v in col])
         meta = {"woundroll.design": self.design}

@@ -21,21 +21,45 @@ from __future__ import annotations
 
 import math
 import re
+import sys
 from collections.abc import Sequence
 from functools import cache
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import pint
 
 from woundroll.errors import InputError
 
-ureg = pint.UnitRegistry()
-ureg.define("pli = pound_force / inch")
+if TYPE_CHECKING:
+    import pint
+
 # pint's "mil" is the angular mil (pi/32000 rad); in web handling a mil is 0.001 inch
 # ("thou" in pint). Unit strings are rewritten before parsing.
 _MIL = re.compile(r"\bmils?\b")
-ureg.define("gsm = gram / meter ** 2")
+
+
+@cache
+def registry() -> pint.UnitRegistry:
+    """The pint unit registry with woundroll's units, built once on first use.
+
+    Importing pint and building its registry costs 0.3-0.5 s, more than the whole one-roll
+    run; the plain unit strings of case files take the table of :data:`_UNITS` instead, and
+    pint only parses what that table does not know.
+    """
+    import pint
+
+    ureg = pint.UnitRegistry()
+    ureg.define("pli = pound_force / inch")
+    ureg.define("gsm = gram / meter ** 2")
+    return ureg
+
+
+def __getattr__(name: str) -> Any:
+    # ``woundroll.units.ureg`` is the registry, built on first use
+    if name == "ureg":
+        return registry()
+    raise AttributeError(f"module 'woundroll.units' has no attribute {name!r}")
+
 
 #: Named dimensions, as used in error messages and by :func:`to_si`.
 DIMENSIONS: dict[str, str] = {
@@ -49,11 +73,126 @@ DIMENSIONS: dict[str, str] = {
     "force_per_area": "[force] / [length] ** 2",
     "density": "[mass] / [length] ** 3",
     "velocity": "[length] / [time]",
+    "acceleration": "[length] / [time] ** 2",
     "energy": "[energy]",
     "frequency": "1 / [time]",
     "bending_stiffness": "[force] * [length] ** 2",
     "dimensionless": "",
 }
+
+# Exponents of (length, mass, time) of each kind: the fast path's dimension check.
+_KIND_DIMS: dict[str, tuple[int, int, int]] = {
+    "length": (1, 0, 0),
+    "mass": (0, 1, 0),
+    "time": (0, 0, 1),
+    "force": (1, 1, -2),
+    "pressure": (-1, 1, -2),
+    "force_per_length": (0, 1, -2),
+    "stiffness": (0, 1, -2),
+    "force_per_area": (-1, 1, -2),
+    "density": (-3, 1, 0),
+    "velocity": (1, 0, -1),
+    "acceleration": (1, 0, -2),
+    "energy": (2, 1, -2),
+    "frequency": (0, 0, -1),
+    "bending_stiffness": (3, 1, -2),
+    "dimensionless": (0, 0, 0),
+}
+
+_LBF = 0.45359237 * 9.80665  # pound-force [N] (exact by definition)
+_INCH = 0.0254
+# The units of the fast path: SI value of one unit and its (length, mass, time) exponents.
+# Exact factors as pint defines them; tests/test_units.py checks every entry against pint.
+_BASE_UNITS: dict[str, tuple[float, tuple[int, int, int]]] = {
+    "m": (1.0, (1, 0, 0)),
+    "g": (1e-3, (0, 1, 0)),
+    "s": (1.0, (0, 0, 1)),
+    "N": (1.0, (1, 1, -2)),
+    "Pa": (1.0, (-1, 1, -2)),
+    "J": (1.0, (2, 1, -2)),
+    "Hz": (1.0, (0, 0, -1)),
+}
+_PREFIXES = {"G": 1e9, "M": 1e6, "k": 1e3, "c": 1e-2, "m": 1e-3, "u": 1e-6, "µ": 1e-6, "n": 1e-9}
+_UNITS: dict[str, tuple[float, tuple[int, int, int]]] = dict(_BASE_UNITS)
+for _p, _f in _PREFIXES.items():
+    for _u, (_v, _d) in _BASE_UNITS.items():
+        if _p == "c" and _u != "m":
+            continue
+        _UNITS[_p + _u] = (_f * _v, _d)
+_UNITS["μm"] = _UNITS["µm"]  # Greek mu and micro sign
+_UNITS.update(
+    {
+        "rad": (1.0, (0, 0, 0)),
+        "%": (0.01, (0, 0, 0)),
+        "percent": (0.01, (0, 0, 0)),
+        "kg": (1.0, (0, 1, 0)),
+        "in": (_INCH, (1, 0, 0)),
+        "inch": (_INCH, (1, 0, 0)),
+        "ft": (12 * _INCH, (1, 0, 0)),
+        "thou": (1e-3 * _INCH, (1, 0, 0)),
+        "lb": (0.45359237, (0, 1, 0)),
+        "lbf": (_LBF, (1, 1, -2)),
+        "psi": (_LBF / _INCH**2, (-1, 1, -2)),
+        "ksi": (1e3 * _LBF / _INCH**2, (-1, 1, -2)),
+        "pli": (_LBF / _INCH, (0, 1, -2)),
+        "bar": (1e5, (-1, 1, -2)),
+        "mbar": (1e2, (-1, 1, -2)),
+        "gsm": (1e-3, (-2, 1, 0)),
+        "min": (60.0, (0, 0, 1)),
+        "h": (3600.0, (0, 0, 1)),
+    }
+)
+_NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+_FACTOR = r"([A-Za-z%µμ]+)(?:\s*(?:\^|\*\*)\s*([-+]?\d+))?"
+_FAST = re.compile(rf"\s*({_NUMBER}|nan|inf)\s*(.*?)\s*", re.IGNORECASE)
+_FACTOR_RE = re.compile(rf"\s*{_FACTOR}\s*")
+
+
+def _fast_unit(text: str) -> tuple[float, tuple[int, int, int]] | None:
+    """Scale and dimension of a plain unit expression (``"N/m"``, ``"g/cm^3"``, ``"N m^2"``):
+    factors of :data:`_UNITS` with integer powers, at most one ``/`` before the last factor.
+    None for anything else (pint parses it)."""
+    num, slash, den = text.partition("/")
+    if "/" in den:
+        return None
+    scale, dims = 1.0, [0, 0, 0]
+    for part, sign in ((num, 1), (den, -1)) if slash else ((num, 1),):
+        factors = [f for f in re.split(r"\s*(?<!\*)\*(?!\*)\s*|\s+(?![\^*])", part.strip()) if f]
+        if sign == -1 and len(factors) != 1:
+            return None
+        if sign == 1 and slash and num.strip() == "1":
+            continue
+        for f in factors:
+            m = _FACTOR_RE.fullmatch(f)
+            if m is None or m.group(1) not in _UNITS:
+                return None
+            v, d = _UNITS[m.group(1)]
+            e = sign * (int(m.group(2)) if m.group(2) else 1)
+            scale *= v**e
+            dims = [a + e * b for a, b in zip(dims, d, strict=True)]
+    return scale, (dims[0], dims[1], dims[2])
+
+
+def _fast_parse(value: Any) -> tuple[float, tuple[int, int, int]] | None:
+    """SI magnitude and (length, mass, time) exponents of a number or a plain quantity
+    string; None when pint must parse it."""
+    if isinstance(value, bool):
+        return None
+    if isinstance(value, int | float | np.integer | np.floating):
+        return float(value), (0, 0, 0)
+    if not isinstance(value, str):
+        return None
+    m = _FAST.fullmatch(value)
+    if m is None:
+        return None
+    unit = _MIL.sub("thou", m.group(2))
+    if not unit:
+        return float(m.group(1)), (0, 0, 0)
+    parsed = _fast_unit(unit)
+    if parsed is None:
+        return None
+    return float(m.group(1)) * parsed[0], parsed[1]
+
 
 _EXAMPLES = {
     "length": "'0.01 cm', '3 mil', '12 um'",
@@ -66,6 +205,7 @@ _EXAMPLES = {
     "force_per_area": "'1e9 N/m^2'",
     "density": "'1.4 g/cm^3'",
     "velocity": "'1.1 m/s'",
+    "acceleration": "'9.81 m/s^2'",
     "energy": "'0.08 J'",
     "frequency": "'149.5 rad/s', '24 Hz'",
     "bending_stiffness": "'5.8e5 N m^2'",
@@ -74,9 +214,15 @@ _EXAMPLES = {
 
 
 @cache
-def _dimensionality(kind: str):
+def _dimensionality(kind: str) -> Any:
+    ureg = registry()
     spec = DIMENSIONS[kind]
     return ureg.Quantity(1.0).dimensionality if not spec else ureg.get_dimensionality(spec)
+
+
+def _is_quantity(value: Any) -> bool:
+    pint = sys.modules.get("pint")  # a pint Quantity exists only once pint is imported
+    return pint is not None and isinstance(value, pint.Quantity)
 
 
 def parse_quantity(value: Any, field: str | None = None) -> pint.Quantity:
@@ -85,8 +231,11 @@ def parse_quantity(value: Any, field: str | None = None) -> pint.Quantity:
     A bare number (int, float, or a string holding only a number) is returned
     dimensionless; :func:`to_si` reads it as SI.
     """
-    if isinstance(value, pint.Quantity):
+    if _is_quantity(value):
         return value
+    import pint
+
+    ureg = registry()
     if isinstance(value, bool):
         raise InputError(f"expected a quantity, got the boolean {value!r}", field)
     if isinstance(value, int | float | np.integer | np.floating):
@@ -108,6 +257,37 @@ def parse_quantity(value: Any, field: str | None = None) -> pint.Quantity:
     return q
 
 
+def _finite(mag: float, value: Any, field: str | None) -> float:
+    if not math.isfinite(mag):
+        raise InputError(f"must be a finite number, got {value!r}", field)
+    return mag
+
+
+def quantity_kind(
+    value: Any, kinds: Sequence[str], field: str | None = None
+) -> tuple[str | None, float]:
+    """The first of ``kinds`` whose dimension ``value`` has, and its SI magnitude.
+
+    ``("", magnitude)`` for a bare number, ``(None, nan)`` when it has none of ``kinds``;
+    :class:`InputError` for an unreadable or non-finite value.
+    """
+    fast = _fast_parse(value)
+    if fast is not None:
+        mag, dims = fast
+        if not (isinstance(value, str) and _FAST.fullmatch(value)[2]):
+            return "", _finite(mag, value, field)
+        for kind in kinds:
+            if _KIND_DIMS[kind] == dims:
+                return kind, _finite(mag, value, field)
+    q = parse_quantity(value, field)
+    if q.unitless:
+        return "", _finite(float(q.magnitude), value, field)
+    for kind in kinds:
+        if kind != "dimensionless" and q.dimensionality == _dimensionality(kind):
+            return kind, _finite(float(q.to_base_units().magnitude), value, field)
+    return None, math.nan
+
+
 def to_si(value: Any, kind: str, field: str | None = None, *, bare_is_si: bool = True) -> float:
     """Convert ``value`` to a float in SI units of dimension ``kind``.
 
@@ -125,6 +305,15 @@ def to_si(value: Any, kind: str, field: str | None = None, *, bare_is_si: bool =
     InputError
         Unknown unit, wrong dimension, or a value that is not finite.
     """
+    fast = _fast_parse(value)
+    if fast is not None:
+        # plain numbers and unit strings of the table: no pint (start-up time)
+        mag, dims = fast
+        bare = not isinstance(value, str) or not _FAST.fullmatch(value)[2]
+        if (bare and (bare_is_si or kind == "dimensionless")) or (
+            not bare and dims == _KIND_DIMS[kind]
+        ):
+            return _finite(mag, value, field)
     q = parse_quantity(value, field)
     target = _dimensionality(kind)
     if kind == "dimensionless":
@@ -139,15 +328,13 @@ def to_si(value: Any, kind: str, field: str | None = None, *, bare_is_si: bool =
         mag = float(q.magnitude)
     elif q.dimensionality != target:
         raise InputError(
-            f"{value!r} is not a {kind.replace('_', ' ')} "
+            f"{value!r} is not {'an' if kind[0] in 'aeiou' else 'a'} {kind.replace('_', ' ')} "
             f"(it has dimension {q.dimensionality}); use e.g. {_EXAMPLES[kind]}",
             field,
         )
     else:
         mag = float(q.to_base_units().magnitude)
-    if not math.isfinite(mag):
-        raise InputError(f"must be a finite number, got {value!r}", field)
-    return mag
+    return _finite(mag, value, field)
 
 
 def to_si_array(

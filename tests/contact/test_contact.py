@@ -821,3 +821,29 @@ def test_k1_zero_law_with_a_free_surface() -> None:
     )
     assert np.all(np.isfinite(res.force)) and np.all(np.diff(res.force) > 0)
     assert np.all(np.isfinite(res.sigma_r)) and res.semi_contact_width > 0
+
+
+def test_lcp_active_set_matches_nnls() -> None:
+    """The contact LCP solver (Lawson-Hanson active set on the quadratic form, NumPy only)
+    gives scipy's NNLS solution of the same problem: W = L L^T, min |L^T lam + L^-1 q|.
+    Random SPD flexibilities with a mix of pressing (q < 0) and open (q > 0) nodes; the
+    complementarity conditions hold to rounding (1e-9 of the problem's scale)."""
+    import scipy.linalg as la
+    from scipy.optimize import nnls
+
+    from woundroll.contact.solver import _solve_lcp
+
+    rng = np.random.default_rng(7)
+    for m in (1, 2, 5, 17, 40):
+        for _ in range(5):
+            A = rng.normal(size=(m, m))
+            W = A @ A.T + 0.1 * m * np.eye(m)
+            q = rng.normal(size=m)
+            lam = _solve_lcp(W, q)
+            L = la.cholesky(W, lower=True)
+            ref, _ = nnls(L.T, -la.solve_triangular(L, q, lower=True))
+            scale = np.max(np.abs(ref)) + 1e-300
+            assert np.max(np.abs(lam - ref)) < 1e-9 * scale
+            g = q + W @ lam
+            assert np.all(lam >= 0) and np.all(g >= -1e-9 * np.max(np.abs(q)))
+            assert abs(lam @ g) < 1e-9 * np.max(np.abs(q)) * scale * m

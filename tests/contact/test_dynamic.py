@@ -197,3 +197,103 @@ def test_case_errors_name_the_field(overrides, field):
     with pytest.raises(InputError) as e:
         load_case("pet1-26.7N", overrides)
     assert field in e.value.field
+
+
+def test_matching_active_mass_inverts_the_fd_model():
+    # the FD reading with m_r = 12 g, handed back, gives 12 g (brentq tolerance 1e-6 rel;
+    # the FD reading is smooth and monotone in m_r)
+    from woundroll.contact.dynamic import matching_active_mass
+    from woundroll.instruments import get_instrument
+
+    inst = get_instrument("rho-meter")
+    rho = impact_fd(inst, RollSpring.quadratic(3.7e8, 5.4e5, 0.012)).rho
+    assert matching_active_mass(inst, (3.7e8, 5.4e5), rho) == pytest.approx(0.012, rel=1e-4)
+    # harder than any massless spring: no mass matches
+    rho0 = impact_fd(inst, RollSpring.quadratic(3.7e8, 5.4e5, 0.0)).rho
+    assert math.isnan(matching_active_mass(inst, (3.7e8, 5.4e5), 1.01 * rho0))
+
+
+def test_tester_active_mass_replaces_the_tapered_column():
+    from woundroll.instruments.case_section import tester_from_spec
+
+    s = tester_from_spec({"instrument": "rho-meter", "active_mass": "12 g"})
+    assert s.effective_mass(0.0889, 1400.0) == pytest.approx(0.012, rel=1e-12)
+    s0 = tester_from_spec({"instrument": "rho-meter", "active_mass": 0})
+    assert s0.effective_mass(0.0889, 1400.0) == 0.0
+    with pytest.raises(InputError) as e:
+        tester_from_spec({"instrument": "rho-meter", "active_mass": "-1 g"})
+    assert e.value.field == "tester.active_mass"
+    with pytest.raises(InputError):
+        tester_from_spec({"instrument": "rho-meter", "active_mass": "1 m"})
+
+
+@pytest.mark.slow
+def test_calibration_block_dynamic_reads_near_the_manual():
+    # the FE block (Table 1 rubber, 2.54 cm on a rigid table) hit in time: within 5 % of the
+    # manual's 77 Rho (the paper's 3D ABAQUS: 76.1); its quasi-static curve under the FD
+    # model within 3 % of the calibrated Hertz reading (2D FE block vs half-space formula);
+    # the block's inertia lowers the reading by a few %; it rebounds almost elastically
+    from woundroll.studies.dynamic import _measure_block
+
+    r = _measure_block("block", ())
+    assert r["rho_dynamic"] == pytest.approx(77.0, rel=0.05)
+    assert r["rho_fd"] == pytest.approx(r["rho_fd_hertz"], rel=0.03)
+    assert 0.9 * r["rho_fd"] < r["rho_dynamic"] < r["rho_fd"]
+    assert r["restitution_dynamic"] > 0.97
+
+
+def test_unloading_law_takes_energy_and_the_budget_still_closes(pet1):
+    # with an unloading branch stiffer than loading the roll keeps more of the impact
+    # energy: lower restitution and impulse; the energy budget still closes (the hysteresis
+    # is in the work of the internal forces). Rho is not a pure loading quantity here:
+    # elements that unload from their wound-in pressure (beside the head, in the waves)
+    # take the stiffer unloading modulus, so the FE roll reads harder (docs/dynamic.md)
+    from dataclasses import replace
+
+    from woundroll.materials.unloading import PfeifferUnloading
+
+    web, core, r, s, inst, st = pet1
+    web_u = replace(web, radial_unloading=PfeifferUnloading(40e3, 400.0))
+    kw = dict(contact_time=2.1e-3, depth_scale=1.25 * st.impact_depth)
+    opts = DynamicOptions(steps_per_contact=200)
+    el = impact_dynamic(web, core, r, s, inst, options=opts, **kw)
+    un = impact_dynamic(web_u, core, r, s, inst, options=opts, **kw)
+    assert el.elastic_rebound and not un.elastic_rebound
+    assert un.restitution < el.restitution - 0.02
+    assert un.impulse < el.impulse
+    assert un.rho > el.rho
+    assert abs(un.energy_contact_loss) < 0.05 * un.energy_in
+
+
+def test_dynamic_study_is_registered_and_checks_its_input():
+    from woundroll.studies import STUDIES
+    from woundroll.studies.dynamic import dynamic_study
+
+    assert "dynamic" in STUDIES
+    with pytest.raises(InputError) as e:
+        dynamic_study([], block=False)
+    assert e.value.field == "study.cases"
+
+
+@pytest.mark.slow
+def test_dynamic_study_row_pet2():
+    # one roll of the study (PET2 80 N): the FE and FD readings within 5 % (measured 0.1 %,
+    # docs/studies.md), the FE impulse below the FD one (energy left in the roll), the
+    # measured active mass within a factor 2 of the tapered column's
+    from woundroll.studies.dynamic import dynamic_study
+
+    r = dynamic_study(["pet2-80N"], block=False).rolls[0]
+    assert r["rho_dynamic"] == pytest.approx(r["rho_fd"], rel=0.05)
+    assert r["impulse_dynamic_Ns"] < r["impulse_fd_Ns"]
+    assert 0.5 < r["active_mass_fe_kg"] / r["active_mass_column_kg"] < 2.0
+
+
+def test_rayleigh_damping_is_accounted_for(pet1):
+    # damping takes energy (reported) and the budget still closes to the numerical loss of
+    # the undamped run (same dt). (It does not lower e here: the damped roll resists the
+    # head more stiffly and keeps less energy in its motion: e 0.59 vs 0.53.)
+    el = _run(pet1, steps_per_contact=100)
+    dm = _run(pet1, steps_per_contact=100, rayleigh_mass=2000.0, rayleigh_stiffness=1e-6)
+    assert el.energy_damped == 0.0
+    assert dm.energy_damped > 0.05 * dm.energy_in
+    assert abs(dm.energy_contact_loss) < 2.0 * el.energy_contact_loss + 1e-3 * el.energy_in

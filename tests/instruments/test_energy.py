@@ -112,3 +112,28 @@ def test_tabulated_law_energy_root_is_exact(x_gap):
     a, b, c = 0.5 * (beta + K), K * x_gap, 0.5 * K * (x_gap**2 - XI**2)
     exact = (-b + math.sqrt(b * b - 4 * a * c)) / (2 * a)
     assert impact_energy(inst, law).max_depth == pytest.approx(exact, rel=1e-12)
+
+
+@pytest.mark.parametrize("x_gap", [2.4e-3, 0.0, -1e-3])
+def test_chunked_matches_whole_array_form(x_gap):
+    """The cache-chunked evaluation (issue 14: >= 1e7 per second, benchmarks/bench_impact.py)
+    is the same iteration as the straightforward whole-array form: equal to rounding (4 ulp)
+    across chunk boundaries (a size that is not a multiple of the chunk), with zeros in alpha
+    and beta, and with broadcasting."""
+    from woundroll.instruments.impact import _CHUNK, _energy_max_depth_whole_array
+
+    rng = np.random.default_rng(3)
+    n = 2 * _CHUNK + 17
+    a = 10 ** rng.uniform(5, 12, n)
+    b = 10 ** rng.uniform(2, 8, n)
+    a[:3] = 0.0
+    b[3:6] = 0.0
+    args = (2800.0, 8e-3, x_gap)
+    d = energy_max_depth(a, b, *args)
+    ref = _energy_max_depth_whole_array(a, b, *args)
+    assert d.shape == (n,)
+    np.testing.assert_allclose(d, ref, rtol=1e-15)
+    grid = energy_max_depth(a[:5, None], b[None, :7], *args)
+    assert grid.shape == (5, 7)
+    np.testing.assert_allclose(grid, _energy_max_depth_whole_array(a[:5, None], b[:7], *args))
+    assert np.ndim(energy_max_depth(1e8, 1e4, *args)) == 0

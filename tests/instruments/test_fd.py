@@ -219,3 +219,30 @@ def test_reported_peak_is_the_history_peak(collision, m_r):
     assert res.rho == pytest.approx(res.peak_deceleration / (3.76 * 9.81), rel=1e-14)
     assert res.peak_g == pytest.approx(res.peak_deceleration / 9.81, rel=1e-14)
     assert res.peak_force == pytest.approx(float(np.max(res.contact_force)), rel=1e-5)
+
+
+def test_history_is_decimated_not_kept_whole(monkeypatch):
+    """Issue 13: the FD history is streamed into a bounded buffer (every second point dropped
+    and the stride doubled when full), so memory does not grow with the number of steps.
+    The scalars come from every step: identical with any buffer size; the kept history is
+    a subset of the full one, evenly strided, with the exact end point last."""
+    from woundroll.instruments import impact as imp
+
+    rm = get_instrument("rho-meter")
+    roll = RollSpring.quadratic(3.7e8, 5.4e5, 0.005)
+    full = impact_fd(rm, roll, steps_per_contact=3000)
+    monkeypatch.setattr(imp, "_HISTORY_POINTS", 100)
+    short = impact_fd(rm, roll, steps_per_contact=3000)
+    for name in ("rho", "impulse", "max_depth", "peak_force", "contact_time", "rebound_speed"):
+        assert getattr(short, name) == getattr(full, name), name
+    assert 50 <= short.time.size <= 101
+    idx = np.round((short.time[:-1] - full.time[0]) / full.time_step).astype(int)
+    stride = idx[1] - idx[0]
+    assert stride > 1 and np.all(np.diff(idx) == stride)
+    np.testing.assert_array_equal(short.position[:-1], full.position[idx])
+    np.testing.assert_array_equal(short.contact_force[:-1], full.contact_force[idx])
+    assert short.time[-1] == full.time[-1] and short.position[-1] == full.position[-1]
+    # a fine resolution stays within the bound (4096 points by default)
+    fine = impact_fd(rm, roll, steps_per_contact=20000)
+    assert fine.time.size <= imp._HISTORY_POINTS + 1
+    assert fine.rho == pytest.approx(full.rho, rel=1e-5)

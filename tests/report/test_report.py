@@ -135,10 +135,23 @@ def test_cli_report_and_run_report(tmp_path):
         (["run", "pet1-26.7N", "--report"], "--report"),
         (["report", "pet1-26.7N", "--out", "OUT", "--readings", "no/such.csv"], "--readings"),
         (["report", "pet1-26.7N", "--out", "/proc/no/way"], "--out"),
+        (["report", "pet1-26.7N", "--out", "OUT", "--readings", "SHEET"], "--readings"),
+        (
+            ["report", "pet1-26.7N", "--out", "OUT", "--readings", "SHEET", "--roll", "9"],
+            "--readings",
+        ),
+        (
+            ["report", "pet1-26.7N", "--out", "OUT", "--readings", "SHEET", "--format", "x"],
+            "--readings",
+        ),
     ],
 )
 def test_cli_bad_input_one_line(args, field, tmp_path):
-    args = [str(tmp_path / "o") if a == "OUT" else a for a in args]
+    from pathlib import Path
+
+    sheet = Path(__file__).resolve().parents[2] / "examples" / "data" / "tappi_t834_sheet.csv"
+    subs = {"OUT": str(tmp_path / "o"), "SHEET": str(sheet)}
+    args = [subs.get(a, a) for a in args]
     res = CliRunner().invoke(app, [*args, "--set", FAST[0], "--set", FAST[1]])
     assert res.exit_code == 2, res.output
     lines = [ln for ln in res.output.splitlines() if ln.strip()]
@@ -149,3 +162,38 @@ def test_write_report_path(result, tmp_path):
     p = write_report(result, tmp_path / "deep" / "er")
     assert p == tmp_path / "deep" / "er" / "report.html"
     assert np.isclose(len(p.read_text(encoding="utf-8")), len(build_report(result)), rtol=0.01)
+
+
+def test_real_readings_and_defects(result):
+    from pathlib import Path
+
+    from woundroll.defects import defect_report
+    from woundroll.readings import read_readings
+
+    sheet = Path(__file__).resolve().parents[2] / "examples" / "data" / "readings_rho_3passes.csv"
+    r = read_readings(sheet, width=result.case.web.width)
+    defects = defect_report(result.case, winding=result.winding)
+    html = build_report(result, readings=r, defects=defects)
+    assert 'id="defects"' in html and "Defect risk: " in html
+    for name, risk, _ in defects.summary():
+        assert f"<td>{name}</td><td" in html and f">{risk}</td>" in html
+    # the readings table: every position's mean, in mm and in
+    for x, m in zip(r.position, r.mean, strict=True):
+        assert f'<td class="num">{x * 1e3:.1f}</td><td class="num">{x / 0.0254:.2f}</td>' in html
+        assert f"{m:.2f}" in html
+
+
+@pytest.mark.slow
+def test_report_with_diagnosis(tmp_path):
+    """The whole road: readings -> diagnosis (full forward runs) -> report (about a minute)."""
+    from pathlib import Path
+
+    sheet = Path(__file__).resolve().parents[2] / "examples" / "data" / "readings_rho_3passes.csv"
+    res = CliRunner().invoke(
+        app, ["report", "pet1-26.7N", "--readings", str(sheet), "--out", str(tmp_path), "-q"]
+    )
+    assert res.exit_code == 0, res.output
+    html = (tmp_path / "report.html").read_text(encoding="utf-8")
+    assert 'id="diagnosis"' in html and "wound-on tension [MPa]" in html
+    assert 'id="readings"' in html and 'id="defects"' in html
+    assert html.count("data:image/png;base64,") >= 8

@@ -61,7 +61,7 @@ def test_run_equals_cli_json(client):
     r = client.post("/api/run", json={"case": FAST_TOML, "overrides": {"winding.tension": "2 pli"}})
     assert r.status_code == 200, r.text
     s = wait(client, r.json()["job"])
-    assert s["state"] == "done", s
+    assert s["state"] == "done", s.get("error")
     ref = woundroll.run(_fast_case("2 pli"))
     want = json.loads(ref.to_json())
     got = s["result"]["numbers"]
@@ -175,3 +175,46 @@ def test_serve_port_in_use_is_one_line():
         )
     lines = [ln for ln in (r.stdout + r.stderr).splitlines() if ln.strip()]
     assert r.returncode == 2 and len(lines) == 1 and "--port: cannot listen" in lines[0]
+
+
+def test_defects_always_and_diagnosis_on_request(client):
+    r = client.post("/api/run", json={"case": FAST_TOML})
+    s = wait(client, r.json()["job"])
+    assert s["result"]["defects"]["risk"] in ("low", "watch", "high", "n/a")
+    names = [row["name"] for row in s["result"]["defects"]["rows"]]
+    assert "starring" in names and s["result"]["diagnosis"] is None
+    r = client.post("/api/run", json={"case": FAST_TOML, "diagnose": True})
+    assert r.status_code == 422 and r.json()["error"]["field"] == "readings"
+    r = client.post(
+        "/api/run",
+        json={"case": FAST_TOML, "readings": "lane,rho\n1,50\n", "lane_width": "6 psi"},
+    )
+    assert r.json()["error"]["field"] == "readings.lane_width"
+
+
+@pytest.mark.slow
+def test_diagnosis_on_the_page_and_in_the_report(client):
+    """Readings -> diagnosis (full forward runs through the contact model: about a minute)."""
+    text = client.get("/api/cases/pet1-26.7N").text
+    readings = "position [in],rho\n1,50\n3,52\n5,51\n1,51\n3,53\n"
+    r = client.post("/api/run", json={"case": text, "readings": readings, "diagnose": True})
+    s = wait(client, r.json()["job"], 600)
+    assert s["state"] == "done", s.get("error")
+    g = s["result"]["diagnosis"]
+    assert len(g["rows"]) == 3 and all(row[-1] == "ok" for row in g["rows"])
+    assert any(p["id"] == "plot-diagnosis" for p in s["result"]["plots"])
+    rep = client.get(s["report_url"]).text
+    assert 'id="diagnosis"' in rep and 'id="defects"' in rep
+
+
+def test_tappi_sheet_pasted_needs_a_roll(client):
+    sheet = "roll,pass,lane 1,lane 2\nA,1,50,52\nB,1,55,57\n"
+    body = {"case": FAST_TOML, "readings": sheet, "lane_width": "2 in"}
+    r = client.post("/api/run", json=body)
+    err = r.json()["error"]
+    assert err["field"] == "readings" and "holds 2 rolls (A, B): pick one" in err["line"]
+    # T 834's 6 in lanes do not fit on the 6 in wide web: lane 2 lies outside
+    r = client.post("/api/run", json={**body, "lane_width": "", "roll": "B"})
+    assert r.json()["error"]["field"] == "readings" and "outside the roll" in r.text
+    s = wait(client, client.post("/api/run", json={**body, "roll": "B"}).json()["job"])
+    assert s["result"]["measured"]["mean"] == 56.0

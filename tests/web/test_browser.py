@@ -165,6 +165,9 @@ def test_run_matches_cli_and_renders(server, browser, cli_json, tmp_path):
     }
     summary = drv.find_element(By.ID, "summary").text
     assert f"{cli_json['hardness']['reading']:.1f}" in summary
+    # defect-risk flags on every run
+    assert "starring" in drv.find_element(By.ID, "defects").text
+    assert drv.find_element(By.ID, "defect-risk").text.startswith("defect risk: ")
     # measured readings beside the prediction
     assert drv.find_element(By.CSS_SELECTOR, '[data-key="measured.n"]').text == "3"
     for pid in ("plot-sigma-r", "plot-profile", "plot-impact"):

@@ -148,6 +148,81 @@ def test_uniform_thickness_reproduces_the_1d_hakiel_model(T: float) -> None:
     assert dev_t.max() < 0.02 * T
 
 
+def _like_for_like(case_name: str):
+    """Web, core, radius and tension of a bundled case, uniform web, without the axial
+    Poisson coupling (nu_z_r = nu_theta_z = 0): the (r, z) model is then plane stress like
+    the 1D model, and any difference is discretisation."""
+    from dataclasses import replace
+
+    from woundroll.case import load_case
+
+    case = load_case(case_name)
+    web = replace(case.web.build(), nu_z_r=0.0, nu_theta_z=0.0)
+    core = case.core.build()
+    return web, core, case.winding.final_radius(web, core), case.winding.schedule(web)
+
+
+def _deviation_from_1d(case_name: str, n_sectors: int) -> tuple[float, float]:
+    """Largest pointwise |d sigma_r| / |sigma_r| against the 1D model (layer by layer) over
+    the group centres of the middle sector, all but the outermost group (whose centre value
+    is the thin-ring -p/2 in both models, checked by the test below), and the core
+    pressure's relative deviation; default options of both models."""
+    from woundroll.winding.hakiel import wind
+
+    web, core, r_out, ten = _like_for_like(case_name)
+    ref = wind(web, core, r_out, ten)
+    res = wind_axisymmetric(web, core, r_out, ten, n_sectors=n_sectors)
+    j = n_sectors // 2
+    s1 = np.interp(res.radius[:, j], ref.radius, ref.sigma_r)
+    dev = np.abs(res.sigma_r[:, j] / s1 - 1)
+    return float(dev[:-1].max()), abs(res.core_pressure[j] / ref.core_pressure - 1)
+
+
+# one bundled roll per material, the softest tension (its grouping error is the largest:
+# measured pet1-26.7N 0.24 %, pet2-26.7N 0.44 %, pet3-2.3MPa 0.42 % with 2-layer groups;
+# 3.9 / 6.4 / 1.2 % with the former 200 groups). Tolerance: the issue's 1 %.
+@pytest.mark.parametrize("case_name", ["pet1-26.7N", "pet2-26.7N", "pet3-2.3MPa"])
+def test_default_grouping_equals_the_1d_model_within_1_percent(case_name: str) -> None:
+    whole, core = _deviation_from_1d(case_name, 3)
+    assert whole < 0.01
+    assert core < 0.01
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(
+    "case_name",
+    [
+        "pet1-26.7N",
+        "pet1-33.4N",
+        "pet1-40N",
+        "pet1-46.7N",
+        "pet2-26.7N",
+        "pet2-53.4N",
+        "pet2-80N",
+        "pet3-2.3MPa",
+        "pet3-3.45MPa",
+    ],
+)
+def test_default_grouping_equals_the_1d_model_on_every_bundled_roll(case_name: str) -> None:
+    # the full sweep of the issue, 61 sectors (the default CMD mesh) as the pipeline runs it
+    whole, core = _deviation_from_1d(case_name, 61)
+    assert whole < 0.01
+    assert core < 0.01
+
+
+def test_outermost_group_is_the_thin_ring_of_the_1d_model() -> None:
+    # the last layer presses on nothing: sigma_r at its centre is -WOT (h / 2) / r_mid in
+    # both models, on the undeformed geometry of the small-strain increments (the deformed
+    # radius made it 1-5 % off on the soft Table 2 rolls). Tolerance 0.1 %.
+    from woundroll.winding.hakiel import wind
+
+    web, core, r_out, ten = _like_for_like("pet2-80N")
+    ref = wind(web, core, r_out, ten)
+    res = wind_axisymmetric(web, core, r_out, ten, n_sectors=1, n_groups=100)
+    s1 = np.interp(res.radius[-1, 0], ref.radius, ref.sigma_r)
+    assert abs(res.sigma_r[-1, 0] / s1 - 1) < 1e-3
+
+
 def test_table3_poisson_coupling_against_the_1d_model() -> None:
     # with Table 3's nu_z_r = 0.01, nu_theta_z = 0.3 (E_z = E_theta) the layers of a 61 cm
     # wide roll are tied axially by tau_rz (shear-lag length ~ depth x sqrt(E_z / G_rz), of

@@ -15,6 +15,7 @@ import pytest
 
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.materials import Constant, Core, Pfeiffer, Polynomial, Tabulated, Web
+from woundroll.winding import hakiel
 from woundroll.winding.hakiel import WindingOptions, wind, wind_reference
 from woundroll.winding.result import WindingResult
 from woundroll.winding.tension import Taper, TensionSchedule
@@ -70,6 +71,54 @@ def test_compiled_solver_equals_banded_reference(new_layer: str) -> None:
     assert a.core_pressure == pytest.approx(b.core_pressure, rel=1e-9)
     assert np.max(np.abs(a.sigma_r - b.sigma_r)) <= 1e-9 * b.core_pressure
     assert np.max(np.abs(a.sigma_theta - b.sigma_theta)) <= 1e-9 * T_PET1
+
+
+ENGINE_OPTIONS = [
+    {},
+    {"new_layer": "elastic"},
+    {"modulus_update": "end", "load_substeps": 3},
+    {"modulus_update": "explicit", "layers_per_increment": 3},
+    {"window_layers": 4, "flush_interval": 2, "subdivisions": 3},
+]
+
+
+@pytest.mark.parametrize("extra", ENGINE_OPTIONS)
+def test_numpy_kernels_equal_compiled_kernels(extra: dict, monkeypatch) -> None:
+    """The NumPy twin (small rolls, no compiler cost) and the numba kernels run the same
+    algorithm, lazy levels included: equal to rounding (1e-12 of the core pressure and of
+    the wound-on tension; measured ~1e-15), same iteration and work counts.
+    """
+    web, core, R, sched = _film(), Core(0.076, stiffness=3e9), 0.076 + 600 * 12e-6, None
+    sched = TensionSchedule(1.5e6, taper=Taper("linear", 0.3))
+    opts = WindingOptions(**extra)
+    monkeypatch.setattr(hakiel, "_NUMPY_MAX_NODES", 10**9)
+    a = wind(web, core, R, sched, options=opts)
+    monkeypatch.setattr(hakiel, "_NUMPY_MAX_NODES", 0)
+    b = wind(web, core, R, sched, options=opts)
+    assert np.max(np.abs(a.sigma_r - b.sigma_r)) <= 1e-12 * b.core_pressure
+    assert np.max(np.abs(a.sigma_theta - b.sigma_theta)) <= 1e-12 * 1.5e6
+    assert a.stats == b.stats
+
+
+def test_small_roll_does_not_import_numba() -> None:
+    """A roll up to ``_NUMPY_MAX_NODES`` nodes is wound without importing numba (its
+    import and cache load cost 0.5-2 s per process, docs/winding.md). Run in a fresh
+    interpreter so that other tests' imports do not count."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys\n"
+        "from woundroll.materials import Core, Pfeiffer, Web\n"
+        "from woundroll.winding.hakiel import wind\n"
+        "from woundroll.winding.tension import TensionSchedule\n"
+        "web = Web(thickness=1e-4, width=0.15, E_theta=5.7e9, radial_modulus=Pfeiffer(4620, 124))\n"
+        "r = wind(web, Core(0.0445), 0.1334, TensionSchedule(1.75e6))\n"
+        "assert r.n_layers == 889 and r.core_pressure > 0\n"
+        "print('numba' in sys.modules)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
 
 
 def test_lazy_deep_part_converges() -> None:

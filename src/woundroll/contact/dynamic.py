@@ -54,8 +54,9 @@ budget (striker kinetic and spring energy, roll kinetic energy, work of the roll
 forces, damping); the radial pressure along the contact axis against depth at the peak
 deceleration (Figure 10) and the contact pressure there; the rebound speed and the
 coefficient of restitution ``e = v_rebound / v_impact``. An elastic roll (no unloading law)
-gives back everything but what stays in its vibrations when the striker leaves, so e < 1
-measures the wave loss; the readout says the material rebound is elastic.
+gives back everything but what is still in the roll when the striker leaves (its motion and
+its not yet recovered indentation), so e < 1 measures that; the readout says the material
+is elastic.
 """
 
 from __future__ import annotations
@@ -70,6 +71,7 @@ import numpy as np
 import scipy.linalg as la
 from numpy.typing import NDArray
 from scipy.linalg.blas import dsbmv
+from scipy.linalg.lapack import dtbtrs
 from scipy.optimize import nnls
 
 from woundroll.contact.fem import Assembler, element_basis, plane_strain_moduli
@@ -296,8 +298,18 @@ class _FeRoll:
             return self.m_lumped * x
         return dsbmv(self.M_band.shape[0] - 1, 1.0, self.M_band, x, lower=1)
 
-    def moduli(self, sigma_r_total: FloatArray) -> tuple[FloatArray, ...]:
-        E_r = np.clip(self.web.E_r(sigma_r_total), self.E_floor, self.E_cap)
+    def moduli(
+        self, sigma_r_total: FloatArray, p_hist: FloatArray | None = None
+    ) -> tuple[FloatArray, ...]:
+        """Element moduli at the total radial stress; with the web's unloading law and the
+        largest pressure each element has seen (``p_hist``), elements below it take the
+        unloading modulus (:mod:`woundroll.materials.unloading`)."""
+        E_r = self.web.E_r(sigma_r_total)
+        un = self.web.radial_unloading
+        if un is not None and p_hist is not None:
+            P = -sigma_r_total
+            E_r = np.where(P < p_hist * (1.0 - 1e-9), un.modulus_at_pressure(P), E_r)
+        E_r = np.clip(E_r, self.E_floor, self.E_cap)
         return plane_strain_moduli(self.web, E_r)
 
     def k_band(self, mod: tuple[FloatArray, ...]) -> FloatArray:
@@ -364,7 +376,7 @@ class DynamicImpactResult:
         of nodes coming into contact; tends to 0 with the time step).
     elastic_rebound : bool
         True: the roll's material has no unloading law (the rebound is elastic but for the
-        vibrations left in the roll).
+        energy still in the roll when the striker leaves).
     time, position, velocity, deceleration, contact_force : ndarray
     energy_striker, energy_roll_kinetic, energy_roll_internal : ndarray [J]
     axis_depth : ndarray [m]
@@ -448,7 +460,8 @@ class DynamicImpactResult:
             "rebound_R": self.rebound_r,
             "parotester_L": self.rebound_l,
             "rebound": (
-                "elastic (no unloading law): only the vibrations left in the roll are lost"
+                "elastic material (no unloading law): the striker loses only the energy still "
+                "in the roll when it leaves (its motion, its not yet recovered indentation)"
                 if self.elastic_rebound
                 else "unloading law of the roll"
             ),
@@ -691,6 +704,8 @@ def impact_dynamic(
     x, xv, xa = xg, v_c, -k_s * xg / m_s
     lam = np.zeros(n_surf)
     frozen = roll.moduli(roll.sigma_pre) if not opts.update_modulus else None
+    # largest pressure each element has seen (the unloading law's memory)
+    p_hist = np.maximum(-roll.sigma_pre, 0.0) if web.radial_unloading is not None else None
 
     e_in = 0.5 * m_s * v_c * v_c
     e_int = 0.0  # work of the roll's internal forces (per length, half model)
@@ -759,14 +774,18 @@ def impact_dynamic(
             ok_r, ok_t = rows_r >= 0, rows_t >= 0
             rhs_c[rows_r[ok_r], cols[ok_r]] = n_r[ok_r]
             rhs_c[rows_t[ok_t], cols[ok_t]] = n_t[ok_t]
-            X = la.cho_solve_banded((cb, True), rhs_c, check_finite=False)
-            W = np.where(ok_r[:, None], n_r[:, None] * X[np.maximum(rows_r, 0)], 0.0) + np.where(
-                ok_t[:, None], n_t[:, None] * X[np.maximum(rows_t, 0)], 0.0
-            )
+            # W = N^T K_eff^-1 N = Y^T Y with Y = L^-1 N (forward substitutions only);
+            # the displacement of the contact forces is then one backward solve L^-T (Y lam)
+            Y, info = dtbtrs(cb, rhs_c, uplo="L", trans="N", diag="N")
+            if info != 0:
+                raise ConvergenceError("banded triangular solve failed")
             nx = normal[idx, 0]
-            W = W + np.outer(nx, nx) / s_eff
+            W = Y.T @ Y + np.outer(nx, nx) / s_eff
             lam_c = _lcp(W, g_free[idx])
-            du = du_free + X @ lam_c
+            dz, info = dtbtrs(cb, Y @ lam_c, uplo="L", trans="T", diag="N")
+            if info != 0:
+                raise ConvergenceError("banded triangular solve failed")
+            du = du_free + dz
             dx = dx_free + float(nx @ lam_c) / s_eff
             centre = np.array([r_out + R_h - (x + dx - xg), 0.0])
             pos = roll.xy[surf] + roll.cartesian(roll.full(u + du), surf)
@@ -803,14 +822,14 @@ def impact_dynamic(
         if frozen is not None:
             mod = frozen
         elif opts.modulus_update == "euler":
-            mod = roll.moduli(roll.sigma_pre + sig[:, 0])
+            mod = roll.moduli(roll.sigma_pre + sig[:, 0], p_hist)
         elif opts.modulus_update == "extrapolated":
-            mod = roll.moduli(roll.sigma_pre + sig[:, 0] + 0.5 * dsig_prev_r)
+            mod = roll.moduli(roll.sigma_pre + sig[:, 0] + 0.5 * dsig_prev_r, p_hist)
         else:  # midpoint: trial step at the start-of-step moduli
-            mod0 = roll.moduli(roll.sigma_pre + sig[:, 0])
+            mod0 = roll.moduli(roll.sigma_pre + sig[:, 0], p_hist)
             trial = solve_step(mod0)
             dsr = roll.stress_increment(mod0, roll.full(trial[0]))[:, 0]
-            mod = roll.moduli(roll.sigma_pre + sig[:, 0] + 0.5 * dsr)
+            mod = roll.moduli(roll.sigma_pre + sig[:, 0] + 0.5 * dsr, p_hist)
         du, dx, lam_new, fc, f_s, a_pred, v_pred, Kb, normal = solve_step(mod)
         # Newmark update
         acc_new = c0 * du - a_pred
@@ -832,6 +851,8 @@ def impact_dynamic(
         dsig = roll.stress_increment(mod, roll.full(du))
         sig += dsig
         dsig_prev_r = dsig[:, 0]
+        if p_hist is not None:
+            p_hist = np.maximum(p_hist, -(roll.sigma_pre + sig[:, 0]))
         u += du
         v, acc, f_int = v_new, acc_new, f_int_new
         x, xv, xa = x + dx, xv_new, xa_new
@@ -904,7 +925,7 @@ def impact_dynamic(
         energy_roll_left=e_roll,
         energy_damped=e_damp_tot,
         energy_contact_loss=e_in - e_striker_end - e_roll - e_damp_tot,
-        elastic_rebound=True,
+        elastic_rebound=web.radial_unloading is None,
         time=T,
         position=X_,
         velocity=V,
@@ -926,3 +947,46 @@ def impact_dynamic(
         options=opts,
         contact_position=xg,
     )
+
+
+def matching_active_mass(
+    instrument: Instrument,
+    spring: Any,
+    rho_target: float,
+    *,
+    collision: str = "plastic",
+    m_max: float = 1.0,
+) -> float:
+    """The active roll mass m_r [kg] with which the 1.5D FD model {4}-{13} reads
+    ``rho_target`` on the roll spring ``spring`` (what the FE roll "shows" as active mass).
+
+    The FD reading falls monotonically with m_r (the plastic collision takes
+    ``m_r/(m_s + m_r)`` of the impact energy and the deceleration is shared by
+    ``m_s + m_r``), so the root is unique; NaN when even ``m_r = 0`` reads lower than the
+    target (the FE roll reads harder than any massless spring) or ``m_max`` is not enough.
+
+    Parameters
+    ----------
+    instrument : Instrument
+    spring : force law, (alpha, beta) or RollSpring (its mass is replaced)
+    rho_target : float [Rho]
+        Typically :attr:`DynamicImpactResult.rho`.
+    collision : {"plastic", "keep-velocity"}
+    m_max : float [kg]
+        Upper end of the search.
+    """
+    from scipy.optimize import brentq
+
+    from woundroll.instruments import RollSpring, impact_fd
+    from woundroll.instruments.roll_side import as_roll_spring
+
+    base = as_roll_spring(spring)
+
+    def f(m: float) -> float:
+        rs = RollSpring(base.law, m, base.restitution)
+        return impact_fd(instrument, rs, collision=collision).rho - rho_target
+
+    lo, hi = f(0.0), f(m_max)
+    if lo < 0 or hi > 0:
+        return math.nan
+    return float(brentq(f, 0.0, m_max, xtol=1e-7, rtol=1e-6))

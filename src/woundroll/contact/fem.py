@@ -42,10 +42,11 @@ points (hoop: 2 radial points on the mid-line), so no hourglass mode appears.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
-import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from woundroll.contact.mesh import RollMesh
@@ -58,6 +59,28 @@ _G = 1.0 / np.sqrt(3.0)
 _GAUSS = np.array([[-_G, -_G], [_G, -_G], [_G, _G], [-_G, _G]])
 _XI = np.array([-1.0, 1.0, 1.0, -1.0])
 _ETA = np.array([-1.0, -1.0, 1.0, 1.0])
+
+
+#: Largest normalised radial Poisson coupling sqrt(Q / (1 - c_tz^2)) of a stiff stack
+#: (:func:`plane_strain_moduli`): 0.9 keeps the compliance's determinant at >= 19 % of its
+#: coupling-free value.
+MAX_RADIAL_COUPLING = 0.9
+
+
+def radial_poisson_compliance(web: Web, E_r: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """The compliances ``S_rt = -nu_tr / E_t`` and ``S_rz = -nu_zr / E_z`` [1/Pa] per element,
+    with the radial Poisson ratios scaled down where E_r would make S indefinite
+    (:func:`plane_strain_moduli`)."""
+    E_r = np.asarray(E_r, dtype=float)
+    Et, Ez = web.E_theta, float(web.E_z)
+    c_rt = web.nu_theta_r * np.sqrt(E_r / Et)
+    c_rz = web.nu_z_r * np.sqrt(E_r / Ez)
+    c_tz = web.nu_theta_z * math.sqrt(Ez / Et)
+    Q = c_rt * c_rt + c_rz * c_rz + 2.0 * c_rt * c_rz * c_tz
+    bound = MAX_RADIAL_COUPLING**2 * (1.0 - c_tz * c_tz)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        f = np.where(Q > bound, np.sqrt(bound / np.where(Q > 0, Q, 1.0)), 1.0)
+    return -f * web.nu_theta_r / Et, -f * web.nu_z_r / Ez
 
 
 def plane_strain_moduli(
@@ -78,6 +101,17 @@ def plane_strain_moduli(
     nu_z_r and nu_theta_z enter only through that reduction; for Table 2's data
     (nu_tr = nu_zr = 0) it is C11 = E_r, C12 = 0, C22 = E_t / (1 - nu_tz^2).
 
+    Stiff stacks (assumption, docs/contact.md): S is positive definite only while the
+    normalised couplings ``c_rt = nu_tr sqrt(E_r / E_t)``, ``c_rz = nu_zr sqrt(E_r / E_z)``
+    (``c_ij^2 = nu_ij nu_ji``) satisfy ``Q = c_rt^2 + c_rz^2 + 2 c_rt c_rz c_tz <
+    1 - c_tz^2``: with nu_tr fixed, the reciprocal nu_rt = nu_tr E_r / E_t grows with the
+    radial modulus and, past E_r ~ E_t / nu_tr^2 (11 E_t at nu_tr = 0.3), the strain energy
+    of the stack would turn negative. Under the head E_r = K2 (K1 - sigma_r) does reach that
+    on a hard roll. Where it does, the two radial Poisson ratios are scaled down together so
+    that Q stays at :data:`MAX_RADIAL_COUPLING` ^2 (1 - c_tz^2): the products nu_tr nu_rt and
+    nu_zr nu_rz are held at that bound instead of growing with E_r (nu_rt then grows as
+    sqrt(E_r), not E_r). Below the bound nothing changes.
+
     Parameters
     ----------
     web : Web
@@ -89,8 +123,7 @@ def plane_strain_moduli(
     Et, Ez = web.E_theta, float(web.E_z)
     s_tt = 1.0 / Et
     s_zz = 1.0 / Ez
-    s_rt = -web.nu_theta_r / Et
-    s_rz = -web.nu_z_r / Ez
+    s_rt, s_rz = radial_poisson_compliance(web, E_r)
     s_tz = -web.nu_theta_z / Et
     s_rr = 1.0 / E_r
     a = s_rr - s_rz * s_rz / s_zz
@@ -348,6 +381,7 @@ class Assembler:
         lower = rows >= cols
         self._lower = np.flatnonzero(lower)
         self._band_index = (rows[lower] - cols[lower]) * n + cols[lower]
+        self._band_index_reversed: NDArray[np.int64] | None = None
         self._csc = None
         # geometric matrices gathered per kept entry (all, and the lower triangle only)
         n_el_entries = self._keep.size
@@ -374,20 +408,30 @@ class Assembler:
         ke = C11[e] * A[0] + C12[e] * A[1] + C22[e] * A[2] + G[e] * A[3]
         return np.concatenate([ke, self._diag_low])
 
-    def banded(self, vals: FloatArray, *, lower_only: bool = False) -> FloatArray:
+    def banded(
+        self, vals: FloatArray, *, lower_only: bool = False, reverse: bool = False
+    ) -> FloatArray:
         """Lower banded storage ``ab[i - j, j] = K[i, j]``, i >= j (LAPACK ``dpbtrf``, 'L').
 
         ``vals`` from :meth:`values`, or from :meth:`values_lower` with ``lower_only=True``.
+        ``reverse``: the same for ``P K P`` with P the reversal of the free DOF order
+        (``ab[d, j] = K[n - 1 - j, n - 1 - j - d]``), assembled directly.
 
         (The lower form: OpenBLAS's threaded upper-form factorisation was found 10-100x
         slower on a loaded 2-core machine.)
         """
         n, bw = self.n_free, self.bandwidth
         w = vals if lower_only else vals[self._lower]
-        ab = np.bincount(self._band_index, weights=w, minlength=(bw + 1) * n)
+        index = self._band_index
+        if reverse:
+            if self._band_index_reversed is None:
+                r, c = self._rows[self._lower], self._cols[self._lower]
+                self._band_index_reversed = (r - c) * n + (n - 1 - r)
+            index = self._band_index_reversed
+        ab = np.bincount(index, weights=w, minlength=(bw + 1) * n)
         return ab.reshape(bw + 1, n)
 
-    def csc(self, vals: FloatArray) -> sp.csc_matrix:
+    def csc(self, vals: FloatArray) -> Any:
         """Global stiffness on the free DOFs as a CSC matrix."""
         if self._csc is None:
             keys, inv = np.unique(self._cols * self.n_free + self._rows, return_inverse=True)
@@ -398,4 +442,6 @@ class Assembler:
             self._csc = (inv, keys.size, indices, indptr)
         inv, nnz, indices, indptr = self._csc
         data = np.bincount(inv, weights=vals, minlength=nnz)
+        import scipy.sparse as sp  # the whole-annulus check only
+
         return sp.csc_matrix((data, indices, indptr), shape=(self.n_free, self.n_free))

@@ -25,7 +25,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.optimize import brentq
 
 from woundroll.errors import InputError
 
@@ -90,7 +89,16 @@ def graded_sizes(
     def excess(q: float) -> float:
         return first * (q**n - 1.0) / (q - 1.0) - length
 
-    q = brentq(excess, 1.0 + 1e-12, growth * (1.0 + 1e-9), xtol=1e-14)
+    # excess is increasing in q, negative at 1 and >= 0 at ``growth``: bisection (no
+    # scipy.optimize at import; start-up time)
+    lo, hi = 1.0 + 1e-12, growth * (1.0 + 1e-9)
+    while hi - lo > 1e-14:
+        mid = 0.5 * (lo + hi)
+        if excess(mid) < 0:
+            lo = mid
+        else:
+            hi = mid
+    q = 0.5 * (lo + hi)
     sizes = first * q ** np.arange(n)
     return sizes * (length / sizes.sum())
 

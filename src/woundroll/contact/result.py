@@ -259,6 +259,7 @@ class ContactResult:
     n_dof: int
     mesh_shape: tuple[int, int]
     solve_time_s: float
+    factorisations: int = 0
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -379,6 +380,7 @@ class ContactResult:
             "n_elements": self.n_elements,
             "n_dof": self.n_dof,
             "solve_time_s": self.solve_time_s,
+            "factorisations": self.factorisations,
         }
 
     def plot(self, path: str | Path | None = None) -> Figure:

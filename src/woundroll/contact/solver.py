@@ -30,9 +30,7 @@ from typing import Any, TypeVar
 
 import numpy as np
 import scipy.linalg as la
-import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
-from scipy.optimize import nnls
 
 from woundroll.contact.fem import ELEMENTS, Assembler, element_basis, plane_strain_moduli
 from woundroll.contact.mesh import RollMesh, build_mesh
@@ -93,9 +91,17 @@ class ContactOptions:
         without limit, as the paper does; under the head the pressure reaches 10-100 MPa,
         far beyond the stack tests a Pfeiffer fit comes from (docs/contact.md).
     midpoint : bool
-        Two-pass increments: a trial increment with the start-of-step modulus, then the
-        increment redone with the modulus at the mid-step stress (second order in the step).
+        The modulus of an increment at the mid-step stress (second order in the step).
         False: plain forward Euler (the start-of-step tangent modulus).
+    predictor : bool
+        With ``midpoint``: the mid-step stress predicted from the previous increment
+        (scaled to this step's size), the increment solved once with the modulus there, and
+        redone with the modulus at its own mid-step stress only when the two moduli differ
+        by more than ``step_tol`` (one factorisation per step instead of two; docs/contact.md,
+        step control). False: always a trial increment at the start-of-step modulus first.
+    step_tol : float
+        Tolerance of the predictor [-]: the relative difference of the predicted and the
+        achieved mid-step E_r, weighted by each element's strain-energy increment.
     half_model : bool
         Mesh the half 0 <= theta <= pi with symmetry conditions (u_theta = 0 on theta = 0,
         pi): exact for this symmetric problem, and its banded stiffness is solved by banded
@@ -115,6 +121,8 @@ class ContactOptions:
     min_modulus_ratio: float = 1e-6
     max_modulus_ratio: float | None = None
     midpoint: bool = True
+    predictor: bool = True
+    step_tol: float = 0.02
     half_model: bool = True
     step_exponent: float = 1.5
 
@@ -132,7 +140,13 @@ class ContactOptions:
                 f"must lie in (0, pi/2] rad, got {self.max_element_angle!r}",
                 "options.max_element_angle",
             )
-        for name in ("reduced_shear", "assumed_hoop", "midpoint", "half_model"):
+        if not (
+            isinstance(self.step_tol, int | float | np.number)
+            and math.isfinite(self.step_tol)
+            and 0 < self.step_tol <= 1
+        ):
+            raise InputError(f"must lie in (0, 1], got {self.step_tol!r}", "options.step_tol")
+        for name in ("reduced_shear", "assumed_hoop", "midpoint", "predictor", "half_model"):
             if not isinstance(getattr(self, name), bool | np.bool_):
                 raise InputError(
                     f"must be true or false, got {getattr(self, name)!r}", f"options.{name}"
@@ -231,25 +245,52 @@ def _gap(pos: FloatArray, centre: FloatArray, head_radius: float) -> tuple[Float
 def _solve_lcp(W: FloatArray, q: FloatArray) -> FloatArray:
     """Solve ``lam >= 0, g = q + W lam >= 0, lam . g = 0`` for symmetric positive definite W.
 
-    It is the optimality condition of ``min 1/2 lam W lam + q lam, lam >= 0``; with
-    ``W = L L^T`` that is the non-negative least-squares problem
-    ``min |L^T lam + L^-1 q|``, solved exactly (finite active-set method) by :func:`nnls`.
+    It is the optimality condition of ``min 1/2 lam W lam + q lam, lam >= 0``, solved exactly
+    by the finite active-set method of Lawson and Hanson (their NNLS algorithm written for
+    the quadratic form itself): the passive set grows by the most violated contact, and
+    where the unconstrained solution on it leaves a force negative, the step goes back to
+    the boundary and that node leaves. NumPy only (no scipy.optimize at import: start-up).
     """
     W = 0.5 * (W + W.T)
+    m = q.size
     scale = float(np.max(np.diag(W)))
+    Ws, qs = W / scale, q / scale  # lam is unchanged by the common scale
     try:
-        L = la.cholesky(W / scale, lower=True)
-    except la.LinAlgError:
+        np.linalg.cholesky(Ws)
+    except np.linalg.LinAlgError:
         raise ConvergenceError(
             "contact flexibility matrix is not positive definite "
             "(mesh too coarse or roll not supported)"
         ) from None
-    b = -la.solve_triangular(L, q / scale, lower=True)
-    try:
-        lam, _ = nnls(L.T, b, maxiter=50 * max(q.size, 10))
-    except RuntimeError as exc:
-        raise ConvergenceError(f"contact active set did not settle ({exc})") from None
-    return lam
+    lam = np.zeros(m)
+    passive = np.zeros(m, dtype=bool)
+    tol = 1e-13 * max(float(np.max(np.abs(qs))), 1e-300)
+    for _ in range(3 * m + 10):
+        w = -(qs + Ws @ lam)  # minus the gradient: > 0 where a force would lower the energy
+        w[passive] = -np.inf
+        j = int(np.argmax(w))
+        if w[j] <= tol:
+            return lam
+        passive[j] = True
+        for _ in range(3 * m + 10):
+            idx = np.flatnonzero(passive)
+            z = np.zeros(m)
+            z[idx] = np.linalg.solve(Ws[np.ix_(idx, idx)], -qs[idx])
+            if np.all(z[idx] > 0):
+                lam = z
+                break
+            # back along lam -> z to where the first force reaches zero; that node leaves
+            neg = idx[z[idx] <= 0]
+            denom = lam[neg] - z[neg]
+            ratio = np.where(denom > 0, lam[neg] / np.where(denom > 0, denom, 1.0), 0.0)
+            k = int(np.argmin(ratio))
+            lam = lam + ratio[k] * (z - lam)
+            passive[neg[k]] = False
+            passive &= lam > 0
+            lam[~passive] = 0.0
+        else:
+            break
+    raise ConvergenceError("contact active set did not settle")
 
 
 class _Roll:
@@ -296,6 +337,7 @@ class _Roll:
         self.xy = mesh.node_xy()
         self.angle = mesh.node_angle()
         self.surface = mesh.surface_nodes()
+        self.area = self.basis.area
         r_c = np.hypot(self.basis.centre_xy[:, 0], self.basis.centre_xy[:, 1])
         self.r_centre = r_c
         #: pre-impact radial stress at element centres [Pa] (winding model, interpolated)
@@ -305,9 +347,13 @@ class _Roll:
             math.inf if opts.max_modulus_ratio is None else opts.max_modulus_ratio * web.E_theta
         )
 
+    def radial_modulus(self, sigma_r_total: FloatArray) -> FloatArray:
+        """E_r [Pa] of the elements at total radial stress ``sigma_r_total`` (law {2},
+        floored and capped as the options say)."""
+        return np.clip(self.web.E_r(sigma_r_total), self.E_floor, self.E_cap)
+
     def moduli(self, sigma_r_total: FloatArray) -> tuple[FloatArray, ...]:
-        E_r = np.clip(self.web.E_r(sigma_r_total), self.E_floor, self.E_cap)
-        return plane_strain_moduli(self.web, E_r)
+        return plane_strain_moduli(self.web, self.radial_modulus(sigma_r_total))
 
     def cartesian(self, u: FloatArray, nodes: NDArray[np.int64]) -> FloatArray:
         """Cartesian displacement (n, 2) of ``nodes`` from the polar nodal DOFs ``u``."""
@@ -344,29 +390,61 @@ class _Step:
 
 
 class _Factor:
-    """A factorised stiffness: banded Cholesky (half model) or sparse LU (whole annulus)."""
+    """A factorised stiffness: banded Cholesky (half model) or sparse LU (whole annulus).
 
-    def __init__(self, banded: FloatArray | None = None, lu: spla.SuperLU | None = None) -> None:
+    The banded factor is of K in the reversed DOF order: the contact axis (tangential index
+    0, the first nodes of the mesh's numbering) comes last, so the flexibility of the contact
+    candidates needs the forward substitution over the trailing rows only
+    (:meth:`flexibility`), a few percent of a full multi-column solve.
+    """
+
+    def __init__(self, banded: FloatArray | None = None, lu: Any = None) -> None:
         self._cb = banded
         self._lu = lu
 
     def solve(self, b: FloatArray) -> FloatArray:
         if self._cb is not None:
-            return la.cho_solve_banded((self._cb, True), b, check_finite=False)
+            x = la.cho_solve_banded((self._cb, True), b[::-1], check_finite=False)
+            return x[::-1]
         assert self._lu is not None
         return self._lu.solve(b)
+
+    def flexibility(
+        self, rows: NDArray[np.int64], B: FloatArray
+    ) -> tuple[FloatArray, Callable[[FloatArray], FloatArray]]:
+        """``G = B^T K^-1 B`` for a right-hand side ``B`` (n_free, m) that is zero outside
+        ``rows``, and a function giving ``K^-1 B c`` for coefficients ``c`` (m,)."""
+        if self._cb is None:
+            X = self.solve(B)
+            return B[rows].T @ X[rows], lambda c: X @ c
+        n = self._cb.shape[1]
+        start = n - 1 - int(rows.max())  # first reversed row B touches
+        Br = np.asfortranarray(B[::-1][start:])
+        ab = np.asfortranarray(self._cb[:, start:])
+        Y, info = _dtbtrs(ab, Br, uplo="L", trans="N", diag="N")
+        if info != 0:
+            raise ConvergenceError(f"banded triangular solve failed (LAPACK info {info})")
+        return Y.T @ Y, lambda c: self.solve(B @ c)
+
+
+def _dtbtrs(*args: Any, **kw: Any) -> tuple[FloatArray, int]:
+    from scipy.linalg.lapack import dtbtrs
+
+    return dtbtrs(*args, **kw)
 
 
 def _factorize(roll: _Roll, moduli: tuple[FloatArray, ...]) -> _Factor:
     """Assemble K for per-element ``(C11, C12, C22, G)`` [Pa] and factorise it."""
     asm = roll.assembler
     if not roll.mesh.periodic:
-        ab = asm.banded(asm.values_lower(*moduli), lower_only=True)
+        ab = asm.banded(asm.values_lower(*moduli), lower_only=True, reverse=True)
         try:
             cb = la.cholesky_banded(ab, lower=True, check_finite=False)
         except la.LinAlgError:
             raise ConvergenceError("stiffness matrix is not positive definite") from None
         return _Factor(banded=cb)
+    import scipy.sparse.linalg as spla
+
     try:
         lu = spla.splu(asm.csc(asm.values(*moduli)), permc_spec="MMD_AT_PLUS_A")
     except RuntimeError as exc:
@@ -404,15 +482,18 @@ def _step(
         m = idx.size
         rhs = np.zeros((roll.assembler.n_free, m + 1))
         rows_r, rows_t = fi[2 * nodes], fi[2 * nodes + 1]
+        # a node on the symmetry line has no tangential DOF (free index -1; its normal is
+        # radial there)
+        t_ok = rows_t >= 0
         rhs[rows_r, np.arange(m)] = n_r
-        rhs[rows_t, np.arange(m)] = n_t
+        rhs[rows_t[t_ok], np.arange(m)[t_ok]] = n_t[t_ok]
         rhs[:, m] = release
-        sol = lu.solve(rhs)
-        X, u_release = sol[:, :m], sol[:, m]
-        W = n_r[:, None] * X[rows_r] + n_t[:, None] * X[rows_t]
-        q = g_pred[idx] + n_r * u_release[rows_r] + n_t * u_release[rows_t]
+        # the release forces sit on nodes in contact before, all among the candidates
+        rows = np.unique(np.concatenate([rows_r, rows_t[t_ok], np.flatnonzero(release)]))
+        G, solve_for = lu.flexibility(rows, rhs)
+        W, q = G[:m, :m], g_pred[idx] + G[:m, m]
         lam_c = _solve_lcp(W, q)
-        du_free = u_release + X @ lam_c
+        du_free = solve_for(np.append(lam_c, 1.0))
         du = np.zeros(u.size)
         du[roll.free] = du_free
         gap, _ = _gap(pos + roll.cartesian(du, surf), centre, head_radius)
@@ -460,6 +541,42 @@ def _hypoelastic_increment(
         trial = solve(mod, _factorize(roll, mod))
         mod = roll.moduli(roll.sigma_pre + sigma_r + 0.5 * trial.dsig[:, 0])
     return solve(mod, _factorize(roll, mod))
+
+
+def _predicted_increment(
+    roll: _Roll,
+    sigma_r: FloatArray,
+    predicted: FloatArray | None,
+    tol: float,
+    solve: Callable[[tuple[FloatArray, ...], _Factor], _S],
+) -> tuple[_S, int]:
+    """One load increment at the modulus of a predicted mid-step stress, with error control.
+
+    The increment is solved at E_r of ``sigma_pre + predicted`` (the mid-step radial stress
+    extrapolated from the previous increment; None: the start-of-step stress). Its own
+    mid-step stress ``sigma_r + dsig_r / 2`` gives E_r again; where the two differ by more
+    than ``tol`` (relative, averaged over the elements with their strain-energy increments as
+    weights) the increment is redone at the achieved mid-step stress, at most three times.
+    A converged pass is the implicit midpoint rule; the prediction makes the first pass
+    enough in most steps, so a step costs one factorisation instead of the two of the
+    explicit midpoint scheme (:func:`_hypoelastic_increment`).
+
+    Returns the step and the number of factorisations it took.
+    """
+    target = sigma_r if predicted is None else predicted
+    for n in range(1, 5):
+        mod = roll.moduli(roll.sigma_pre + target)
+        step = solve(mod, _factorize(roll, mod))
+        mid = sigma_r + 0.5 * step.dsig[:, 0]
+        E_mid = roll.radial_modulus(roll.sigma_pre + mid)
+        E_used = roll.radial_modulus(roll.sigma_pre + target)
+        w = np.abs(np.sum(step.dsig * roll.strain_increment(step.du), axis=1)) * roll.area
+        total = float(np.sum(w))
+        err = float(np.sum(w * np.abs(E_used / E_mid - 1.0))) / total if total > 0 else 0.0
+        if err <= tol:
+            return step, n
+        target = mid
+    return step, n
 
 
 def _half_width(
@@ -625,6 +742,7 @@ def indent(
     tol_gap = 1e-3 * delta[1]
     step = None
     lu_frozen = _factorize(roll, frozen) if frozen is not None else None
+    factorisations = int(lu_frozen is not None)
     for k in range(1, n + 1):
         centre = np.array([r_out + head_radius - delta[k], 0.0])
 
@@ -640,8 +758,16 @@ def indent(
 
         if frozen is not None and lu_frozen is not None:
             step = solve(frozen, lu_frozen)  # one factorisation for all increments
+        elif opts.midpoint and opts.predictor:
+            predicted = None
+            if step is not None:
+                ratio = (delta[k] - delta[k - 1]) / (delta[k - 1] - delta[k - 2])
+                predicted = sig[:, 0] + 0.5 * ratio * step.dsig[:, 0]
+            step, n_fact = _predicted_increment(roll, sig[:, 0], predicted, opts.step_tol, solve)
+            factorisations += n_fact
         else:
             step = _hypoelastic_increment(roll, sig[:, 0], opts.midpoint, solve)
+            factorisations += 2 if opts.midpoint else 1
         u += step.du
         sig += step.dsig
         lam = step.lam
@@ -693,4 +819,5 @@ def indent(
         n_dof=int(roll.free.sum()),
         mesh_shape=(mesh.n_r - 1, mesh.n_theta),
         solve_time_s=time.perf_counter() - t0,
+        factorisations=factorisations,
     )

@@ -181,7 +181,8 @@ class Contact3DOptions:
             )
 
 
-@dataclass(frozen=True, eq=False)
+# kw_only: the base class ends in defaulted fields (ContactResult.factorisations)
+@dataclass(frozen=True, eq=False, kw_only=True)
 class Contact3DResult(ContactResult):
     """:class:`ContactResult` of the 3D model, with what only 3D has.
 

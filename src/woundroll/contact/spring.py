@@ -81,10 +81,22 @@ class SpringFit:
 
 
 def _nnls_quadratic(d: NDArray[np.float64], f: NDArray[np.float64]) -> tuple[float, float]:
-    from scipy.optimize import nnls
-
+    """Least squares ``f ~ alpha d^2 + beta d`` with alpha, beta >= 0: the unconstrained
+    fit if both are >= 0, else the better of the two one-term fits (the exact non-negative
+    solution of a two-column problem)."""
     dm = max(float(d.max()), 1e-300)
-    coef, _ = nnls(np.stack([(d / dm) ** 2, d / dm], axis=1), f)
+    A = np.stack([(d / dm) ** 2, d / dm], axis=1)
+    coef = np.linalg.lstsq(A, f, rcond=None)[0]
+    if coef[0] < 0 or coef[1] < 0:
+        best = None
+        for j in (0, 1):
+            c = np.zeros(2)
+            c[j] = max(float(A[:, j] @ f) / float(A[:, j] @ A[:, j]), 0.0)
+            res = float(np.sum((A @ c - f) ** 2))
+            if best is None or res < best[0]:
+                best = (res, c)
+        assert best is not None
+        coef = best[1]
     return float(coef[0] / dm**2), float(coef[1] / dm)
 
 

@@ -43,7 +43,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.optimize import brentq
 
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.instruments.definitions import Instrument, preset_table
@@ -299,6 +298,8 @@ def calibrate_head(
             f"calibrate_head: {target:g} Rho is not reached for head radii {lo:g}..{hi:g} m "
             f"(readings {r_lo + target:.4g}..{r_hi + target:.4g} Rho)"
         )
+    from scipy.optimize import brentq  # here, not at import (start-up time)
+
     log_r = brentq(
         lambda s: reading(math.exp(s)) - target, math.log(lo), math.log(hi), xtol=1e-12, rtol=rtol
     )

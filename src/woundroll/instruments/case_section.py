@@ -63,6 +63,7 @@ _OPTION_KINDS = {
     "semi_contact_width": "length",
     "density": "density",
     "restitution": "dimensionless",
+    "active_mass": "mass",
 }
 _ROLL_SPRING_KINDS = {
     "alpha": "force_per_area",
@@ -112,6 +113,10 @@ class TesterSetup:
     roll_spring: RollSpring | None = None
     roll_mass_from_column: bool = False
     field: str = field(default="tester", compare=False)
+    #: ``[tester] active_mass`` [kg]: replaces the tapered-column mass {14}-{18} (e.g. the
+    #: active mass the dynamic FE roll shows, ``woundroll study dynamic``); an explicit
+    #: ``[tester.roll_spring] effective_mass`` still wins.
+    active_mass: float | None = None
 
     def effective_mass(
         self, pile_height: float | None = None, density: float | None = None
@@ -139,6 +144,8 @@ class TesterSetup:
         """
         if self.roll_spring is not None and not self.roll_mass_from_column:
             return self.roll_spring.effective_mass
+        if self.active_mass is not None:
+            return self.active_mass
         H = self.pile_height if self.pile_height is not None else pile_height
         rho = self.density if self.density is not None else density
         hint = (
@@ -215,6 +222,9 @@ def tester_from_spec(spec: dict[str, Any], field: str = "tester") -> TesterSetup
             if key == "restitution":
                 if not 0.0 < v <= 1.0:
                     raise InputError(f"must lie in (0, 1], got {v:g}", fld)
+            elif key == "active_mass":
+                if not (math.isfinite(v) and v >= 0):
+                    raise InputError(f"must be zero or positive, got {v:g}", fld)
             elif v <= 0:
                 raise InputError(f"must be positive, got {v:g}", fld)
             opts[key] = v
@@ -357,6 +367,13 @@ class HardnessResult:
             "beta_N_per_m": float(self.beta),
             "effective_mass_kg": float(self.effective_mass),
             "restitution": float(self.restitution),
+            "rebound": (
+                "elastic (no unloading law): rebound readings lose energy only to the "
+                "roll's active mass"
+                if self.restitution >= 1.0
+                else f"roll unloading: the roll returns e^2 = {self.restitution**2:.3f} of "
+                "the energy it stored"
+            ),
             "collision": fd.collision,
             "time_step_s": float(fd.time_step),
             "time_s": lst(fd.time),

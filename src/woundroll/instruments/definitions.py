@@ -285,14 +285,7 @@ def _convert(key: str, value: Any, fld: str) -> Any:
             raise InputError(f"must be true or false, got {value!r}", fld)
         return value
     if key == "g":
-        from woundroll.units import parse_quantity, ureg
-
-        q = parse_quantity(value, fld)
-        if q.unitless:
-            return float(q.magnitude)
-        if q.dimensionality != ureg.get_dimensionality("[length] / [time] ** 2"):
-            raise InputError(f"{value!r} is not an acceleration; use e.g. '9.81 m/s^2'", fld)
-        return float(q.to_base_units().magnitude)
+        return to_si(value, "acceleration", fld)
     if key in ("head_length", "natural_frequency", "head_edge_radius") and value is None:
         return None
     return to_si(value, QUANTITY_FIELDS[key], fld)

@@ -55,7 +55,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.optimize import brentq
 
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.instruments.definitions import Instrument
@@ -81,6 +80,123 @@ _NEWTON_MAX_ITER = 60
 # ----------------------------------------------------------------------------------------
 # Energy model
 # ----------------------------------------------------------------------------------------
+#: Elements per chunk of the vectorised energy model: its ~8 work arrays (8192 doubles,
+#: 64 kB each) stay in the L2 cache, where whole-array temporaries of 1e6 go to memory.
+_CHUNK = 8192
+
+
+def _check_spring_coefficients(a: NDArray[np.float64], b: NDArray[np.float64]) -> None:
+    if not (np.isfinite(a.min(initial=0.0)) and np.isfinite(a.max(initial=0.0))) or (
+        a.size and a.min() < 0
+    ):
+        raise InputError(
+            "alpha must be finite and >= 0 (the roll spring stiffens)", "roll_spring.alpha"
+        )
+    if not (np.isfinite(b.min(initial=0.0)) and np.isfinite(b.max(initial=0.0))) or (
+        b.size and b.min() < 0
+    ):
+        raise InputError("beta must be finite and >= 0", "roll_spring.beta")
+
+
+def _depth_chunk(
+    a: NDArray[np.float64],
+    b: NDArray[np.float64],
+    k: float,
+    xi: float,
+    xg: float,
+    rtol: float,
+    out: NDArray[np.float64],
+) -> None:
+    """The root of {21} for one chunk into ``out``, in place. NaN/inf-free input.
+
+    Start: the quadratic-part bound d_q (module docstring) and, for x_gap >= 0, the cubic
+    bound d_c = (-3C / alpha)^(1/3), both exact in their own limit, combined as
+    ``(d_q^-2 + d_c^-2)^(-1/2)`` (within 7 % of the root over alpha = 1e6..1e11,
+    beta = 1e3..1e7: 5 Newton steps to rounding instead of 6 from the smaller bound). Newton
+    from there: f is convex and increasing for d >= 0, so from below the root the first
+    step lands above it and the rest decrease monotonically to it. The convergence test
+    starts at the third step (none can pass it earlier from a 7 % start)."""
+    m = a.size
+    A = np.multiply(0.5, b)
+    A += 0.5 * k
+    B = k * xg
+    C = 0.5 * k * (xg * xg - xi * xi)
+    # d = -2C / (B + sqrt(B^2 - 4AC))
+    d = out
+    np.multiply(A, -4.0 * C, out=d)
+    d += B * B
+    np.sqrt(d, out=d)
+    d += B
+    np.divide(-2.0 * C, d, out=d)
+    f = np.empty(m)
+    fp = np.empty(m)
+    if xg >= 0.0:  # alpha d^3/3 + C <= f: a second upper bound, sharp for large alpha
+        # 1/d^2 = 1/d_q^2 + 1/d_c^2 with 1/d_c^2 = (alpha / (-3C))^(2/3)
+        np.multiply(a, -1.0 / (3.0 * C), out=f)
+        np.cbrt(f, out=f)
+        f *= f
+        np.multiply(d, d, out=fp)
+        np.reciprocal(fp, out=fp)
+        f += fp
+        np.sqrt(f, out=f)
+        np.reciprocal(f, out=d)
+    a3 = a / 3.0
+    A2 = np.multiply(2.0, A)
+    for it in range(_NEWTON_MAX_ITER):
+        # f = ((a/3 d + A) d + B) d + C, f' = (a d + 2A) d + B
+        np.multiply(a3, d, out=f)
+        f += A
+        f *= d
+        f += B
+        f *= d
+        f += C
+        np.multiply(a, d, out=fp)
+        fp += A2
+        fp *= d
+        fp += B
+        f /= fp
+        d -= f
+        if it < 2:
+            continue
+        np.abs(f, out=f)
+        np.multiply(d, rtol, out=fp)
+        fp += 1e-300
+        if np.all(f <= fp):
+            return
+    raise ConvergenceError(
+        f"energy model: Newton did not converge in {_NEWTON_MAX_ITER} iterations "
+        f"(largest relative step {np.max(f / d):.2e})"
+    )
+
+
+def _chunked(
+    alpha: ArrayLike,
+    beta: ArrayLike,
+    k: float,
+    xi: float,
+    xg: float,
+    rtol: float,
+    rho_scale: float | None,
+) -> NDArray[np.float64]:
+    a = np.asarray(alpha, dtype=float)
+    b = np.asarray(beta, dtype=float)
+    _check_spring_coefficients(a, b)
+    a, b = np.broadcast_arrays(a, b)
+    shape = a.shape
+    a, b = a.ravel(), b.ravel()
+    out = np.empty(a.size)
+    for i in range(0, a.size, _CHUNK):
+        j = min(i + _CHUNK, a.size)
+        d = out[i:j]
+        _depth_chunk(a[i:j], b[i:j], k, xi, xg, rtol, d)
+        if rho_scale is not None:  # F(d) / (3.76 g m_s) {22}, in place over d
+            f = a[i:j] * d
+            f += b[i:j]
+            f *= d
+            np.multiply(f, rho_scale, out=d)
+    return out.reshape(shape)
+
+
 def energy_max_depth(
     alpha: ArrayLike,
     beta: ArrayLike,
@@ -91,6 +207,9 @@ def energy_max_depth(
     rtol: float = 4e-16,
 ) -> NDArray[np.float64]:
     """Maximum depth d_max [m] of the energy model, the positive root of {21}; vectorised.
+
+    Evaluated in chunks of :data:`_CHUNK` elements with in-place work arrays (cache-sized:
+    benchmarks/bench_impact.py measures it against the whole-array form).
 
     Parameters
     ----------
@@ -110,22 +229,53 @@ def energy_max_depth(
     ConvergenceError
         Newton did not reach ``rtol`` in 60 iterations (never seen for finite inputs).
     """
+    k, xi, xg = float(spring_stiffness), float(release_position), float(contact_position)
+    return _chunked(alpha, beta, k, xi, xg, rtol, None)
+
+
+def rho_energy(alpha: ArrayLike, beta: ArrayLike, instrument: Instrument) -> NDArray[np.float64]:
+    """Energy-model reading ``Rho_max = F(d_max)/(3.76 g m_s)`` {22}, vectorised over (alpha, beta).
+
+    Parameters
+    ----------
+    alpha, beta : float or array [N/m^2], [N/m]
+        Roll-spring coefficients {3}.
+    instrument : Instrument
+        The striker (k_s, m_s, x_in, x_gap, Rho unit).
+    """
+    return _chunked(
+        alpha,
+        beta,
+        instrument.spring_stiffness,
+        instrument.release_position,
+        instrument.contact_position,
+        4e-16,
+        1.0 / (instrument.rho_unit * instrument.mass),
+    )
+
+
+def _energy_max_depth_whole_array(
+    alpha: ArrayLike,
+    beta: ArrayLike,
+    spring_stiffness: float,
+    release_position: float,
+    contact_position: float,
+    *,
+    rtol: float = 4e-16,
+) -> NDArray[np.float64]:
+    """The straightforward whole-array form of :func:`energy_max_depth` (same iteration on
+    the full arrays with fresh temporaries): kept as the benchmark's and the tests'
+    reference."""
     a = np.asarray(alpha, dtype=float)
     b = np.asarray(beta, dtype=float)
-    if not np.all(np.isfinite(a)) or np.any(a < 0):
-        raise InputError(
-            "alpha must be finite and >= 0 (the roll spring stiffens)", "roll_spring.alpha"
-        )
-    if not np.all(np.isfinite(b)) or np.any(b < 0):
-        raise InputError("beta must be finite and >= 0", "roll_spring.beta")
+    _check_spring_coefficients(a, b)
     k, xi, xg = float(spring_stiffness), float(release_position), float(contact_position)
     a, b = np.broadcast_arrays(a, b)
-    # quadratic part: A d^2 + B d + C (C < 0): its positive root bounds the cubic's from above
     A = 0.5 * (b + k)
     B = k * xg
     C = 0.5 * k * (xg * xg - xi * xi)
     d = (-2.0 * C) / (B + np.sqrt(B * B - 4.0 * A * C))
-    if xg >= 0.0:  # alpha d^3/3 + C <= f as well: a second upper bound, sharp for large alpha
+    if xg >= 0.0:
         with np.errstate(divide="ignore"):
             d_cub = np.where(a > 0, np.cbrt(-3.0 * C / np.where(a > 0, a, 1.0)), np.inf)
         d = np.minimum(d, d_cub)
@@ -141,28 +291,6 @@ def energy_max_depth(
         f"energy model: Newton did not converge in {_NEWTON_MAX_ITER} iterations "
         f"(largest relative step {np.max(np.abs(step) / d):.2e})"
     )
-
-
-def rho_energy(alpha: ArrayLike, beta: ArrayLike, instrument: Instrument) -> NDArray[np.float64]:
-    """Energy-model reading ``Rho_max = F(d_max)/(3.76 g m_s)`` {22}, vectorised over (alpha, beta).
-
-    Parameters
-    ----------
-    alpha, beta : float or array [N/m^2], [N/m]
-        Roll-spring coefficients {3}.
-    instrument : Instrument
-        The striker (k_s, m_s, x_in, x_gap, Rho unit).
-    """
-    d = energy_max_depth(
-        alpha,
-        beta,
-        instrument.spring_stiffness,
-        instrument.release_position,
-        instrument.contact_position,
-    )
-    a = np.asarray(alpha, dtype=float)
-    b = np.asarray(beta, dtype=float)
-    return (a * d + b) * d / (instrument.rho_unit * instrument.mass)
 
 
 @dataclass(frozen=True)
@@ -218,7 +346,15 @@ def _energy_depth_law(instrument: Instrument, law: Any) -> float:
     hi = max(xi - xg, 1e-9)
     if g(hi) < 0:  # only if the roll pushes back with negative energy: a bad law
         raise InputError("the roll spring stores negative energy", "roll_spring")
-    return brentq(g, 0.0, hi, xtol=1e-15, rtol=1e-13)
+    # g < 0 at 0 and >= 0 at hi: bisection to 1e-13 of the root (no scipy.optimize at import)
+    lo = 0.0
+    while hi - lo > max(1e-15, 1e-13 * hi):
+        mid = 0.5 * (lo + hi)
+        if g(mid) < 0:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
 
 
 def impact_energy(instrument: Instrument, roll: object) -> EnergyResult:
@@ -300,6 +436,40 @@ class ImpactResult:
     velocity: NDArray[np.float64] = field(repr=False)
     deceleration: NDArray[np.float64] = field(repr=False)
     contact_force: NDArray[np.float64] = field(repr=False)
+
+
+#: Most points kept of an FD history (time, position, velocity, force); a longer contact is
+#: decimated by 2 as it goes (:class:`_History`), so memory stays bounded whatever the
+#: time step. The default resolution (2000 steps per contact) is kept whole.
+_HISTORY_POINTS = 4096
+
+
+class _History:
+    """Every ``stride``-th step of the FD contact; when ``capacity`` points are held, every
+    second one is dropped and the stride doubles (bounded memory, streamed). The scalars
+    of the impact (peaks, impulse, end point) are computed on every step, not from this."""
+
+    def __init__(self, capacity: int) -> None:
+        self.capacity = max(int(capacity), 4)
+        self.stride = 1
+        self.n = 0
+        self.buf = np.empty((4, self.capacity))
+
+    def add(self, step: int, x: float, v: float, f: float) -> None:
+        if step % self.stride:
+            return
+        if self.n == self.capacity:
+            kept = self.buf[:, 0 : self.n : 2]  # the steps that are multiples of 2 stride
+            self.n = kept.shape[1]
+            self.buf[:, : self.n] = kept
+            self.stride *= 2
+            if step % self.stride:
+                return
+        self.buf[:, self.n] = (step, x, v, f)
+        self.n += 1
+
+    def arrays(self) -> tuple[NDArray[np.float64], ...]:
+        return tuple(self.buf[j, : self.n].copy() for j in range(4))
 
 
 def impact_fd(
@@ -384,12 +554,14 @@ def impact_fd(
     x_start = xg - dt * v0 + 0.5 * dt * dt * (-k * xg / M)
     x_prev = x_start
     x = xg
-    xs = [x]
-    Fr_list = [0.0]
+    hist = _History(_HISTORY_POINTS)
     loading = True
     d_max = math.nan
     x_max = math.nan
-    end = None
+    impulse = 0.0  # trapezoid over the full steps so far
+    f_max = 0.0
+    a_max = -math.inf
+    f_last = x_last = v_last = 0.0
     i = 0
     while True:
         d = x - xg
@@ -397,8 +569,6 @@ def impact_fd(
             Fr = Fs(d)
         else:
             Fr = Fs(d_max + (d - d_max) * inv_e2)
-        if i > 0:
-            Fr_list.append(Fr)
         x_next = 2.0 * x - x_prev - dt2M * (k * x + Fr)  # {9} ({8} when m_r = 0)
         if loading and x_next < x:
             # turning point: vertex of the parabola through x_prev, x, x_next
@@ -406,14 +576,19 @@ def impact_fd(
             x_max = x - (x_next - x_prev) ** 2 / (8.0 * curv) if curv < 0 else x
             d_max = x_max - xg
             loading = False
-        if not loading:
-            f_now = (m_s * Fr - m_r * k * x) / M
-            if f_now < 0.0 and i > 0:
-                end = i
-                x_after = x_next
-                break
+        f_now = (m_s * (Fr if i > 0 else 0.0) - m_r * k * x) / M
+        v_now = (x_next - x_prev) / (2.0 * dt)  # central difference (the first: start value)
+        if not loading and f_now < 0.0 and i > 0:
+            # end of contact: f crosses zero between this step and the one before
+            s = f_last / (f_last - f_now) if f_last != f_now else 0.0
+            break
+        if i > 0:
+            impulse += 0.5 * (f_now + f_last) * dt
+        f_max = max(f_max, f_now)
+        a_max = max(a_max, (k * x + f_now) / m_s)
+        hist.add(i, x, v_now, f_now)
+        f_last, x_last, v_last = f_now, x, v_now
         x_prev, x = x, x_next
-        xs.append(x)
         i += 1
         if i > max_steps:
             raise ConvergenceError(
@@ -421,36 +596,26 @@ def impact_fd(
                 f"({max_steps * dt:.3g} s); the roll spring may not push the striker back"
             )
 
-    x_arr = np.asarray(xs[: end + 1])
-    F_arr = np.asarray(Fr_list[: end + 1])
-    n = x_arr.size
-    t_arr = t_c + dt * np.arange(n)
-    f_arr = (m_s * F_arr - m_r * k * x_arr) / M
-    # velocity: central differences (the first from the start condition)
-    x_ext = np.concatenate([[x_start], x_arr, [x_after]])
-    v_arr = (x_ext[2:] - x_ext[:-2]) / (2.0 * dt)
-    # end of contact: f crosses zero between steps end-1 and end
-    f1, f2 = f_arr[-2], f_arr[-1]
-    s = f1 / (f1 - f2) if f1 != f2 else 0.0
-    t_end = t_arr[-2] + s * dt
-    x_sep = x_arr[-2] + s * (x_arr[-1] - x_arr[-2])
-    v_sep = v_arr[-2] + s * (v_arr[-1] - v_arr[-2])
-    # histories: the contact steps, the last one replaced by the exact end point
-    t_h = np.concatenate([t_arr[:-1], [t_end]])
-    x_h = np.concatenate([x_arr[:-1], [x_sep]])
-    v_h = np.concatenate([v_arr[:-1], [v_sep]])
-    f_h = np.concatenate([f_arr[:-1], [0.0]])
+    # the exact end point, interpolated between the last two steps
+    t_end = t_c + dt * (i - 1 + s)
+    x_sep = x_last + s * (x - x_last)
+    v_sep = v_last + s * (v_now - v_last)
+    impulse += 0.5 * f_last * s * dt
+    step_h, x_h, v_h, f_h = hist.arrays()
+    t_h = np.concatenate([t_c + dt * step_h, [t_end]])
+    x_h = np.concatenate([x_h, [x_sep]])
+    v_h = np.concatenate([v_h, [v_sep]])
+    f_h = np.concatenate([f_h, [0.0]])
     a_h = (k * x_h + f_h) / m_s
-    # impulse: trapezoid over full steps plus the partial last one
-    impulse = float(np.sum(0.5 * (f_arr[1:-1] + f_arr[:-2])) * dt + 0.5 * f1 * s * dt)
+    a_max = max(a_max, k * x_sep / m_s)
 
     # peaks at the refined maximum depth (both are functions of the depth while loading)
     if not math.isfinite(d_max):
         raise ConvergenceError("impact_fd: no turning point found")
     F_peak = float(law.force(d_max))
     a_peak = (k * x_max + F_peak) / M
-    f_peak = max((m_s * F_peak - m_r * k * x_max) / M, float(np.max(f_h)))
-    a_peak = max(a_peak, float(np.max(a_h)))
+    f_peak = max((m_s * F_peak - m_r * k * x_max) / M, f_max)
+    a_peak = max(a_peak, a_max)
 
     # rebound: striker alone on its spring after separation (exact)
     back = math.sqrt(x_sep * x_sep + (m_s / k) * v_sep * v_sep)

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -55,6 +56,9 @@ class Web:
         Transverse shear moduli; None means ``2 E_r`` at the current pressure (Table 2).
     G_theta_z : float or None [Pa]
         In-plane shear modulus; None means ``E_theta / (2 (1 + nu_theta_z))``.
+    radial_unloading : PfeifferUnloading or None
+        Unloading branch of the radial response (:mod:`woundroll.materials.unloading`);
+        None: unloading follows E_r (elastic, as in the paper).
     """
 
     thickness: float
@@ -69,6 +73,7 @@ class Web:
     G_r_theta: float | None = None
     G_r_z: float | None = None
     G_theta_z: float | None = None
+    radial_unloading: Any = None
 
     def __post_init__(self) -> None:
         if self.E_z is None:

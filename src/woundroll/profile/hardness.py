@@ -27,9 +27,12 @@ distribution recomputed for every winding increment from the current outer-radiu
 from __future__ import annotations
 
 import concurrent.futures as cf
+import contextlib
+import math
+import os
 import pickle
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -371,47 +374,78 @@ def _picklable(obj: Any) -> bool:
 
 
 def map_sectors(
-    fn: ContactFn,
+    fn: ContactFn | Sequence[ContactFn],
     profiles: Sequence[tuple[FloatArray, FloatArray]],
     *,
     workers: int = 2,
     progress: Callable[[int, int], None] | None = None,
 ) -> tuple[FloatArray, FloatArray]:
-    """Evaluate ``fn(radius, sigma_r)`` for every sector, in parallel.
+    """Evaluate ``fn(radius, sigma_r)`` for every sector, in parallel (``fn`` one callable,
+    or one per sector).
 
     Processes (``spawn``) when ``fn`` can be pickled and ``workers > 1``, threads when it
     cannot, in-line when ``workers == 1``. Returns ``(alpha, beta)`` arrays in sector order.
     """
     n = len(profiles)
+    fns = list(fn) if isinstance(fn, Sequence) else [fn] * n
+    if len(fns) != n:
+        raise InputError(f"{len(fns)} contact callables for {n} sectors", "tester.contact")
     out = np.empty((n, 2))
     done = 0
     if workers <= 1 or n <= 1:
         for j, (r, s) in enumerate(profiles):
-            out[j] = _call(fn, r, s)
+            out[j] = _call(fns[j], r, s)
             done += 1
             if progress is not None:
                 progress(done, n)
         return out[:, 0], out[:, 1]
-    if _picklable(fn):
-        from woundroll._pool import process_pool
-
+    if _picklable(fns):
         try:
-            return _run_pool(
-                fn,
-                profiles,
-                out,
-                progress,
-                process_pool(workers),  # woundroll._pool: stops cleanly on SIGINT/SIGTERM
-            )
+            return _run_pool(fns, profiles, out, progress, sector_pool(workers))
         except (ImportError, AttributeError, pickle.PicklingError, BrokenProcessPool):
             # the callable pickles here but cannot be rebuilt in a fresh process (defined in
             # a script or a test module): fall back to threads
             pass
-    return _run_pool(fn, profiles, out, progress, cf.ThreadPoolExecutor(max_workers=workers))
+    return _run_pool(fns, profiles, out, progress, cf.ThreadPoolExecutor(max_workers=workers))
+
+
+#: Environment of the sector workers: one BLAS thread each. The workers already fill the
+#: cores; threaded BLAS on top of them oversubscribes the machine (single contact solves
+#: measured up to tenfold slower under load, docs/profile.md, section 7).
+WORKER_ENV = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+
+
+def sector_pool(workers: int) -> cf.ProcessPoolExecutor:
+    """The process pool of the per-sector solves (``spawn``: no inherited state; from
+    :func:`woundroll._pool.process_pool`, so SIGINT/SIGTERM stop it cleanly). The one place
+    where sector workers are created; they read :data:`WORKER_ENV` when they start
+    (:func:`_run_pool` sets it while they do)."""
+    from woundroll._pool import process_pool
+
+    return process_pool(workers)
+
+
+@contextlib.contextmanager
+def _worker_env(ex: cf.Executor) -> Iterator[None]:
+    """:data:`WORKER_ENV` in the environment while the pool's workers start (spawned
+    children inherit it; this process's BLAS is already loaded and keeps its threads)."""
+    if not isinstance(ex, cf.ProcessPoolExecutor):
+        yield
+        return
+    saved = {k: os.environ.get(k) for k in WORKER_ENV}
+    os.environ.update(WORKER_ENV)
+    try:
+        yield
+    finally:
+        for k, v in saved.items():
+            if v is None:
+                os.environ.pop(k, None)
+            else:
+                os.environ[k] = v
 
 
 def _run_pool(
-    fn: ContactFn,
+    fns: Sequence[ContactFn],
     profiles: Sequence[tuple[FloatArray, FloatArray]],
     out: FloatArray,
     progress: Callable[[int, int], None] | None,
@@ -420,7 +454,8 @@ def _run_pool(
     n = len(profiles)
     done = 0
     with ex:
-        futs = {ex.submit(_call, fn, r, s): j for j, (r, s) in enumerate(profiles)}
+        with _worker_env(ex):
+            futs = {ex.submit(_call, fns[j], r, s): j for j, (r, s) in enumerate(profiles)}
         for fut in cf.as_completed(futs):
             out[futs[fut]] = fut.result()
             done += 1
@@ -490,6 +525,91 @@ def predict_profile(
     workers = _check_workers(workers)
     t0 = time.perf_counter()
     timings: dict[str, float] = {}
+    readout, contact = _readout_and_contact(web, core, contact, instrument, depth_max)
+
+    def stage(name: str) -> Callable[[int, int], None] | None:
+        if progress is None:
+            return None
+        return lambda d, n: progress(name, d, n)
+
+    hook, f_depth = None, None
+    if nip is not None:
+        hook, f_depth, tension = _nip_on_the_roll(
+            web,
+            core,
+            tension,
+            thickness_profile,
+            outer_radius,
+            nip,
+            n_sectors=n_sectors,
+            n_groups=n_groups,
+            workers=workers,
+            progress=stage("foundation"),
+        )
+        timings["nip_foundation"] = time.perf_counter() - t0
+    # 1. stresses in the roll, (r, z)
+    t1 = time.perf_counter()
+    w = wind_axisymmetric(
+        web,
+        core,
+        outer_radius,
+        tension,
+        thickness_profile,
+        n_sectors=n_sectors,
+        n_groups=n_groups,
+        nip=hook,
+        progress=stage("winding"),
+    )
+    timings["winding"] = time.perf_counter() - t1
+    # 2. the roll spring under the striker, sector by sector
+    t2 = time.perf_counter()
+    profiles = [w.sector_profile(j) for j in range(w.z.size)]
+    alpha, beta = map_sectors(
+        sector_contacts(contact, w.slack), profiles, workers=workers, progress=stage("contact")
+    )
+    timings["contact"] = time.perf_counter() - t2
+    # 3. the reading
+    rho = np.asarray(readout(alpha, beta), dtype=float).reshape(-1)
+    if rho.shape != alpha.shape or not np.all(np.isfinite(rho)):
+        raise InputError(
+            "the readout must return one finite reading per sector", "tester.instrument"
+        )
+    timings["total"] = time.perf_counter() - t0
+    return ProfileResult(
+        z=w.z,
+        thickness=w.thickness,
+        rho=rho,
+        alpha=alpha,
+        beta=beta,
+        wot=w.wot_mean,
+        sigma_r_outer=w.sigma_r_outer.copy(),
+        sigma_r_core=w.sigma_r_core.copy(),
+        nip_load=w.nip_load[-1].copy() if nip is not None else None,
+        winding=w,
+        rho_stats=profile_stats(rho, "profile.rho"),
+        thickness_stats=profile_stats(w.thickness, "profile.thickness"),
+        timings=timings,
+        nip_foundation_depth=f_depth,
+    )
+
+
+def sector_contacts(contact: ContactFn, slack: NDArray[np.bool_]) -> list[ContactFn]:
+    """The contact callable of each sector. A slack sector (its outer layers wound without
+    tension or at the E_r floor, :attr:`AxisymmetricResult.slack`) lets the striker sink to
+    the contact model's reach: the default :class:`ContactModel` starts it there instead of
+    at ``depth_max`` and deepening (up to three redundant solutions)."""
+    if not (isinstance(contact, ContactModel) and contact.instrument is not None):
+        return [contact] * len(slack)
+    deep = replace(contact, depth_max=math.inf)  # roll_stiffness starts at min(., reach)
+    return [deep if s else contact for s in slack]
+
+
+def _readout_and_contact(
+    web: Web, core: Core, contact: Any, instrument: Any, depth_max: float
+) -> tuple[ReadoutFn, ContactFn]:
+    """The reading from (alpha, beta) (an Instrument's energy model, default the Rho-meter,
+    or a callable) and the per-sector contact callable (default :class:`ContactModel` with
+    the instrument's head)."""
     readout: ReadoutFn
     inst = None
     if instrument is None:
@@ -518,113 +638,68 @@ def predict_profile(
         )
     elif not callable(contact):
         raise InputError("must be a callable (radius, sigma_r) -> (alpha, beta)", "tester.contact")
+    return readout, contact
 
-    def wind_progress(stage: str) -> Callable[[int, int], None] | None:
-        if progress is None:
-            return None
-        return lambda d, n: progress(stage, d, n)
 
-    hook = None
-    f_depth = None
-    if nip is not None and not isinstance(nip, NipSpec):
+def _nip_on_the_roll(
+    web: Web,
+    core: Core,
+    tension: TensionSchedule,
+    thickness_profile: ThicknessProfile | None,
+    outer_radius: float,
+    nip: Any,
+    *,
+    n_sectors: int,
+    n_groups: int | None,
+    workers: int,
+    progress: Callable[[int, int], None] | None,
+) -> tuple[Any, float | None, TensionSchedule]:
+    """The nip roller riding on the roll: a preliminary roll wound with the uniform
+    nip-induced tension, the roll's foundation law for the roller at every
+    ``foundation_stride``-th sector (fit depth following the nip's reach), and the hook that
+    gives :func:`wind_axisymmetric` the CMD nip load of every increment. Returns the hook,
+    the foundation's fit depth and the tension schedule without the uniform nip load."""
+    if not isinstance(nip, NipSpec):
         raise InputError("must be a NipSpec (roller, foundation) or None", "winding.nip")
-    if nip is not None:
-        if tension.nip_load > 0:
-            raise InputError(
-                "set the nip load in the NipSpec's roller, not in the tension "
-                "schedule, when a nip distribution is computed",
-                "winding.nip_load",
-            )
-        roller = nip.roller
-        # preliminary roll: uniform nip-induced tension mu N / h
-        pre_tension = TensionSchedule(
-            web_stress=tension.web_stress,
-            taper=tension.taper,
-            nip_load=roller.line_load,
-            friction=roller.friction,
+    if tension.nip_load > 0:
+        raise InputError(
+            "set the nip load in the NipSpec's roller, not in the tension "
+            "schedule, when a nip distribution is computed",
+            "winding.nip_load",
         )
-        pre = wind_axisymmetric(
-            web,
-            core,
-            outer_radius,
-            pre_tension,
-            thickness_profile,
-            n_sectors=n_sectors,
-            n_groups=n_groups,
-        )
-        ns = pre.z.size
-        picks = sorted(set(range(0, ns, nip.foundation_stride)) | {ns - 1})
-        edges = np.concatenate(
-            [[pre.z[0] - 0.5 * pre.dz[0]], pre.z[0] - 0.5 * pre.dz[0] + np.cumsum(pre.dz)]
-        )
-        gap = float(np.max(pre.outer_radius)) - pre.outer_radius
-        f_depth = nip.foundation_depth
-        for attempt in range(3):
-            found = nip.foundation or ContactModel(web, core, roller.radius, 1.0, f_depth)
-            fa, fb = map_sectors(
-                found,
-                [pre.sector_profile(j) for j in picks],
-                workers=workers,
-                progress=wind_progress("foundation"),
-            )
-            alpha_n = np.interp(pre.z, pre.z[picks], fa)
-            beta_n = np.interp(pre.z, pre.z[picks], fb)
-            if nip.foundation is not None:
-                f_depth = None  # the caller's foundation: no depth range of ours
-                break
-            reach = float(np.max(solve_nip(edges, alpha_n, beta_n, roller, gap=gap).indentation))
-            if reach <= 0 or 0.25 * f_depth <= reach <= f_depth or attempt == 2:
-                break  # f_depth stays the depth the laws were fitted over
-            f_depth = 1.25 * reach
-        hook = nip_hook(edges, alpha_n, beta_n, roller)
-
-        tension = TensionSchedule(
-            web_stress=tension.web_stress,
-            taper=tension.taper,
-            nip_load=0.0,
-            friction=roller.friction,
-        )
-        timings["nip_foundation"] = time.perf_counter() - t0
-    t1 = time.perf_counter()
-    w = wind_axisymmetric(
+    roller = nip.roller
+    pre = wind_axisymmetric(
         web,
         core,
         outer_radius,
-        tension,
+        replace(tension, nip_load=roller.line_load, friction=roller.friction),
         thickness_profile,
         n_sectors=n_sectors,
         n_groups=n_groups,
-        nip=hook,
-        progress=wind_progress("winding"),
     )
-    timings["winding"] = time.perf_counter() - t1
-    t2 = time.perf_counter()
-    profiles = [w.sector_profile(j) for j in range(w.z.size)]
-    alpha, beta = map_sectors(contact, profiles, workers=workers, progress=wind_progress("contact"))
-    timings["contact"] = time.perf_counter() - t2
-    rho = np.asarray(readout(alpha, beta), dtype=float).reshape(-1)
-    if rho.shape != alpha.shape or not np.all(np.isfinite(rho)):
-        raise InputError(
-            "the readout must return one finite reading per sector", "tester.instrument"
+    ns = pre.z.size
+    picks = sorted(set(range(0, ns, nip.foundation_stride)) | {ns - 1})
+    edges = np.concatenate(
+        [[pre.z[0] - 0.5 * pre.dz[0]], pre.z[0] - 0.5 * pre.dz[0] + np.cumsum(pre.dz)]
+    )
+    gap = float(np.max(pre.outer_radius)) - pre.outer_radius
+    f_depth: float | None = nip.foundation_depth
+    for attempt in range(3):
+        found = nip.foundation or ContactModel(web, core, roller.radius, 1.0, f_depth)
+        fa, fb = map_sectors(
+            found, [pre.sector_profile(j) for j in picks], workers=workers, progress=progress
         )
-    timings["total"] = time.perf_counter() - t0
-    nip_load = w.nip_load[-1].copy() if nip is not None else None
-    return ProfileResult(
-        z=w.z,
-        thickness=w.thickness,
-        rho=rho,
-        alpha=alpha,
-        beta=beta,
-        wot=w.wot_mean,
-        sigma_r_outer=w.sigma_r_outer.copy(),
-        sigma_r_core=w.sigma_r_core.copy(),
-        nip_load=nip_load,
-        winding=w,
-        rho_stats=profile_stats(rho, "profile.rho"),
-        thickness_stats=profile_stats(w.thickness, "profile.thickness"),
-        timings=timings,
-        nip_foundation_depth=f_depth,
-    )
+        alpha_n = np.interp(pre.z, pre.z[picks], fa)
+        beta_n = np.interp(pre.z, pre.z[picks], fb)
+        if nip.foundation is not None:
+            f_depth = None  # the caller's foundation: no depth range of ours
+            break
+        reach = float(np.max(solve_nip(edges, alpha_n, beta_n, roller, gap=gap).indentation))
+        if reach <= 0 or 0.25 * f_depth <= reach <= f_depth or attempt == 2:
+            break  # f_depth stays the depth the laws were fitted over
+        f_depth = 1.25 * reach
+    hook = nip_hook(edges, alpha_n, beta_n, roller)
+    return hook, f_depth, replace(tension, nip_load=0.0, friction=roller.friction)
 
 
 __all__ = [

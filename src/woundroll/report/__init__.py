@@ -25,6 +25,7 @@ import hashlib
 import io
 import json
 import math
+import sys
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
@@ -40,6 +41,7 @@ __all__ = [
     "Row",
     "build_report",
     "case_hash",
+    "defects_section",
     "diagnosis_section",
     "input_sections",
     "readings_section",
@@ -285,6 +287,9 @@ def case_hash(case: Case) -> str:
 def _png(fig: Any, dpi: int = 110) -> str:
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=dpi)
+    plt = sys.modules.get("matplotlib.pyplot")
+    if plt is not None:  # figures made with pyplot are registered there: release them
+        plt.close(fig)
     return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
 
 
@@ -344,12 +349,45 @@ def _short(v: Any) -> str:
 
 
 def diagnosis_section(diagnosis: Any) -> dict[str, Any]:
-    """The diagnosis as text: its ``summary`` (if any), defect-risk flags, and every scalar.
-
-    Defect-risk flags are read from a ``defect_risks``/``risks`` list in ``to_dict()``: each
-    item a dict with ``name``/``defect``, ``level``/``risk`` and ``reason``/``message``, or a
-    string.
+    """The diagnosis: with a :class:`woundroll.diagnosis.Diagnosis` its table per position
+    (reading, wound-on tension, near-surface pressure with their intervals, status), the
+    check run, notes and figures; for any other object with ``to_dict()``: its ``summary``,
+    defect-risk flags (a ``defect_risks``/``risks`` list of dicts with ``name``/``defect``,
+    ``level``/``risk``, ``reason``/``message``, or strings) and every scalar.
     """
+    if hasattr(diagnosis, "summary") and hasattr(diagnosis, "curve"):
+        d = diagnosis
+        header = (
+            "position [in]",
+            f"reading [{d.curve.scale}]",
+            "wound-on tension [MPa]",
+            f"P at {d.pressure_depth * 1e3:.1f} mm [kPa]",
+            "status",
+        )
+        text = (
+            f"Each position's mean reading inverted through the forward chain; "
+            f"{100 * d.confidence:.0f} % intervals in brackets."
+        )
+        v = d.verification
+        if v:
+            text += (
+                f" Check: a full forward run at {v['web_tension_Pa'] / 1e6:.3g} MPa reads "
+                f"{v['full_forward_reading']:.2f} (target {v['target_reading']:.2f})."
+            )
+        return {
+            "summary": text,
+            "risks": [],
+            "header": header,
+            "table": [tuple(r) for r in d.summary()],
+            "rows": [("note", n) for n in d.notes],
+            "figures": _figures(
+                d,
+                [
+                    "Readings on the forward curve (full forward runs).",
+                    "Diagnosed wound-on tension and near-surface pressure across the CMD.",
+                ],
+            ),
+        }
     d = diagnosis.to_dict() if hasattr(diagnosis, "to_dict") else dict(diagnosis)
     risks = []
     for item in d.get("defect_risks", d.get("risks", [])) or []:
@@ -373,7 +411,22 @@ def diagnosis_section(diagnosis: Any) -> dict[str, Any]:
     return {
         "summary": d.get("summary", ""),
         "risks": risks,
+        "header": (),
+        "table": [],
         "rows": _flatten(rest),
+        "figures": figs,
+    }
+
+
+def defects_section(defects: Any) -> dict[str, Any]:
+    """Defect-risk flags of a :class:`woundroll.defects.DefectReport`: the overall risk, one
+    row per criterion (criterion, risk, finding) and the margins figure."""
+    figs = []
+    if hasattr(defects, "plot"):
+        figs = _figures(defects, ["Margins (capacity / demand) of the defect criteria."])
+    return {
+        "risk": defects.risk,
+        "rows": [{"name": n, "level": r, "reason": f} for n, r, f in defects.summary()],
         "figures": figs,
     }
 
@@ -406,7 +459,7 @@ def _assumptions(result: RunResult) -> list[str]:
 
 
 def _warnings(result: RunResult) -> list[str]:
-    w = list(result.notes)
+    w = list(dict.fromkeys([*getattr(result, "warnings", ()), *result.notes]))
     setup = result.case.tester_setup
     if setup is not None and not setup.instrument.calibrated:
         w.append(
@@ -426,9 +479,15 @@ def build_report(
     *,
     readings: Any = None,
     diagnosis: Any = None,
+    defects: Any = None,
     generated: datetime | None = None,
 ) -> str:
-    """The report as one HTML string (no external resources)."""
+    """The report as one HTML string (no external resources).
+
+    ``readings``: :class:`woundroll.readings.Readings` (or any object with its ``to_dict()``);
+    ``diagnosis``: :class:`woundroll.diagnosis.Diagnosis` (or a dict-like, rendered
+    generically); ``defects``: :class:`woundroll.defects.DefectReport`.
+    """
     import jinja2
 
     from woundroll import __version__
@@ -477,6 +536,7 @@ def build_report(
         figures=figures,
         readings=None if readings is None else readings_section(readings),
         diagnosis=None if diagnosis is None else diagnosis_section(diagnosis),
+        defects=None if defects is None else defects_section(defects),
         warnings=_warnings(result),
         assumptions=_assumptions(result),
     )
@@ -488,6 +548,7 @@ def write_report(
     *,
     readings: Any = None,
     diagnosis: Any = None,
+    defects: Any = None,
 ) -> Path:
     """Write ``out_dir/report.html`` and return its path.
 
@@ -496,7 +557,7 @@ def write_report(
     InputError
         ``out_dir`` cannot be created or written (field ``--out``).
     """
-    html = build_report(result, readings=readings, diagnosis=diagnosis)
+    html = build_report(result, readings=readings, diagnosis=diagnosis, defects=defects)
     out = Path(out_dir)
     path = out / "report.html"
     try:

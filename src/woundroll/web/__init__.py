@@ -126,19 +126,21 @@ def case_from_text(text: str, overrides: dict[str, str] | None = None) -> Any:
     return case_from_dict(data, _cases_dir())
 
 
-def readings_from_text(text: str, case: Any) -> Any:
-    """Pasted or uploaded readings (CSV text) as a
-    :class:`~woundroll.profile.compare.MeasuredProfile` (position [m], mean reading).
-
-    With :mod:`woundroll.readings` (the reverse road) its reader is used (passes, lanes,
-    scales); without it the measured-profile reader (``position [in],rho``).
+def readings_from_text(text: str, case: Any, lane_width: str = "", roll: str = "") -> Any:
+    """Pasted or uploaded readings (CSV text) as :class:`woundroll.readings.Readings`
+    in any layout of :func:`woundroll.tester_files.read_tester_file` (generic CSV with
+    positions or lanes, passes, Rho/R/L/g scales; a TAPPI T 834 sheet, ``roll`` picking one of
+    several rolls; a dense profile export); lane numbers use ``lane_width`` or the case's
+    ``readings.lane_width``.
 
     Raises
     ------
     InputError
-        field ``readings``: too large, or anything the reader rejects.
+        field ``readings``: too large, or anything the reader rejects;
+        ``readings.lane_width``: not a length.
     """
-    from woundroll.profile.compare import MeasuredProfile
+    from woundroll.tester_files import read_tester_file
+    from woundroll.units import to_si
 
     size = len(text.encode("utf-8"))
     if size > MAX_READINGS_BYTES:
@@ -146,45 +148,27 @@ def readings_from_text(text: str, case: Any) -> Any:
             f"the readings are {size} bytes; the page takes at most {MAX_READINGS_BYTES}",
             "readings",
         )
+    lw = None
+    if lane_width.strip():
+        lw = to_si(lane_width, "length", "readings.lane_width")
+        if not lw > 0:
+            raise InputError(f"must be positive, got {lane_width!r}", "readings.lane_width")
+    elif case.readings is not None:
+        lw = case.readings.lane_width
     with tempfile.TemporaryDirectory(prefix="woundroll-web-") as tmp:
         path = Path(tmp) / "readings.csv"
         path.write_text(text, encoding="utf-8")
         try:
-            try:
-                from woundroll.readings import read_readings
-            except ImportError:
-                from woundroll.profile.compare import read_measured_profile
-
-                m = read_measured_profile(path, field="readings")
-                return MeasuredProfile(m.position, m.reading, "pasted readings")
-            r = read_readings(path, width=case.web.width, field="readings")
-            return MeasuredProfile(r.position, r.mean, "pasted readings")
+            r = read_tester_file(
+                path, roll=roll.strip() or None, width=case.web.width, lane_width=lw
+            )
         except InputError as exc:
             # the temporary directory is nobody's business: name the sheet, not the path
-            raise InputError(exc.message.replace(str(path), "readings.csv"), "readings") from None
+            msg = exc.message.replace(str(path), "readings.csv").replace(tmp, "")
+            raise InputError(msg, exc.field or "readings") from None
+    from dataclasses import replace
 
-
-class _MeasuredSheet:
-    """Pasted readings in the shape the report's readings section reads (``to_dict()``)."""
-
-    def __new__(cls, measured: Any) -> Any:
-        return None if measured is None else super().__new__(cls)
-
-    def __init__(self, measured: Any) -> None:
-        self.m = measured
-
-    def to_dict(self) -> dict[str, Any]:
-        n = int(self.m.position.size)
-        return {
-            "source": "readings pasted on the web page",
-            "scale": "Rho",
-            "passes": 1,
-            "pooled_sd": None,
-            "position_m": self.m.position.tolist(),
-            "mean": self.m.reading.tolist(),
-            "sd": [0.0] * n,
-            "count": [1] * n,
-        }
+    return replace(r, source="readings pasted on the web page")
 
 
 class Cancelled(Exception):
@@ -200,7 +184,10 @@ class Job:
     started: float = field(default_factory=time.time)
     cancel: threading.Event = field(default_factory=threading.Event)
     result: Any = None
-    measured: Any = None
+    readings: Any = None
+    diagnose: bool = False
+    diagnosis: Any = None
+    defects: Any = None
     payload: dict[str, Any] | None = None
     error: dict[str, Any] | None = None
     report: str | None = None
@@ -231,13 +218,13 @@ class JobStore:
     def running(self) -> int:
         return sum(j.state in ("queued", "running") for j in self.jobs.values())
 
-    def start(self, case: Any, measured: Any) -> Job:
+    def start(self, case: Any, readings: Any, diagnose: bool = False) -> Job:
         with self.lock:
             if self.running() >= MAX_RUNNING:
                 raise InputError(
                     f"the server is busy ({MAX_RUNNING} runs going): wait or cancel one", "run"
                 )
-            job = Job(uuid.uuid4().hex[:12], measured=measured)
+            job = Job(uuid.uuid4().hex[:12], readings=readings, diagnose=diagnose)
             self.jobs[job.id] = job
             done = [k for k, j in self.jobs.items() if j.state not in ("queued", "running")]
             for k in done[: max(0, len(self.jobs) - MAX_JOBS)]:
@@ -258,15 +245,23 @@ class JobStore:
 
         job.state = "running"
         try:
+            from woundroll.defects import defect_report
+
             result = run(case, progress=progress)
             if job.cancel.is_set():
                 raise Cancelled
-            if job.measured is not None and result.profile is not None:
+            measured = _measured(job.readings)
+            if measured is not None and result.profile is not None:
                 from dataclasses import replace
 
-                result = replace(result, profile=result.profile.compare(job.measured))
+                result = replace(result, profile=result.profile.compare(measured))
+            if job.diagnose and job.readings is not None:
+                from woundroll.diagnosis import diagnose
+
+                job.diagnosis = diagnose(case, job.readings, progress=progress)
+            job.defects = defect_report(case, job.diagnosis, winding=result.winding)
             job.result = result
-            job.payload = result_payload(result, job.measured)
+            job.payload = result_payload(result, measured, job.diagnosis, job.defects)
             job.state = "done"
         except Cancelled:
             job.state = "cancelled"
@@ -277,6 +272,15 @@ class JobStore:
             job.error = {"field": "run", "message": f"{type(exc).__name__}: {exc}"}
             job.error["line"] = f"run: {job.error['message']}"
             job.state = "error"
+
+
+def _measured(readings: Any) -> Any:
+    """Readings as the profile comparison takes them (position, mean reading), or None."""
+    if readings is None:
+        return None
+    from woundroll.profile.compare import MeasuredProfile
+
+    return MeasuredProfile(readings.position, readings.mean, readings.source)
 
 
 def _error(exc: InputError | ConvergenceError) -> dict[str, Any]:
@@ -301,8 +305,11 @@ def _series(x: Any, y: Any, label: str, style: str = "line") -> dict[str, Any]:
     return {"x": [float(v) for v in x], "y": [float(v) for v in y], "label": label, "style": style}
 
 
-def result_payload(result: Any, measured: Any = None) -> dict[str, Any]:
-    """What the page shows: summary rows, every scalar of the CLI's JSON, plot series."""
+def result_payload(
+    result: Any, measured: Any = None, diagnosis: Any = None, defects: Any = None
+) -> dict[str, Any]:
+    """What the page shows: summary rows, every scalar of the CLI's JSON, plot series, the
+    diagnosis table and the defect-risk flags."""
     from woundroll.cli import result_summary
 
     d = result.to_dict()
@@ -383,9 +390,45 @@ def result_payload(result: Any, measured: Any = None) -> dict[str, Any]:
                 "series": [_series([t * 1e3 for t in h["time_s"]], h["force_N"], "FD model")],
             }
         )
+    diag = None
+    if diagnosis is not None:
+        g = diagnosis
+        diag = {
+            "header": [
+                "position [in]",
+                f"reading [{g.curve.scale}]",
+                "wound-on tension [MPa]",
+                f"P at {g.pressure_depth * 1e3:.1f} mm [kPa]",
+                "status",
+            ],
+            "rows": [list(r) for r in g.summary()],
+            "notes": list(g.notes),
+        }
+        ok = [i for i in range(g.position.size) if math.isfinite(g.wound_on_tension[i])]
+        xs = [g.position[i] * 100 for i in ok]
+        plots.append(
+            {
+                "id": "plot-diagnosis",
+                "title": "diagnosed wound-on tension across the roll",
+                "xlabel": "CMD position [cm]",
+                "ylabel": "wound-on tension [MPa]",
+                "series": [
+                    _series(xs, [g.wound_on_tension[i] / 1e6 for i in ok], "diagnosed"),
+                    _series(xs, [g.wound_on_tension_low[i] / 1e6 for i in ok], "low", "dots"),
+                    _series(xs, [g.wound_on_tension_high[i] / 1e6 for i in ok], "high", "dots"),
+                ],
+            }
+        )
     from woundroll.report import case_hash
 
     return {
+        "diagnosis": diag,
+        "defects": None
+        if defects is None
+        else {
+            "risk": defects.risk,
+            "rows": [{"name": n, "risk": r, "finding": f} for n, r, f in defects.summary()],
+        },
         "title": result.case.title,
         "case_hash": case_hash(result.case),
         "summary": [{"label": k, "value": v} for k, v in result_summary(result)],
@@ -416,6 +459,9 @@ def create_app() -> Any:
         case: str = Field(max_length=MAX_CASE_BYTES * 2)
         overrides: dict[str, str] = Field(default_factory=dict, max_length=len(FORM_FIELDS) + 5)
         readings: str = Field(default="", max_length=MAX_READINGS_BYTES * 2)
+        lane_width: str = Field(default="", max_length=40)
+        roll: str = Field(default="", max_length=100)
+        diagnose: bool = False
 
     def bad(exc: InputError | ConvergenceError, status: int = 422) -> JSONResponse:
         return JSONResponse({"error": _error(exc)}, status_code=status)
@@ -460,8 +506,12 @@ def create_app() -> Any:
     def start_run(req: RunRequest) -> Any:
         try:
             case = case_from_text(req.case, req.overrides)
-            measured = readings_from_text(req.readings, case) if req.readings.strip() else None
-            job = store.start(case, measured)
+            readings = None
+            if req.readings.strip():
+                readings = readings_from_text(req.readings, case, req.lane_width, req.roll)
+            elif req.diagnose:
+                raise InputError("give readings to diagnose", "readings")
+            job = store.start(case, readings, req.diagnose)
         except InputError as exc:
             return bad(exc, 429 if exc.field == "run" else 422)
         return {"job": job.id, "status_url": f"/api/jobs/{job.id}"}
@@ -489,7 +539,9 @@ def create_app() -> Any:
         if job.report is None:
             from woundroll.report import build_report
 
-            job.report = build_report(job.result, readings=_MeasuredSheet(job.measured))
+            job.report = build_report(
+                job.result, readings=job.readings, diagnosis=job.diagnosis, defects=job.defects
+            )
         return HTMLResponse(job.report)
 
     return app

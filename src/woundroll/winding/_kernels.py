@@ -1,8 +1,11 @@
 """Compiled kernels of the layer-by-layer winding solve (:mod:`woundroll.winding.hakiel`).
 
 numba is used here because a profile of the NumPy/SciPy per-increment solve showed the
-per-increment Python and LAPACK call overhead, and the O(N) refresh of every element's
-modulus, dominating a 10,000-layer roll (``benchmarks/bench_winding.py``).
+per-increment Python and LAPACK call overhead dominating a 10,000-layer roll
+(``benchmarks/bench_winding.py``). Small rolls use the NumPy twin
+(:mod:`woundroll.winding._kernels_numpy`) instead: numba's import and cache load cost more
+than their whole solve. The lazy deep part (levels of doubling depth, :func:`_refresh`) is
+described in :mod:`woundroll.winding.hakiel`.
 
 Notation (see ``docs/winding.md``): ``F = r sigma_r`` [N/m] at the nodes, ``x = ln r``;
 in each element the radial modulus is uniform, the increment obeys ``F_xx = g F`` with

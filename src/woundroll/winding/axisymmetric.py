@@ -36,16 +36,25 @@ Discretisation (``_axisym_fe``; docs/profile.md section 2)
   group's own stresses are the averages over its layers: ``sigma_r = -p_j / 2`` and the hoop
   stress ``sigma_j`` plus ``(m - 1)/(2 m)`` of the hoop (and sigma_z, tau_rz) increment.
   Default **graded** grouping: single layers at the outer surface, a group holding about a
-  quarter of the layers above it, equal groups below (``_split_layers``).
+  quarter of the layers above it, equal groups below (``_split_layers``), at most
+  ``MAX_GROUP_LAYERS`` = 2 layers per group (:func:`default_groups`): the midpoint rule's
+  error grows as ``m^2 - 1`` with the group size ``m`` and the soft surface of a Table 2 roll
+  (``E_theta / E_r`` ~ 1e4) needs ``m <= 2`` for 1 % (docs/profile.md, section 6).
+* The group's pressure on the stack ``p_j = sigma_j m h_j / r_j`` and its own radial stress
+  (the thin ring, ``-p_j / 2`` at its centre scaled by ``r_j / r_mid``) are taken on the
+  undeformed geometry, as the nodal force ``-sigma_j w_j L`` of the small-strain increment
+  (and as the 1D model does).
+* ``core_pressure``: ``-sigma_r`` on the core, the inner face of the first group (its
+  increments evaluated there from the element solution).
 * Radial modulus per element at the mid-increment pressure, predicted from the previous
   increment's response scaled by the ratio of the loads (``corrections`` extra fixed-point
   solves optional). With ``K1 = 0`` (Table 3) ``E_r`` is floored at ``E_r_floor`` (default
   ``1e-6 E_theta``, 5 kPa) so that a slack sector stays solvable with zero stress.
 * Lazy deep part: groups below the top ``window`` (24) are frozen (E_r at the pressure
   predicted for the middle of the period) and condensed onto the window's bottom layer
-  (Schur complement from a natural-order sparse LU), refreshed every ``flush`` (8)
+  (Schur complement from a banded Cholesky in the mesh order), refreshed every ``flush`` (8)
   increments; their response is recovered at each refresh. ``window=None`` solves the
-  whole stack every increment (sparse LU).
+  whole stack every increment (banded Cholesky).
 * Slack flag: ``slack[j]`` is True when, within ``SLACK_DEPTH`` (1 mm) of the surface, a
   group of sector ``j`` was wound without tension or its E_r sat at the floor.
 
@@ -61,7 +70,8 @@ piecewise linear in ``1/R0``) so that ``sum_j sigma_j h_j w_j = F``. A nip adds
 ``mu N_j / h_j`` with ``N_j`` the local nip load per width (uniform ``tension.nip_load``
 unless a ``nip`` callable gives the CMD distribution). The group's layers carry their
 wound-on tension as initial hoop stress; their pressure on the stack below is
-``p_j = sigma_j m h_j / rho_j`` (``m`` layers in the group).
+``p_j = sigma_j m h_j / r_j`` (``m`` layers in the group, ``r_j`` the undeformed radius
+of the stack).
 
 Outputs at the element (group, sector) centres: sigma_r, sigma_theta, sigma_z, tau_rz.
 """
@@ -78,8 +88,8 @@ from numpy.typing import NDArray
 from scipy.linalg import LinAlgError, solveh_banded
 
 from woundroll.errors import ConvergenceError, InputError
-from woundroll.materials.web import Core, Web
 from woundroll.materials.thickness_profile import ThicknessProfile
+from woundroll.materials.web import Core, Web
 from woundroll.winding import _axisym_fe as _fe
 from woundroll.winding.tension import TensionSchedule
 
@@ -88,8 +98,12 @@ FloatArray = NDArray[np.float64]
 #: Nip hook: ``nip(group_index, outer_radius[j], sigma_r_top[j]) -> N[j]`` [N/m per width].
 NipHook = Callable[[int, FloatArray, FloatArray], FloatArray]
 
-#: Default number of winding increments (layer groups), graded toward the surface.
-DEFAULT_GROUPS = 200
+#: Default grouping: graded toward the surface, at most ``MAX_GROUP_LAYERS`` layers per group
+#: (:func:`default_groups`). The grouping error grows as ``m^2 - 1`` with the group size ``m``
+#: (midpoint rule); 2 layers keep every bundled PET roll within 0.5 % of the layer-by-layer
+#: 1D model at every radius, 5 layers (the former 200 groups on Table 2's rolls) missed by
+#: up to 4.9 % (docs/profile.md, section 6).
+MAX_GROUP_LAYERS = 2
 #: Lazy deep part of the FE model: groups below the top ``DEFAULT_WINDOW`` are frozen and
 #: condensed, refreshed every ``DEFAULT_FLUSH`` increments (``window=None``: exact).
 DEFAULT_WINDOW = 24
@@ -124,6 +138,9 @@ class AxisymmetricResult:
     slack : ndarray of bool  per sector: within ``SLACK_DEPTH`` (1 mm) of the surface a group
                              was wound without tension or its E_r sat at the floor, i.e. the
                              near-surface state (and a reading there) is set by the floor.
+    core_pressure : ndarray [Pa]  ``-sigma_r`` on the core surface per sector (the inner face
+                             of the first group; its centre lies half a group higher, where
+                             sigma_r is lower by the steep gradient next to a stiff core).
     """
 
     z: FloatArray
@@ -144,6 +161,7 @@ class AxisymmetricResult:
     core_radius: float
     info: dict[str, Any] = field(default_factory=dict)
     slack: NDArray[np.bool_] = field(default_factory=lambda: np.zeros(0, dtype=bool))
+    core_pressure: FloatArray = field(default_factory=lambda: np.zeros(0))
 
     @property
     def n_layers(self) -> int:
@@ -156,7 +174,9 @@ class AxisymmetricResult:
 
     @property
     def sigma_r_core(self) -> FloatArray:
-        """Radial stress [Pa] of the group on the core, per sector."""
+        """Radial stress [Pa] on the core surface, per sector (``-core_pressure``)."""
+        if self.core_pressure.size:
+            return -self.core_pressure
         return self.sigma_r[0]
 
     @property
@@ -170,7 +190,7 @@ class AxisymmetricResult:
         core surface (stress of the first group) through the group centres to the sector's
         undeformed outer radius (free surface, ``sigma_r = 0``), and sigma_r [Pa]."""
         r = np.concatenate([[self.core_radius], self.radius[:, j], [self.build_radius[j]]])
-        s = np.concatenate([[self.sigma_r[0, j]], self.sigma_r[:, j], [0.0]])
+        s = np.concatenate([[self.sigma_r_core[j]], self.sigma_r[:, j], [0.0]])
         return r, s
 
     def column(self, j: int) -> dict[str, FloatArray]:
@@ -310,6 +330,8 @@ def _column_solve(
         if ne > 0:
             k12[0] = 0.0
     n = (ne + 1) * ncol
+    if n == 1:  # one node (LAPACK's ptsv rejects n = 1)
+        return rhs / diag
     ab = np.zeros((2, n))
     ab[1] = diag.T.ravel()
     up = np.zeros((ncol, ne + 1))
@@ -362,6 +384,402 @@ def _split_layers(n_layers: int, n_groups: int, grouping: str = "graded") -> NDA
     return np.concatenate([deep, np.asarray(zone[::-1], dtype=np.int64)])
 
 
+def default_groups(n_layers: int, max_layers: int = MAX_GROUP_LAYERS) -> int:
+    """Fewest graded groups (:func:`_split_layers`) with at most ``max_layers`` layers each."""
+    G = min(n_layers, -(-n_layers // max_layers))
+    while G < n_layers and int(_split_layers(n_layers, G).max()) > max_layers:
+        G += 1
+    return G
+
+
+def _check_inputs(
+    web: Any,
+    core: Any,
+    outer_radius: Any,
+    tension: Any,
+    thickness: Any,
+    n_sectors: Any,
+    grouping: Any,
+    shape: Any,
+    window: Any,
+    flush: Any,
+    corrections: Any,
+) -> ThicknessProfile:
+    """Validate the arguments of :func:`wind_axisymmetric`; returns the thickness profile."""
+    if not isinstance(web, Web):
+        raise InputError("must be a woundroll.materials.Web", "web")
+    if not isinstance(core, Core):
+        raise InputError("must be a woundroll.materials.Core", "core")
+    if not isinstance(tension, TensionSchedule):
+        raise InputError("must be a woundroll.winding.tension.TensionSchedule", "winding.tension")
+    if isinstance(outer_radius, bool) or not isinstance(outer_radius, int | float | np.floating):
+        raise InputError(f"must be a length in metres, got {outer_radius!r}", "roll.outer_radius")
+    if thickness is None:
+        thickness = ThicknessProfile.uniform(web.thickness, web.width)
+    elif not isinstance(thickness, ThicknessProfile):
+        raise InputError(
+            "must be a ThicknessProfile (see woundroll.materials.thickness_profile)",
+            "winding.thickness_profile",
+        )
+    if not (isinstance(n_sectors, int | np.integer) and n_sectors >= 1):
+        raise InputError(f"must be a whole number >= 1, got {n_sectors!r}", "profile.n_sectors")
+    if not (math.isfinite(outer_radius) and outer_radius > core.outer_radius):
+        raise InputError(
+            f"must exceed the core radius {core.outer_radius:g} m, got {outer_radius:g} m",
+            "roll.outer_radius",
+        )
+    if grouping not in ("graded", "uniform"):
+        raise InputError(f"choose graded or uniform, got {grouping!r}", "winding.grouping")
+    if shape not in ("power", "linear"):
+        raise InputError(f"choose power or linear, got {shape!r}", "winding.shape")
+    if window is not None and (
+        isinstance(window, bool) or not isinstance(window, int | np.integer) or window < 1
+    ):
+        raise InputError(f"must be a whole number >= 1 or None, got {window!r}", "winding.window")
+    if isinstance(flush, bool) or not isinstance(flush, int | np.integer) or flush < 1:
+        raise InputError(f"must be a whole number >= 1, got {flush!r}", "winding.flush")
+    if isinstance(corrections, bool) or not isinstance(corrections, int) or corrections < 0:
+        raise InputError(f"must be a whole number >= 0, got {corrections!r}", "winding.corrections")
+    return thickness
+
+
+@dataclass(frozen=True)
+class _Build:
+    """The roll's undeformed build: CMD sectors and layer groups, per sector ``j`` its
+    thickness ``h_j`` and node radii ``r_c + n h_j`` (arrays (groups[+1], sectors))."""
+
+    z: FloatArray  # sector centres [m]
+    w: FloatArray  # sector widths [m]
+    h: FloatArray  # sector thickness [m]
+    r_c: float  # core radius [m]
+    n_layers: int
+    m: NDArray[np.int64]  # layers per group
+    r_node: FloatArray  # group boundaries
+    L: FloatArray  # group thickness
+    r_mid: FloatArray  # group centres
+
+    @property
+    def top_frac(self) -> FloatArray:
+        """Fraction ``(m - 1) / (2 m)`` of a group in the stack of its own increment."""
+        return (self.m - 1) / (2.0 * self.m)
+
+
+def _roll_build(
+    thickness: ThicknessProfile,
+    n_sectors: int,
+    r_c: float,
+    outer_radius: float,
+    n_groups: int | None,
+    grouping: str,
+) -> _Build:
+    """Sectors (sector averages of the profile), the layer count ``round((R - r_c) / mean
+    h)``, the layer groups (:func:`default_groups` unless given) and the node radii."""
+    edges = thickness.sector_edges(int(n_sectors))
+    _, h = thickness.sector_average(int(n_sectors))
+    w = np.diff(edges)
+    h_mean = float(np.sum(h * w) / np.sum(w))
+    n_layers = int(round((outer_radius - r_c) / h_mean))
+    if n_layers < 1:
+        raise InputError("the roll must hold at least one layer", "roll.outer_radius")
+    if n_groups is None:
+        n_groups = default_groups(n_layers)
+    if not (isinstance(n_groups, int | np.integer) and 1 <= n_groups <= n_layers):
+        raise InputError(
+            f"must be a whole number in [1, {n_layers}] (the layer count), got {n_groups!r}",
+            "winding.n_groups",
+        )
+    m = _split_layers(n_layers, int(n_groups), grouping)
+    cum = np.concatenate([[0], np.cumsum(m)])
+    r_node = r_c + cum[:, None] * h[None, :]
+    return _Build(
+        z=0.5 * (edges[1:] + edges[:-1]),
+        w=w,
+        h=h,
+        r_c=r_c,
+        n_layers=n_layers,
+        m=m,
+        r_node=r_node,
+        L=np.diff(r_node, axis=0),
+        r_mid=0.5 * (r_node[:-1] + r_node[1:]),
+    )
+
+
+class _Roll:
+    """The roll being wound, one layer group per increment (:meth:`lay_group`).
+
+    State: nodal displacements ``u``, ``uz`` and element stresses ``S`` (sigma_r,
+    sigma_theta, sigma_z, tau_rz at the centres, sigma_r on the inner faces) of the groups
+    wound so far; with the lazy deep part, the frozen groups ``< k_s`` condensed onto layer
+    ``k_s`` (:meth:`freeze_deep_part`) and the motion of that layer since (``acc``).
+    """
+
+    def __init__(
+        self,
+        web: Web,
+        core: Core,
+        b: _Build,
+        *,
+        fe: bool,
+        shape: str,
+        floor: float,
+        window: int | None,
+        flush: int,
+        corrections: int,
+    ) -> None:
+        G, ncol = b.m.size, b.h.size
+        self.web, self.core, self.b = web, core, b
+        self.fe, self.floor, self.corrections = fe, floor, corrections
+        self.lazy = fe and window is not None
+        self.window, self.flush = window, flush
+        nnode = ncol + 1 if fe else ncol
+        self.u = np.zeros((G + 1, nnode))  # radial displacement of the nodes
+        self.uz = np.zeros((G + 1, nnode))
+        self.S = np.zeros((5, G, ncol))
+        self.wot = np.zeros((G, ncol))
+        self.nip_used = np.zeros((G, ncol))
+        self.floor_hit = np.zeros((G, ncol), dtype=bool)
+        self.R0 = np.full(G, math.inf)
+        # lagged predictor of the mid-increment stress: the last increment's response
+        self.prev_dsr = np.zeros((G, ncol))
+        self.prev_p: FloatArray | None = None
+        self.prev_n = 0
+        # lazy deep part
+        self.k_s, self.S_deep, self.g_flush = 0, None, 0
+        self.acc = np.zeros((ncol + 1, 2))
+        self.s_flush = np.zeros((G, ncol))
+        if fe:
+            self.stack = _fe.Stack(
+                b.w,
+                core.stiffness,
+                (web.E_theta, float(web.E_z), web.nu_theta_r, web.nu_z_r, web.nu_theta_z),
+                web.shear_r_z,
+                shape,
+            )
+        self.k_core = 0.0 if core.rigid else core.stiffness * b.w  # column path: E_c w_j
+
+    @property
+    def s_r(self) -> FloatArray:
+        return self.S[0]
+
+    def at_sectors(self, v: FloatArray) -> FloatArray:
+        """Nodal values (sector edges in the FE model) at the sector centres."""
+        return 0.5 * (v[..., 1:] + v[..., :-1]) if self.fe else v
+
+    def modulus(self, sig: FloatArray) -> FloatArray:
+        """Radial modulus at radial stress ``sig``, floored at ``E_r_floor``."""
+        return np.maximum(self.web.radial_modulus.modulus(sig), self.floor)
+
+    # -- winder settings -> the tension each sector's layers are wound with ------------------
+    def wound_on_tension(
+        self, g: int, tension: TensionSchedule, nip: NipHook | None, outer_radius: float
+    ) -> FloatArray:
+        """Wound-on tension [Pa] of group ``g`` per sector: the line tension (tapered at the
+        mean landing radius) allocated across the CMD by the relaxation-radius rule at the
+        deformed radius where the group lands, plus the nip-induced ``mu N_j / h_j``."""
+        b = self.b
+        r_top = b.r_node[g] + self.at_sectors(self.u[g])
+        rho = r_top + 0.5 * b.m[g] * b.h
+        width = float(np.sum(b.w))
+        r_bar = float(np.sum(rho * b.w) / width)
+        line_force = (
+            tension.web_stress
+            * self.web.thickness
+            * width
+            * tension.taper.factor_at(r_bar, b.r_c, outer_radius)
+        )
+        sig_w, self.R0[g] = allocate_tension(rho, b.h * b.w, float(line_force), self.web.E_theta)
+        if nip is not None:
+            top = self.s_r[g - 1] if g > 0 else np.zeros(b.h.size)
+            N = np.asarray(nip(g, r_top, top), dtype=float)
+            if N.shape != (b.h.size,) or not np.all(np.isfinite(N)) or np.any(N < 0):
+                raise InputError(
+                    "the nip callable must return finite loads >= 0, one per sector", "winding.nip"
+                )
+        else:
+            N = np.full(b.h.size, tension.nip_load)
+        self.nip_used[g] = N
+        sig = sig_w + tension.friction * N / b.h
+        self.wot[g] = sig
+        return sig
+
+    # -- the increment: the group presses on the stack below it ------------------------------
+    def lay_group(self, g: int, sig: FloatArray) -> None:
+        """Wind group ``g`` with wound-on tension ``sig``: its layers are wound in sequence,
+        each pressing on the stack below it; midpoint rule: the whole group load
+        ``sig w L`` (per radian) acts on the stack extended by ``(m - 1) / 2`` layers of the
+        group (:meth:`stack_radii`), with E_r at the mid-increment pressure."""
+        b, S = self.b, self.S
+        # pressure of the group on the stack below, on the undeformed geometry of the
+        # (small-strain) increment, as the nodal force -sig w L applied below
+        p = sig * b.m[g] * b.h / b.r_node[g]
+        S[1, g] = sig  # initial hoop stress of the new group (sigma_r starts at 0)
+        self.u[g + 1] = self.u[g]  # the group lands on the deformed stack
+        self.uz[g + 1] = self.uz[g]
+        if not np.any(sig > 0):
+            return
+        ne = g + 1 if b.m[g] > 1 else g
+        if self.lazy and g - self.g_flush >= self.flush and ne - self.window > self.k_s:
+            self.freeze_deep_part(g, ne)
+        k0 = self.k_s
+        F = -sig * b.w * b.L[g]
+        s_old = self.s_r[k0:ne].copy()
+        E2 = self.modulus(self.mid_increment_stress(g, ne, p, s_old))
+        du, duz, dS = self.solve_stack(g, ne, E2, F)
+        for _ in range(self.corrections if ne > k0 else 0):
+            # corrector(s): E_r at the mid-increment pressure, fixed-point iteration
+            E2 = self.modulus(s_old + 0.5 * dS[0])
+            du, duz, dS_new = self.solve_stack(g, ne, E2, F)
+            change = np.max(np.abs(dS_new[0] - dS[0])) / max(np.max(np.abs(dS_new[0])), 1e-300)
+            dS = dS_new
+            if change < 1e-6:
+                break
+        self.floor_hit[k0:ne] |= E2 <= self.floor
+        self.prev_dsr[k0:ne] = dS[0]
+        self.prev_p, self.prev_n = p, ne
+        S[:, k0:g] += dS[:, : g - k0]
+        # the group's own layers: sigma_r rises from 0 at the top to -p at the bottom (the
+        # thin ring); a layer of the group felt on average (m - 1) / 2 of the m later
+        # layers' loads, so that fraction of the hoop (and axial, shear) increment
+        S[0, g] = -0.5 * p * b.r_node[g] / b.r_mid[g]
+        S[4, g] = -p
+        if ne > g:
+            S[1:4, g] += b.top_frac[g] * dS[1:4, g - k0]
+        self.u[k0 : ne + 1] += du
+        self.uz[k0 : ne + 1] += duz
+        if k0 > 0:
+            self.acc += np.stack([du[0], duz[0]], axis=-1)
+        if ne == g:
+            self.u[g + 1] = self.u[g]
+            self.uz[g + 1] = self.uz[g]
+
+    def mid_increment_stress(self, g: int, ne: int, p: FloatArray, s_old: FloatArray) -> FloatArray:
+        """Predicted sigma_r in the middle of increment ``g`` of the window's groups: the
+        previous increment's response scaled by the ratio of the loads (lagged), else half
+        the pressure the group exerts; the group's own part carries a quarter of it."""
+        k0 = self.k_s
+        pred = s_old - 0.5 * p[None, :]
+        if ne > g:
+            pred[g - k0] = -0.25 * p
+        if self.prev_p is not None:
+            k = max(min(self.prev_n, ne), k0)
+            scale = np.divide(p, self.prev_p, out=np.ones_like(p), where=self.prev_p > 0)
+            pred[: k - k0] = s_old[: k - k0] + 0.5 * self.prev_dsr[k0:k] * scale[None, :]
+        return pred
+
+    def stack_radii(self, g: int, ne: int) -> FloatArray:
+        """Node radii of the stack of ``ne`` elements in increment ``g``. With ``m > 1``
+        layers the stack includes the new group's element cut to ``(m - 1) / 2`` layers: on
+        average a layer of the group lies on ``(m - 1) / 2`` layers of its own group
+        (midpoint rule). With ``m = 1`` the new layer is not in the stack (Hakiel)."""
+        b = self.b
+        rn = b.r_node[: ne + 1].copy()
+        if ne == g + 1:
+            rn[ne] = b.r_node[ne - 1] + b.top_frac[ne - 1] * b.L[ne - 1]
+        return rn
+
+    def solve_stack(
+        self, g: int, ne: int, E_r: FloatArray, F: FloatArray
+    ) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Displacement increments (radial, axial) of the nodes of layers ``k_s..ne`` and the
+        stress increments (5, ne - k_s, ncol) of the stack of ``ne`` groups under the top
+        forces ``F`` (per radian, per sector); ``E_r`` of the groups ``k_s..ne-1`` (the window
+        above the frozen deep part, if any)."""
+        web, k0, ncol = self.web, self.k_s, self.b.h.size
+        rn = self.stack_radii(g, ne)[k0:]
+        try:
+            if self.fe:
+                f_top = np.zeros(ncol + 1)
+                f_top[:-1] += 0.5 * F
+                f_top[1:] += 0.5 * F
+                du, duz, dS = self.stack.solve(rn, E_r, f_top, self.S_deep)
+            else:
+                E_t, nu = web.E_theta, web.nu_theta_r
+                du = _column_solve(rn, E_r, F, E_t, nu, self.b.w, self.k_core, self.core.rigid)
+                duz = np.zeros_like(du)
+                dS = np.zeros((5, ne - k0, ncol))
+                if ne > k0:
+                    r1, r2 = rn[:-1], rn[1:]
+                    args = (r1, r2, E_r, E_t, nu, du[:-1], du[1:])
+                    dS[0], dS[1] = _element_stress(*args, 0.5 * (r1 + r2))
+                    dS[4] = _element_stress(*args, r1)[0]
+        except (LinAlgError, RuntimeError) as exc:
+            raise ConvergenceError(
+                f"winding increment {g + 1}: singular stiffness ({exc})"
+            ) from None
+        if not (np.all(np.isfinite(du)) and np.all(np.isfinite(duz))):
+            raise ConvergenceError(f"winding increment {g + 1}: non-finite displacements")
+        return du, duz, dS
+
+    # -- lazy deep part (FE model) -----------------------------------------------------------
+    def recover_deep_part(self) -> None:
+        """Add the frozen groups' response to the motion of the layer they are condensed
+        onto since the last freeze (linear in it)."""
+        k0 = self.k_s
+        if k0 == 0:
+            return
+        dur, duzr, dSd = self.stack.recover(self.acc)
+        self.u[:k0] += dur[:-1]
+        self.uz[:k0] += duzr[:-1]
+        self.S[:, :k0] += dSd
+        self.acc = np.zeros_like(self.acc)
+
+    def freeze_deep_part(self, g: int, ne: int) -> None:
+        """Freeze the groups below the top ``window`` at the E_r predicted for the middle of
+        the next ``flush`` increments and condense them onto the window's bottom layer."""
+        self.recover_deep_part()
+        b, s_r = self.b, self.s_r
+        k_new = ne - int(self.window)
+        done = float(np.sum(b.m[self.g_flush : g])) or 1.0
+        ratio = float(np.sum(b.m[g : g + int(self.flush)])) / done
+        d_prev = s_r[:k_new] - self.s_flush[:k_new]
+        E_deep = self.modulus(s_r[:k_new] + 0.5 * ratio * d_prev)
+        self.floor_hit[:k_new] |= E_deep <= self.floor
+        self.S_deep = self.stack.condense(b.r_node[: k_new + 1], E_deep)
+        self.k_s, self.g_flush = k_new, g
+        self.acc = np.zeros_like(self.acc)
+        self.s_flush[:] = s_r
+
+    # -- the wound roll ------------------------------------------------------------------------
+    def slack(self, E_final: FloatArray) -> NDArray[np.bool_]:
+        """Per sector: within ``SLACK_DEPTH`` of the surface a group was wound without
+        tension or its radial modulus sat at the floor (final pressure or in an increment)."""
+        b = self.b
+        depth = b.r_node[-1][None, :] - b.r_mid
+        near = depth <= max(SLACK_DEPTH, float(np.max(b.L[-1])))
+        at_floor = (self.wot <= 0) | (E_final <= self.floor) | self.floor_hit
+        return np.any(near & at_floor, axis=0)
+
+    def result(self, info: dict[str, Any]) -> AxisymmetricResult:
+        b, S = self.b, self.S
+        if self.lazy:
+            self.recover_deep_part()
+        if not np.all(np.isfinite(S)):
+            raise ConvergenceError("non-finite stresses in the axisymmetric winding solution")
+        E_final = np.asarray(self.web.radial_modulus.modulus(S[0]), dtype=float)
+        return AxisymmetricResult(
+            z=b.z,
+            dz=b.w,
+            thickness=b.h,
+            radius=b.r_mid,
+            sigma_r=S[0],
+            sigma_theta=S[1],
+            sigma_z=S[2],
+            tau_rz=S[3],
+            E_r=E_final,
+            wot=self.wot,
+            nip_load=self.nip_used,
+            relaxation_radius=self.R0,
+            outer_radius=b.r_node[-1] + self.at_sectors(self.u[-1]),
+            layers_per_group=b.m,
+            build_radius=b.r_node[-1].copy(),
+            core_radius=b.r_c,
+            info=info
+            | {"u_z_outer_m": self.at_sectors(self.uz[-1]) if self.fe else np.zeros(b.h.size)},
+            slack=self.slack(E_final),
+            core_pressure=-S[4, 0].copy(),
+        )
+
+
 def wind_axisymmetric(
     web: Web,
     core: Core,
@@ -400,8 +818,8 @@ def wind_axisymmetric(
     n_sectors : int
         CMD sectors (finite elements across the width).
     n_groups : int, optional
-        Winding increments; default ``min(n_layers, DEFAULT_GROUPS)``. Convergence under
-        refinement: see docs/profile.md.
+        Winding increments; default :func:`default_groups` (graded, at most
+        ``MAX_GROUP_LAYERS`` = 2 layers per group). Convergence: docs/profile.md, section 6.
     shear_coupling : bool
         True (default): the axisymmetric (r, z) finite-element model. False: independent
         sectors, each a 1D plane-stress roll (``sigma_z = tau_rz = 0``), for comparison.
@@ -429,291 +847,53 @@ def wind_axisymmetric(
     InputError
         Inconsistent geometry or counts. ConvergenceError: a singular or non-finite solve.
     """
-    if not isinstance(web, Web):
-        raise InputError("must be a woundroll.materials.Web", "web")
-    if not isinstance(core, Core):
-        raise InputError("must be a woundroll.materials.Core", "core")
-    if not isinstance(tension, TensionSchedule):
-        raise InputError("must be a woundroll.winding.tension.TensionSchedule", "winding.tension")
-    if isinstance(outer_radius, bool) or not isinstance(outer_radius, int | float | np.floating):
-        raise InputError(f"must be a length in metres, got {outer_radius!r}", "roll.outer_radius")
-    if thickness is None:
-        thickness = ThicknessProfile.uniform(web.thickness, web.width)
-    elif not isinstance(thickness, ThicknessProfile):
-        raise InputError(
-            "must be a ThicknessProfile (see woundroll.materials.thickness_profile)",
-            "winding.thickness_profile",
-        )
-    if not (isinstance(n_sectors, int | np.integer) and n_sectors >= 1):
-        raise InputError(f"must be a whole number >= 1, got {n_sectors!r}", "profile.n_sectors")
-    if not (math.isfinite(outer_radius) and outer_radius > core.outer_radius):
-        raise InputError(
-            f"must exceed the core radius {core.outer_radius:g} m, got {outer_radius:g} m",
-            "roll.outer_radius",
-        )
-    if grouping not in ("graded", "uniform"):
-        raise InputError(f"choose graded or uniform, got {grouping!r}", "winding.grouping")
-    if shape not in ("power", "linear"):
-        raise InputError(f"choose power or linear, got {shape!r}", "winding.shape")
-    if window is not None and (
-        isinstance(window, bool) or not isinstance(window, int | np.integer) or window < 1
-    ):
-        raise InputError(f"must be a whole number >= 1 or None, got {window!r}", "winding.window")
-    if isinstance(flush, bool) or not isinstance(flush, int | np.integer) or flush < 1:
-        raise InputError(f"must be a whole number >= 1, got {flush!r}", "winding.flush")
-    edges = thickness.sector_edges(int(n_sectors))
-    _, h = thickness.sector_average(int(n_sectors))
-    w = np.diff(edges)
-    z = 0.5 * (edges[1:] + edges[:-1])
-    ncol = h.size
-    h_mean = float(np.sum(h * w) / np.sum(w))
-    r_c = core.outer_radius
-    n_layers = int(round((outer_radius - r_c) / h_mean))
-    if n_layers < 1:
-        raise InputError("the roll must hold at least one layer", "roll.outer_radius")
-    if n_groups is None:
-        n_groups = min(n_layers, DEFAULT_GROUPS)
-    if not (isinstance(n_groups, int | np.integer) and 1 <= n_groups <= n_layers):
-        raise InputError(
-            f"must be a whole number in [1, {n_layers}] (the layer count), got {n_groups!r}",
-            "winding.n_groups",
-        )
-    G = int(n_groups)
-    if isinstance(corrections, bool) or not isinstance(corrections, int) or corrections < 0:
-        raise InputError(f"must be a whole number >= 0, got {corrections!r}", "winding.corrections")
-    m = _split_layers(n_layers, G, grouping)
-    E_t = web.E_theta
-    nu = web.nu_theta_r
-    floor = 1e-6 * E_t if E_r_floor is None else float(E_r_floor)
+    thickness = _check_inputs(
+        web,
+        core,
+        outer_radius,
+        tension,
+        thickness,
+        n_sectors,
+        grouping,
+        shape,
+        window,
+        flush,
+        corrections,
+    )
+    floor = 1e-6 * web.E_theta if E_r_floor is None else float(E_r_floor)
     if not (math.isfinite(floor) and floor > 0):
         raise InputError(f"must be positive, got {floor:g} Pa", "winding.E_r_floor")
-    law = web.radial_modulus
-    width = float(np.sum(w))
-    line_force_0 = tension.web_stress * web.thickness * width
-
-    # undeformed node radii (G+1, ncol) of each sector's build and element geometry
-    cum = np.concatenate([[0], np.cumsum(m)])
-    r_node = r_c + cum[:, None] * h[None, :]
-    L = np.diff(r_node, axis=0)  # (G, ncol)
-    r_mid = 0.5 * (r_node[:-1] + r_node[1:])
-
-    fe = shear_coupling and ncol > 1
-    nnode = ncol + 1 if fe else ncol
-    u = np.zeros((G + 1, nnode))  # radial displacement of the nodes
-    uz = np.zeros((G + 1, nnode))
-    S = np.zeros((4, G, ncol))  # sigma_r, sigma_theta, sigma_z, tau_rz at element centres
-    s_r = S[0]
-    wot = np.zeros((G, ncol))
-    nip_used = np.zeros((G, ncol))
-    floor_hit = np.zeros((G, ncol), dtype=bool)
-    R0 = np.full(G, math.inf)
-    rigid = core.rigid
-    top_frac = (m - 1) / (2.0 * m)  # fraction of the new group in the stack of its increment
-    if fe:
-        stack = _fe.Stack(
-            w,
-            core.stiffness,
-            (E_t, float(web.E_z), nu, web.nu_z_r, web.nu_theta_z),
-            web.shear_r_z,
-            shape,
-        )
-    k_core = 0.0 if rigid else core.stiffness * w  # column path: per radian E_c w_j
-
-    def at_sectors(v: FloatArray) -> FloatArray:
-        return 0.5 * (v[..., 1:] + v[..., :-1]) if fe else v
-
-    def modulus(sig: FloatArray) -> FloatArray:
-        return np.maximum(law.modulus(sig), floor)
-
-    def geometry(g: int, ne: int) -> FloatArray:
-        """Node radii of the stack of ``ne`` elements in increment ``g``. With ``m > 1``
-        layers the stack includes the new group's element cut to ``(m - 1) / 2`` layers: the
-        layers of a group are wound in sequence, each pressing on the stack below it, and on
-        average a layer of the group lies on ``(m - 1) / 2`` layers of its own group (midpoint
-        rule). With ``m = 1`` the new layer is not in the stack (Hakiel)."""
-        rn = r_node[: ne + 1].copy()
-        if ne == g + 1:
-            rn[ne] = r_node[ne - 1] + top_frac[ne - 1] * L[ne - 1]
-        return rn
-
-    def solve(g: int, ne: int, E_r: FloatArray, F: FloatArray) -> tuple[FloatArray, ...]:
-        """Displacement increments (radial, axial) of the nodes of layers ``k_s..ne`` and the
-        element-centre stress increments (4, ne - k_s, ncol) of the stack of ``ne`` groups
-        under the top forces ``F`` (per radian, per sector); ``E_r`` of the groups
-        ``k_s..ne-1`` (the window above the frozen deep part, if any)."""
-        k0 = state["k_s"]
-        rn = geometry(g, ne)[k0:]
-        try:
-            if fe:
-                f_top = np.zeros(ncol + 1)
-                f_top[:-1] += 0.5 * F
-                f_top[1:] += 0.5 * F
-                du, duz, dS = stack.solve(rn, E_r, f_top, state["S"])
-            else:
-                du = _column_solve(rn, E_r, F, E_t, nu, w, k_core, rigid)
-                duz = np.zeros_like(du)
-                dS = np.zeros((4, ne, ncol))
-                if ne > 0:
-                    dS[0], dS[1] = _element_stress(
-                        rn[:-1], rn[1:], E_r, E_t, nu, du[:ne], du[1:], 0.5 * (rn[:-1] + rn[1:])
-                    )
-        except (LinAlgError, RuntimeError) as exc:
-            raise ConvergenceError(
-                f"winding increment {g + 1}: singular stiffness ({exc})"
-            ) from None
-        if not (np.all(np.isfinite(du)) and np.all(np.isfinite(duz))):
-            raise ConvergenceError(f"winding increment {g + 1}: non-finite displacements")
-        return du, duz, dS
-
-    # lazy deep part (FE model): groups below a window of the top ``window`` groups are frozen
-    # (E_r at the pressure predicted for the middle of the period) and condensed onto the
-    # window's bottom layer, refreshed every ``flush`` increments; their displacements and
-    # stresses are recovered at each refresh (linear in the accumulated interface motion).
-    state: dict[str, Any] = {"k_s": 0, "S": None, "acc": None, "g_flush": 0}
-    s_flush = np.zeros((G, ncol))
-    lazy = fe and window is not None
-
-    def apply_deep() -> None:
-        k0 = state["k_s"]
-        if k0 == 0:
-            return
-        dur, duzr, dSd = stack.recover(state["acc"])
-        u[:k0] += dur[:-1]
-        uz[:k0] += duzr[:-1]
-        S[:, :k0] += dSd
-        state["acc"] = np.zeros((ncol + 1, 2))
-
-    def refreeze(g: int, ne: int) -> None:
-        apply_deep()
-        k_new = ne - int(window)
-        g0 = state["g_flush"]
-        done = float(np.sum(m[g0:g])) or 1.0
-        ratio = float(np.sum(m[g : g + int(flush)])) / done
-        d_prev = s_r[:k_new] - s_flush[:k_new]
-        E_deep = modulus(s_r[:k_new] + 0.5 * ratio * d_prev)
-        floor_hit[:k_new] |= E_deep <= floor
-        state["S"] = stack.condense(r_node[: k_new + 1], E_deep)
-        state["k_s"] = k_new
-        state["acc"] = np.zeros((ncol + 1, 2))
-        state["g_flush"] = g
-        s_flush[:] = s_r
-
-    prev_dsr = np.zeros((G, ncol))
-    prev_p: FloatArray | None = None
-    prev_n = 0
+    build = _roll_build(thickness, n_sectors, core.outer_radius, outer_radius, n_groups, grouping)
+    fe = shear_coupling and build.h.size > 1
+    roll = _Roll(
+        web,
+        core,
+        build,
+        fe=fe,
+        shape=shape,
+        floor=floor,
+        window=window,
+        flush=flush,
+        corrections=corrections,
+    )
+    G = build.m.size
     for g in range(G):
-        r_top = r_node[g] + at_sectors(u[g])
-        T_g = m[g] * h
-        rho = r_top + 0.5 * T_g
-        r_bar = float(np.sum(rho * w) / width)
-        line_force = float(line_force_0 * tension.taper.factor_at(r_bar, r_c, outer_radius))
-        sig_w, R0[g] = allocate_tension(rho, h * w, line_force, E_t)
-        if nip is not None:
-            N = np.asarray(nip(g, r_top, s_r[g - 1] if g > 0 else np.zeros(ncol)), dtype=float)
-            if N.shape != (ncol,) or not np.all(np.isfinite(N)) or np.any(N < 0):
-                raise InputError(
-                    "the nip callable must return finite loads >= 0, one per sector", "winding.nip"
-                )
-        else:
-            N = np.full(ncol, tension.nip_load)
-        nip_used[g] = N
-        sig = sig_w + tension.friction * N / h
-        wot[g] = sig
-        p = sig * T_g / rho
-        S[1, g] = sig  # initial hoop stress of the new group (sigma_r starts at 0)
-        u[g + 1] = u[g]  # the group lands on the deformed stack (radius bookkeeping)
-        uz[g + 1] = uz[g]
-        if np.any(sig > 0):
-            # the group's layers are wound in sequence, each pressing on the stack below it;
-            # midpoint rule: the whole group load sig w L (per radian) acts on the stack
-            # extended by (m - 1) / 2 layers of the group (see geometry())
-            ne = g + 1 if m[g] > 1 else g
-            if lazy and g - state["g_flush"] >= flush and ne - window > state["k_s"]:
-                refreeze(g, ne)
-            k0 = state["k_s"]
-            F = -sig * w * L[g]
-            s_old = s_r[k0:ne].copy()
-            # predictor of the mid-increment stress: the previous increment's response scaled
-            # by the ratio of the loads (lagged), else half the pressure the group exerts
-            pred = s_old - 0.5 * p[None, :]
-            if ne > g:
-                pred[g - k0] = -0.25 * p
-            if prev_p is not None:
-                k = max(min(prev_n, ne), k0)
-                scale = np.divide(p, prev_p, out=np.ones_like(p), where=prev_p > 0)
-                pred[: k - k0] = s_old[: k - k0] + 0.5 * prev_dsr[k0:k] * scale[None, :]
-            E2 = modulus(pred)
-            du, duz, dS = solve(g, ne, E2, F)
-            # corrector(s): E_r at the mid-increment pressure, fixed-point iteration
-            for _ in range(corrections):
-                E2 = modulus(s_old + 0.5 * dS[0])
-                du, duz, dS_new = solve(g, ne, E2, F)
-                scale_ = max(np.max(np.abs(dS_new[0])), 1e-300)
-                change = np.max(np.abs(dS_new[0] - dS[0])) / scale_
-                dS = dS_new
-                if change < 1e-6:
-                    break
-            floor_hit[k0:ne] |= E2 <= floor
-            prev_dsr[k0:ne] = dS[0]
-            prev_p, prev_n = p, ne
-            S[:, k0:g] += dS[:, : g - k0]
-            # the group's own layers: sigma_r rises from 0 at the top to -p at the bottom
-            # (mean -p/2); a layer of the group felt on average (m - 1) / 2 of the m later
-            # layers' loads, so that fraction of the hoop (and axial, shear) increment
-            s_r[g] = -0.5 * p
-            if ne > g:
-                S[1:, g] += top_frac[g] * dS[1:, g - k0]
-            u[k0 : ne + 1] += du
-            uz[k0 : ne + 1] += duz
-            if k0 > 0:
-                state["acc"] += np.stack([du[0], duz[0]], axis=-1)
-            if ne == g:
-                u[g + 1] = u[g]
-                uz[g + 1] = uz[g]
+        sig = roll.wound_on_tension(g, tension, nip, outer_radius)
+        roll.lay_group(g, sig)
         if progress is not None:
             progress(g + 1, G)
-    if lazy:
-        apply_deep()
-
-    E_final = np.asarray(law.modulus(s_r), dtype=float)
-    if not np.all(np.isfinite(S)):
-        raise ConvergenceError("non-finite stresses in the axisymmetric winding solution")
-    # slack / floor flag: within SLACK_DEPTH of the surface a group was wound without tension
-    # or its radial modulus sat at the floor (final pressure or during an increment)
-    depth = r_node[-1][None, :] - r_mid
-    near = depth <= max(SLACK_DEPTH, float(np.max(L[-1])))
-    at_floor = (wot <= 0) | (E_final <= floor) | floor_hit
-    slack = np.any(near & at_floor, axis=0)
-    return AxisymmetricResult(
-        z=z,
-        dz=w,
-        thickness=h,
-        radius=r_mid,
-        sigma_r=s_r,
-        sigma_theta=S[1],
-        sigma_z=S[2],
-        tau_rz=S[3],
-        E_r=E_final,
-        wot=wot,
-        nip_load=nip_used,
-        relaxation_radius=R0,
-        outer_radius=r_node[-1] + at_sectors(u[-1]),
-        layers_per_group=m,
-        build_radius=r_node[-1].copy(),
-        core_radius=r_c,
-        info={
-            "n_layers": n_layers,
+    return roll.result(
+        {
+            "n_layers": build.n_layers,
             "n_groups": G,
             "grouping": grouping,
             "model": "axisymmetric FE (u_r, u_z)" if fe else "independent plane-stress sectors",
             "shape": shape,
             "shear_coupling": shear_coupling,
             "E_r_floor_Pa": floor,
-            "line_force_N": line_force_0,
+            "line_force_N": tension.web_stress * web.thickness * float(np.sum(build.w)),
             "slack_depth_m": SLACK_DEPTH,
-            "u_z_outer_m": at_sectors(uz[-1]) if fe else np.zeros(ncol),
-        },
-        slack=slack,
+        }
     )
 
 
@@ -725,11 +905,12 @@ def group_convergence(
     thickness: ThicknessProfile | None = None,
     *,
     n_sectors: int = 61,
-    n_groups: int = DEFAULT_GROUPS,
+    n_groups: int | None = None,
     surface_depth: float = 5e-3,
     **kwargs: Any,
 ) -> dict[str, float]:
-    """Convergence check of the layer grouping: wind with ``n_groups`` and ``2 n_groups``.
+    """Convergence check of the layer grouping: wind with ``n_groups`` (default: the default
+    grouping) and twice as many groups.
 
     Returns the largest change between the two of the radial stress at the core and of the
     mean wound-on tension, each relative to its largest magnitude [-]; of the radial stress
@@ -754,6 +935,7 @@ def group_convergence(
         **kwargs,
     )
     t1 = time.perf_counter()
+    n_groups = int(a.layers_per_group.size)
     n2 = min(2 * n_groups, a.n_layers)
     b = wind_axisymmetric(
         web, core, outer_radius, tension, thickness, n_sectors=n_sectors, n_groups=n2, **kwargs

@@ -47,12 +47,24 @@ during the increment, which is positive below a tensioned layer, so E_r > 0. A f
 ``E_r >= modulus_floor * E_theta`` (default 1e-6 E_theta, i.e. 5 kPa for a 5 GPa film)
 keeps a zero-tension layer, or the explicit rule at a free surface, finite.
 
-Lazy deep part (speed)
-----------------------
-Below a window of the top ``window_layers`` layers the element moduli are frozen for
-``flush_interval`` increments at the pressure predicted for the middle of that period;
-their increments are the frozen shape times one scalar, accumulated and applied at each
-flush. ``window_layers=None`` solves the whole roll with current moduli every increment.
+Lazy deep part (speed): levels of doubling depth
+-------------------------------------------------
+The top ``window_layers`` layers (level 0) are re-solved with current moduli and iterated
+in every increment. Below them, level l >= 1 is the band from ``window_layers x 2^(l-1)``
+to ``window_layers x 2^l`` layers deep (placed when it is refreshed); its element moduli are
+frozen for ``flush_interval x 2^(l-1)`` increments at the pressure predicted (quadratic
+extrapolation of its last refreshes) for the middle of that period, so the frozen period
+is the same fraction of the depth at every level. With frozen coefficients a band's
+increments are its frozen shape (a product of Riccati factors) times one scalar, the
+pending increment at its top, applied when the band is refreshed; the Riccati recursion
+condenses everything below a band into one coefficient. Refresh k re-solves levels
+1..1+(trailing zero bits of k): O(log N) element evaluations per increment, amortised,
+O(N log N) for the roll. ``window_layers=None`` solves the whole roll with current moduli
+every increment (O(N^2), the exact answer the default matches within 0.1 %).
+
+Kernels: :mod:`woundroll.winding._kernels` (numba) and its NumPy twin
+:mod:`woundroll.winding._kernels_numpy` (same algorithm, equal to rounding), used for small
+rolls so that a small roll pays no compiler import (docs/winding.md).
 """
 
 from __future__ import annotations
@@ -75,6 +87,10 @@ FloatArray = NDArray[np.float64]
 _MODES = {"midpoint": 0.5, "end": 1.0, "explicit": 0.0}
 _MAX_NODES = 20_000_000
 _MAX_LEVELS = 48
+#: Rolls up to this many nodes are wound by the NumPy kernels (no numba import, whose cost
+#: of 0.5-2 s per process exceeds the NumPy solve below this size; docs/winding.md), unless
+#: the lazy deep part is off (``window_layers=None``, O(N^2): a check, compiled).
+_NUMPY_MAX_NODES = 4001
 _NEW_LAYER = ("laid_on", "elastic")
 
 
@@ -98,9 +114,10 @@ class WindingOptions:
         Floor of E_r as a fraction of E_theta (keeps K1 = 0 finite).
     window_layers : int or None
         Layers below the surface solved with current moduli every increment; deeper ones
-        are frozen between flushes. None: no freezing.
+        are frozen in levels of doubling depth (module docstring). None: no freezing.
     flush_interval : int
-        Increments between refreshes of the frozen deep part.
+        Increments between refreshes of the shallowest frozen level (level l: this times
+        2^(l-1)).
     load_substeps : int
         Apply each increment's pressure in this many equal steps, updating E_r in between
         (a check on the E_r rule: many substeps integrate the tangent law exactly).
@@ -337,6 +354,19 @@ def _result(
     )
 
 
+def _numpy_kernels_suffice(n_nodes: int, options: WindingOptions) -> bool:
+    """Small roll, default-sized window: the NumPy kernels beat numba's per-process cost.
+
+    The NumPy kernels' time grows with nodes x load substeps x window size (Python loops
+    over the window); ``_NUMPY_MAX_NODES`` is the break-even for the default window
+    (8 layers) and one load step. ``window_layers=None`` (O(N^2), a check) stays compiled.
+    """
+    if options.window_layers is None:
+        return False
+    window = max(options.window_layers, 2 * options.flush_interval * options.layers_per_increment)
+    return n_nodes * options.load_substeps * max(window / 8.0, 1.0) <= _NUMPY_MAX_NODES
+
+
 def wind(
     web: Web,
     core: Core,
@@ -374,13 +404,15 @@ def wind(
     ConvergenceError
         The fixed-point iteration for E_r did not converge in an increment.
     """
-    from woundroll.winding import _kernels as K
-
     options = options if options is not None else WindingOptions()
     if not isinstance(options, WindingOptions):
         raise InputError(f"expected WindingOptions, got {type(options).__name__}", "options")
     prob = build_problem(web, core, outer_radius, tension, options)
     nn = prob.r.size
+    if _numpy_kernels_suffice(nn, options):
+        from woundroll.winding import _kernels_numpy as K  # no compiler cost (docs/winding.md)
+    else:
+        from woundroll.winding import _kernels as K
     F = np.zeros(nn)
     st = np.zeros(nn)
     alpha = np.zeros(max(nn - 1, 1))

@@ -1,0 +1,390 @@
+"""Figures 6-10 and 14-15 against the dynamic model: the impact in time on the FE roll
+(:mod:`woundroll.contact.dynamic`, the role of the paper's ABAQUS/Explicit model) beside the
+1.5D FD and energy models, on the seven Table 2 rolls and the calibration block.
+
+Per roll: Rho, impulse, peak time and contact time of the dynamic FE impact and of the FD
+model; the energy model's Rho; the FE's coefficient of restitution and the energy it leaves
+in the roll; the tapered-column active mass {14}-{18} the FD model uses, and the active mass
+the FE roll *shows*: the m_r with which the FD model (same quasi-static spring {3}, plastic
+collision) reads the FE's Rho (:func:`woundroll.contact.dynamic.matching_active_mass`). A
+case can hand that mass to the FD model with ``[tester] active_mass``.
+
+The calibration block (Table 1: E = 44.6 MPa, nu = 0.458, 1.4 g/cm^3; thickness 2.54 cm,
+an assumption) is the FE "roll" of an isotropic, linear elastic material 2.54 cm thick on a
+rigid core of 1 m radius (a block on a rigid table, curvature 1/1 m against the head's
+1/6.6 mm): the device manual's 77 Rho, the paper's ABAQUS 76.1 Rho.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from woundroll.errors import InputError
+from woundroll.studies._common import (
+    TABLE2,
+    Progress,
+    SummaryTable,
+    _map,
+    _prefix,
+    _savefig,
+    _write,
+)
+from woundroll.studies.tension import MANUAL_IMPULSE_NS
+
+#: Radius of the rigid "table" under the calibration block in the FE model [m].
+BLOCK_CORE_RADIUS = 1.0
+
+#: The paper's 3D ABAQUS reading on the calibration block and the device manual's [Rho].
+BLOCK_ABAQUS_RHO = 76.1
+BLOCK_MANUAL_RHO = 77.0
+
+
+def _peak_time(time: Any, decel: Any, start: float) -> float:
+    return float(time[int(np.argmax(decel))] - start)
+
+
+def _measure_roll(name: str, overrides: tuple[str, ...]) -> dict[str, Any]:
+    """One Table 2 roll through the pipeline with ``contact.dynamic = true``."""
+    from woundroll.case import load_case
+    from woundroll.contact.dynamic import matching_active_mass
+    from woundroll.instruments import RollSpring
+    from woundroll.pipeline import run
+
+    case = load_case(name, ["contact.dynamic=true", "contact.no_update=false", *overrides])
+    res = run(case)
+    assert res.hardness is not None and res.contact is not None and res.dynamic is not None
+    web = case.web.build()
+    fd, en, dy = res.hardness.fd, res.hardness.energy, res.dynamic
+    inst = res.hardness.instrument
+    spring = RollSpring.quadratic(res.contact.alpha, res.contact.beta)
+    m_fe = matching_active_mass(inst, spring, dy.rho)
+    return {
+        "case": name,
+        "material": case.web.preset or "",
+        "tension_N": case.winding.schedule(web).web_stress * web.width * web.thickness,
+        "rho_dynamic": dy.rho,
+        "rho_fd": fd.rho,
+        "rho_energy": en.rho,
+        "impulse_dynamic_Ns": dy.impulse,
+        "impulse_fd_Ns": fd.impulse,
+        "peak_time_dynamic_s": dy.peak_time,
+        "peak_time_fd_s": _peak_time(fd.time, fd.deceleration, fd.contact_start),
+        "contact_time_dynamic_s": dy.contact_time,
+        "contact_time_fd_s": fd.contact_time,
+        "delta_max_dynamic_m": dy.max_depth,
+        "delta_max_fd_m": fd.max_depth,
+        "restitution_dynamic": dy.restitution,
+        "energy_in_J": dy.energy_in,
+        "energy_left_in_roll_J": dy.energy_roll_left,
+        "energy_loss_numerical_J": dy.energy_contact_loss,
+        "active_mass_column_kg": res.hardness.effective_mass,
+        "active_mass_fe_kg": m_fe,
+        "peak_pressure_dynamic_Pa": float(np.max(dy.axis_pressure)),
+        "time_step_s": dy.time_step,
+        "solve_time_dynamic_s": dy.solve_time_s,
+        "history": {
+            "time_from_contact_s": [float(t - dy.contact_start) for t in dy.time],
+            "deceleration_m_per_s2": [float(a) for a in dy.deceleration],
+            "fd_time_from_contact_s": [float(t - fd.contact_start) for t in fd.time],
+            "fd_deceleration_m_per_s2": [float(a) for a in fd.deceleration],
+            "axis_depth_m": [float(x) for x in dy.axis_depth],
+            "axis_pressure_Pa": [float(x) for x in dy.axis_pressure],
+        },
+    }
+
+
+def block_roll(instrument: str = "rho-meter") -> tuple[Any, Any, Any, Any]:
+    """The calibration block as an FE roll: ``(web, core, radius, sigma_r)`` (module
+    docstring): isotropic linear elastic, Table 1 constants, on a rigid 1 m core."""
+    from woundroll.instruments.calibration import CalibrationBlock
+    from woundroll.materials import Core, Web
+    from woundroll.materials.radial_modulus import Constant
+
+    b = CalibrationBlock.from_preset(instrument)
+    E, nu = b.youngs_modulus, b.poisson_ratio
+    web = Web(
+        thickness=1e-4,  # sets the FE surface ring (0.1 mm), no layers in a block
+        width=0.0254,
+        E_theta=E,
+        radial_modulus=Constant(E),
+        E_z=E,
+        density=b.density,
+        nu_theta_r=nu,
+        nu_z_r=nu,
+        nu_theta_z=nu,
+        G_r_theta=E / (2.0 * (1.0 + nu)),
+    )
+    core = Core(BLOCK_CORE_RADIUS)
+    radius = np.array([BLOCK_CORE_RADIUS, BLOCK_CORE_RADIUS + b.thickness])
+    return web, core, radius, np.zeros(2)
+
+
+def _measure_block(_: str, overrides: tuple[str, ...]) -> dict[str, Any]:
+    """The calibration block: FE dynamic, and the FD/energy models on the FE's
+    quasi-static curve and on the calibrated Hertz curve (docs/instruments.md, section 6)."""
+    from woundroll.contact import roll_stiffness
+    from woundroll.contact.dynamic import impact_dynamic
+    from woundroll.instruments import (
+        RollSpring,
+        TabulatedLaw,
+        get_instrument,
+        impact_energy,
+        impact_fd,
+    )
+    from woundroll.instruments.calibration import CalibrationBlock, HertzLineContact
+
+    inst = get_instrument("rho-meter")
+    web, core, r, s = block_roll()
+    st = roll_stiffness(web, core, r, s, inst)
+    c = st.contact
+    curve = TabulatedLaw(c.delta, c.force)
+    fd = impact_fd(inst, RollSpring(curve, 0.0))
+    en = impact_energy(inst, curve)
+    dy = impact_dynamic(
+        web,
+        core,
+        r,
+        s,
+        inst,
+        contact_time=fd.contact_time,
+        depth_scale=float(c.delta[-1]),
+    )
+    hertz = HertzLineContact(
+        inst.head_radius, float(inst.head_length), CalibrationBlock.from_preset("rho-meter")
+    )
+    fd_h = impact_fd(inst, RollSpring(hertz.law(dy.energy_in), 0.0))
+    return {
+        "case": "calibration block",
+        "material": "block",
+        "tension_N": math.nan,
+        "rho_dynamic": dy.rho,
+        "rho_fd": fd.rho,
+        "rho_energy": en.rho,
+        "rho_fd_hertz": fd_h.rho,
+        "impulse_dynamic_Ns": dy.impulse,
+        "impulse_fd_Ns": fd.impulse,
+        "peak_time_dynamic_s": dy.peak_time,
+        "peak_time_fd_s": _peak_time(fd.time, fd.deceleration, fd.contact_start),
+        "contact_time_dynamic_s": dy.contact_time,
+        "contact_time_fd_s": fd.contact_time,
+        "delta_max_dynamic_m": dy.max_depth,
+        "delta_max_fd_m": fd.max_depth,
+        "restitution_dynamic": dy.restitution,
+        "energy_in_J": dy.energy_in,
+        "energy_left_in_roll_J": dy.energy_roll_left,
+        "energy_loss_numerical_J": dy.energy_contact_loss,
+        "active_mass_column_kg": 0.0,
+        "active_mass_fe_kg": math.nan,
+        "peak_pressure_dynamic_Pa": float(np.max(dy.axis_pressure)),
+        "time_step_s": dy.time_step,
+        "solve_time_dynamic_s": dy.solve_time_s,
+        "history": {
+            "time_from_contact_s": [float(t - dy.contact_start) for t in dy.time],
+            "deceleration_m_per_s2": [float(a) for a in dy.deceleration],
+            "fd_time_from_contact_s": [float(t - fd.contact_start) for t in fd.time],
+            "fd_deceleration_m_per_s2": [float(a) for a in fd.deceleration],
+            "axis_depth_m": [float(x) for x in dy.axis_depth],
+            "axis_pressure_Pa": [float(x) for x in dy.axis_pressure],
+        },
+    }
+
+
+_COLUMNS = (
+    ("case", "roll", str),
+    ("rho_dynamic", "Rho FE dyn", lambda v: f"{v:.1f}"),
+    ("rho_fd", "Rho FD", lambda v: f"{v:.1f}"),
+    ("rho_energy", "Rho energy", lambda v: f"{v:.1f}"),
+    ("impulse_dynamic_Ns", "impulse FE [N s]", lambda v: f"{v:.3f}"),
+    ("impulse_fd_Ns", "impulse FD [N s]", lambda v: f"{v:.3f}"),
+    ("peak_time_dynamic_s", "peak FE [ms]", lambda v: f"{v * 1e3:.2f}"),
+    ("peak_time_fd_s", "peak FD [ms]", lambda v: f"{v * 1e3:.2f}"),
+    ("restitution_dynamic", "e FE", lambda v: f"{v:.2f}"),
+    ("active_mass_column_kg", "m_r {18} [g]", lambda v: f"{v * 1e3:.1f}"),
+    (
+        "active_mass_fe_kg",
+        "m_r FE [g]",
+        lambda v: "-" if not math.isfinite(v) else f"{v * 1e3:.1f}",
+    ),
+)
+
+
+@dataclass(frozen=True)
+class DynamicStudy:
+    """The dynamic FE impact against the 1.5D models (module docstring).
+
+    Attributes
+    ----------
+    rolls : list of dict
+        One row per roll (SI, unit in the key), the calibration block last; ``history``
+        holds the deceleration histories and the pressure under the head at the peak.
+    """
+
+    rolls: list[dict[str, Any]]
+    name: str = "dynamic"
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "study": self.name,
+            "figures": "reference paper, Figures 6-10 and 14-15 (dynamic FE against 1.5D)",
+            "manual_impulse_Ns": MANUAL_IMPULSE_NS,
+            "block_manual_rho": BLOCK_MANUAL_RHO,
+            "block_abaqus_rho": BLOCK_ABAQUS_RHO,
+            "rolls": [
+                {
+                    k: (None if isinstance(v, float) and not math.isfinite(v) else v)
+                    for k, v in r.items()
+                }
+                for r in self.rolls
+            ],
+        }
+
+    def summary(self) -> list[SummaryTable]:
+        header = tuple(t for _, t, _ in _COLUMNS)
+        rows = [tuple(f(r[k]) for k, _, f in _COLUMNS) for r in self.rolls]
+        return [SummaryTable("Dynamic FE impact against the 1.5D models", header, rows)]
+
+    def notes(self) -> list[str]:
+        notes = [
+            "FE dyn: 2D plane-strain FE roll hit in time (contact.dynamic); FD: {4}-{13} with "
+            "the tapered-column mass {18} (plastic collision); energy: {19}-{22}.",
+            "m_r FE: the active mass with which the FD model reads the FE's Rho "
+            "([tester] active_mass hands it to the FD model); '-': none does.",
+            f"Device manual impulse {MANUAL_IMPULSE_NS} N s; calibration block: manual "
+            f"{BLOCK_MANUAL_RHO:.0f} Rho, paper's 3D ABAQUS {BLOCK_ABAQUS_RHO} Rho.",
+        ]
+        blk = [r for r in self.rolls if r["material"] == "block"]
+        if blk:
+            notes.append(
+                f"Block, FD on the calibrated Hertz curve: {blk[0]['rho_fd_hertz']:.1f} Rho; "
+                f"FD on the FE block's quasi-static curve: {blk[0]['rho_fd']:.1f} Rho."
+            )
+        return notes
+
+    def plot(self, prefix: str | Path) -> list[Path]:
+        """``dynamic_rho.png`` (Rho and impulse per roll, the three models), and
+        ``dynamic_histories.png`` (deceleration against time, FE solid, FD dashed; pressure
+        under the head at the peak, cf. Figures 6, 10 and 12)."""
+        from matplotlib.figure import Figure
+
+        base = _prefix(prefix, "dynamic")
+        rho_unit = 3.76 * 9.81
+        names = [r["case"] for r in self.rolls]
+        x = np.arange(len(names))
+        fig = Figure(figsize=(10.0, 4.4), layout="constrained")
+        ax, ax2 = fig.subplots(1, 2)
+        for dx, key, lab in (
+            (-0.25, "rho_dynamic", "FE dynamic"),
+            (0.0, "rho_fd", "FD"),
+            (0.25, "rho_energy", "energy"),
+        ):
+            ax.bar(x + dx, [r[key] for r in self.rolls], width=0.25, label=lab)
+        ax.axhline(BLOCK_MANUAL_RHO, color="k", ls=":", lw=0.8, label="block: manual 77")
+        ax.set_xticks(x, names, rotation=45, ha="right", fontsize=8)
+        ax.set_ylabel("Rho [-]")
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3, axis="y")
+        for dx, key, lab in (
+            (-0.2, "impulse_dynamic_Ns", "FE dynamic"),
+            (0.2, "impulse_fd_Ns", "FD"),
+        ):
+            ax2.bar(x + dx, [r[key] for r in self.rolls], width=0.4, label=lab)
+        ax2.axhline(MANUAL_IMPULSE_NS, color="k", ls="--", label="device manual 0.267 N s")
+        ax2.set_xticks(x, names, rotation=45, ha="right", fontsize=8)
+        ax2.set_ylabel("impulse [N s]")
+        ax2.legend(fontsize=8)
+        ax2.grid(alpha=0.3, axis="y")
+        paths = [_savefig(fig, Path(f"{base}_rho.png"))]
+
+        fig = Figure(figsize=(10.0, 4.4), layout="constrained")
+        ax, ax2 = fig.subplots(1, 2)
+        for i, r in enumerate(self.rolls):
+            h = r["history"]
+            col = f"C{i % 10}"
+            ax.plot(
+                np.asarray(h["time_from_contact_s"]) * 1e3,
+                np.asarray(h["deceleration_m_per_s2"]) / rho_unit,
+                color=col,
+                lw=1.5,
+                label=r["case"],
+            )
+            ax.plot(
+                np.asarray(h["fd_time_from_contact_s"]) * 1e3,
+                np.asarray(h["fd_deceleration_m_per_s2"]) / rho_unit,
+                color=col,
+                lw=1.0,
+                ls="--",
+            )
+            d = np.asarray(h["axis_depth_m"])
+            keep = d <= 0.02
+            ax2.semilogy(
+                d[keep] * 1e3, np.maximum(np.asarray(h["axis_pressure_Pa"])[keep], 1.0), color=col
+            )
+        ax.set_xlabel("time from contact [ms]")
+        ax.set_ylabel("deceleration [Rho] (FE solid, FD dashed)")
+        ax.legend(fontsize=7)
+        ax.grid(alpha=0.3)
+        ax2.set_xlabel("depth below the surface [mm]")
+        ax2.set_ylabel("radial pressure at peak deceleration [Pa]")
+        ax2.grid(alpha=0.3, which="both")
+        paths.append(_savefig(fig, Path(f"{base}_histories.png")))
+        return paths
+
+    def write(self, out_dir: str | Path) -> list[Path]:
+        """Write ``study.json`` and the PNGs into ``out_dir``; return the paths."""
+        return _write(self, out_dir)
+
+
+def dynamic_study(
+    cases: Iterable[str] = TABLE2,
+    progress: Progress | None = None,
+    *,
+    block: bool = True,
+    overrides: tuple[str, ...] = (),
+    workers: int = 1,
+) -> DynamicStudy:
+    """Run the dynamic FE impact beside the 1.5D models on ``cases`` (and the block).
+
+    Parameters
+    ----------
+    cases : iterable of str
+        Bundled case names or case files (default: the seven Table 2 rolls).
+    block : bool
+        Add the calibration block.
+    overrides : tuple of str
+        ``dotted.key=value`` applied to every case (e.g.
+        ``"contact.dynamic_options.steps_per_contact=200"``).
+    workers : int
+    """
+    names = list(cases)
+    if not names and not block:
+        raise InputError("no cases given", "study.cases")
+    jobs: list[tuple[Any, ...]] = [(n, tuple(overrides)) for n in names]
+    fns = [_measure_roll] * len(jobs)
+    if block:
+        jobs.append(("block", tuple(overrides)))
+        fns.append(_measure_block)
+    labels = [*names, "calibration block"]
+    out = _map(
+        _dispatch,
+        [(fn.__name__, *job) for fn, job in zip(fns, jobs, strict=True)],
+        workers=workers,
+        progress=progress,
+        label=lambda i: f"dynamic: {labels[i]}",
+    )
+    return DynamicStudy(out)
+
+
+def _dispatch(fn_name: str, name: str, overrides: tuple[str, ...]) -> dict[str, Any]:
+    fn = {"_measure_roll": _measure_roll, "_measure_block": _measure_block}[fn_name]
+    return fn(name, overrides)
+
+
+def run(progress: Progress | None = None, *, workers: int = 1) -> DynamicStudy:
+    """The registry's entry: :func:`dynamic_study` on the Table 2 rolls and the block."""
+    return dynamic_study(progress=progress, workers=workers)

@@ -1,0 +1,180 @@
+"""Every kind of bad input ends in exit status 2 and one line naming the field (or the file),
+within seconds: no traceback, no exit 1, no run with nonsense (issue 13's list, and more).
+
+Each kind is a case file written to a temporary directory and run through the CLI in-process
+(``woundroll run FILE -q``). The base roll is a 12 um film on a rigid 3.8 cm core wound to
+5 cm, valid and quick; each kind breaks one thing.
+"""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from woundroll.cli import app
+
+runner = CliRunner()
+
+BASE = """
+title = "t"
+[web]
+thickness = "12 um"
+width = "0.5 m"
+E_theta = "4.9 GPa"
+radial_modulus = { law = "pfeiffer", K1 = "10 kPa", K2 = 100 }
+[core]
+outer_radius = "3.8 cm"
+rigid = true
+[winding]
+outer_radius = "5 cm"
+tension = "1 pli"
+"""
+LAW = '{ law = "pfeiffer", K1 = "10 kPa", K2 = 100 }'
+TESTER = BASE + '[tester]\ninstrument = "rho-meter"\n'
+
+
+def web(extra: str) -> str:
+    return BASE.replace('E_theta = "4.9 GPa"', 'E_theta = "4.9 GPa"\n' + extra)
+
+
+def wind(extra: str) -> str:
+    return BASE.replace('tension = "1 pli"', 'tension = "1 pli"\n' + extra)
+
+
+#: kind -> (case file content, field named in the message)
+KINDS: dict[str, tuple[str | bytes, str]] = {
+    # files that are not UTF-8 TOML
+    "binary file": (b"\x00\x01\x02\xff\xfe garbage", "CASE"),
+    "UTF-16 file": (BASE.encode("utf-16"), "CASE"),
+    "Latin-1 file": (BASE.replace('"t"', '"Gr\xfc\xdfe"').encode("latin-1"), "CASE"),
+    "TOML syntax": ("[web\nthickness=", "CASE"),
+    "empty file": ("", "web"),
+    # types
+    "tabulated file not text": (
+        BASE.replace(LAW, '{ law = "tabulated", file = 3 }'),
+        "web.radial_modulus.file",
+    ),
+    "tabulated pressure not a list": (
+        BASE.replace(LAW, '{ law = "tabulated", strain = [0.1, 0.2, 0.3], pressure = 5 }'),
+        "web.radial_modulus.pressure",
+    ),
+    "tabulated strain text": (
+        BASE.replace(LAW, '{ law = "tabulated", strain = "abc", pressure = [1, 2, 3] }'),
+        "web.radial_modulus",
+    ),
+    "radial modulus a list": (BASE.replace(LAW, "[1, 2]"), "web.radial_modulus"),
+    "npy map of strings": (wind('thickness_profile = "strings.npy"'), "winding.thickness_profile"),
+    "binary CSV profile": (wind('thickness_profile = "bin.csv"'), "winding.thickness_profile"),
+    "profile is a directory": (wind('thickness_profile = "."'), "winding.thickness_profile"),
+    "missing profile file": (wind('thickness_profile = "nope.csv"'), "winding.thickness_profile"),
+    "title a number": (BASE.replace('title = "t"', "title = 5"), "title"),
+    "tension a boolean": (BASE.replace('"1 pli"', "true"), "winding.tension"),
+    "tension a list": (BASE.replace('"1 pli"', "[1, 2]"), "winding.tension"),
+    "web a string": (
+        'web = "x"\n' + BASE.split("[web]")[0] + "[core]" + BASE.split("[core]")[1],
+        "web",
+    ),
+    "contact option wrong type": (
+        TESTER + '[contact]\noptions = { surface_size = "abc" }\n',
+        "contact.options",
+    ),
+    "roll spring a string": (TESTER + 'roll_spring = "x"\n', "tester.roll_spring"),
+    "sectors a string": (BASE + '[profile]\nsectors = "many"\n', "profile.sectors"),
+    # keys
+    "undocumented base_dir": ('base_dir = "/tmp"\n' + BASE, "base_dir"),
+    "unknown contact option": (TESTER + "[contact]\noptions = { nonsense = 1 }\n", "contact"),
+    "unknown winding option": (wind("options = { nonsense = 1 }"), "winding.options"),
+    "unknown instrument": (BASE + '[tester]\ninstrument = "foo"\n', "tester.instrument"),
+    "missing web": (BASE.split("[web]")[0] + "[core]" + BASE.split("[core]")[1], "web"),
+    "measured without profile": (BASE + '[profile]\nmeasured = "x.csv"\n', "profile.measured"),
+    # magnitudes outside physics
+    "E_theta 1e300": (BASE.replace('"4.9 GPa"', "1e300"), "web.E_theta"),
+    "E_z 1e-300": (web("E_z = 1e-300"), "web.E_z"),
+    "G_r_theta 1e-300": (web("G_r_theta = 1e-300"), "web.G_r_theta"),
+    "density 1e300": (web("density = 1e300"), "web.density"),
+    "thickness 1e-30": (BASE.replace('"12 um"', "1e-30"), "web.thickness"),
+    "thickness inf": (BASE.replace('"12 um"', '"inf m"'), "web.thickness"),
+    "width 1 nm": (BASE.replace('"0.5 m"', "1e-9"), "web.width"),
+    "K2 1e300": (BASE.replace("K2 = 100", "K2 = 1e300"), "web.radial_modulus"),
+    "K1 1e300": (BASE.replace('"10 kPa"', '"1e300 Pa"'), "web.radial_modulus"),
+    "K2 negative": (BASE.replace("K2 = 100", "K2 = -5"), "web.radial_modulus.K2"),
+    "tension 1e300 N": (BASE.replace('"1 pli"', '"1e300 N"'), "winding.tension"),
+    "tension negative": (BASE.replace('"1 pli"', '"-1 pli"'), "winding.tension"),
+    "tension stretching the web 20 %": (BASE.replace('"1 pli"', '"1 GPa"'), "winding.tension"),
+    "nip load 1e300": (wind('nip_load = "1e300 N/m"\nfriction = 0.3'), "winding.nip_load"),
+    "friction 1e6": (wind('friction = 1e6\nnip_load = "1 pli"'), "winding.friction"),
+    "taper fraction 5": (wind('taper = { kind = "linear", fraction = 5 }'), "winding.taper"),
+    "taper table of one point": (
+        wind('taper = { kind = "table", radius = ["4 cm"], factor = [1, 2] }'),
+        "winding.taper",
+    ),
+    "core radius 1 nm": (BASE.replace('"3.8 cm"', "1e-9"), "core.outer_radius"),
+    "outer radius 1e300": (
+        BASE.replace('outer_radius = "5 cm"', "outer_radius = 1e300"),
+        "winding.outer_radius",
+    ),
+    "outer radius below the core": (
+        BASE.replace('outer_radius = "5 cm"', 'outer_radius = "3 cm"'),
+        "winding.outer_radius",
+    ),
+    "wound length 1e7 m": (
+        BASE.replace('outer_radius = "5 cm"\n', 'length = "1e7 m"\n'),
+        "winding.outer_radius",
+    ),
+    "1e300 layers": (
+        BASE.replace('"12 um"', '"1e-300 m"').replace('"5 cm"', "1e300"),
+        "web.thickness",
+    ),
+    "Poisson ratios not positive definite": (
+        web('E_z = "9.8 GPa"\nnu_theta_z = 0.9'),
+        "web.nu_theta_z",
+    ),
+    "Poisson ratio 1.5": (web("nu_theta_r = 1.5"), "web.nu_theta_r"),
+    "sectors 0": (BASE + "[profile]\nsectors = 0\n", "profile.sectors"),
+    # the tester
+    "striker mass 1e300 kg": (TESTER + 'mass = "1e300 kg"\n', "tester.mass"),
+    "head radius 1e300": (TESTER + "head_radius = 1e300\n", "tester.head_radius"),
+    "release position 1 km": (TESTER + 'release_position = "1 km"\n', "tester.release_position"),
+    "spring stiffness 1e300": (TESTER + "spring_stiffness = 1e300\n", "tester.spring_stiffness"),
+    "roll spring alpha 1e300": (
+        TESTER + "[tester.roll_spring]\nalpha = 1e300\nbeta = 1e5\n",
+        "tester.roll_spring.alpha",
+    ),
+    "steps_per_contact 1e10": (
+        TESTER + "steps_per_contact = 10000000000\n",
+        "tester.steps_per_contact",
+    ),
+    "time_step 1e-15 s": (
+        TESTER + 'time_step = "1e-15 s"\n[tester.roll_spring]\nalpha = 1e9\nbeta = 1e5\n',
+        "tester.time_step",
+    ),
+    "restitution 2": (TESTER + "restitution = 2\n", "tester.restitution"),
+    "depth_max 1 km": (TESTER + '[contact]\ndepth_max = "1 km"\n', "contact.depth_max"),
+}
+
+
+@pytest.fixture(scope="module")
+def case_dir(tmp_path_factory):
+    d = tmp_path_factory.mktemp("bad")
+    np.save(d / "strings.npy", np.array([["a", "b"], ["c", "d"]]))
+    (d / "bin.csv").write_bytes(b"\xff\xfe\x00\x00garbage\x00")
+    return d
+
+
+@pytest.mark.parametrize("kind", list(KINDS))
+def test_bad_input_exit_2_one_line(case_dir: Path, kind: str):
+    text, field = KINDS[kind]
+    path = case_dir / (kind.replace(" ", "_") + ".toml")
+    path.write_bytes(text if isinstance(text, bytes) else text.encode())
+    res = runner.invoke(app, ["run", str(path), "-q"])
+    lines = [line for line in res.output.splitlines() if line.strip()]
+    assert res.exit_code == 2, res.output
+    assert len(lines) == 1, res.output
+    assert lines[0].startswith(f"error: {field}"), lines[0]
+    assert "Traceback" not in res.output
+
+
+def test_count_of_kinds():
+    # the report quotes this number
+    assert len(KINDS) >= 60

@@ -1,0 +1,101 @@
+"""Setpoint design: constraints by hand, target validation, and a verified design (slow)."""
+
+import json
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from woundroll.case import load_case
+from woundroll.cli import app
+from woundroll.design import DesignTarget, _constraints, design_setpoints
+from woundroll.errors import InputError
+from woundroll.winding.hakiel import wind
+
+
+def test_constraints_by_hand():
+    case = load_case("pet2-53.4N")
+    web, core = case.web.build(), case.core.build()
+    w = wind(web, core, case.winding.final_radius(web, core), case.winding.schedule(web))
+    depth = 0.0065
+    inside = w.radius <= w.radius[-1] - depth
+    P = -w.sigma_r[inside]
+    tgt = DesignTarget(reading=30, pressure_min=P.min() * 1.1, pressure_max=P.max() * 0.9)
+    pmin, pmax, hoop, viol, score = _constraints(w, depth, tgt)
+    assert (pmin, pmax) == (pytest.approx(P.min()), pytest.approx(P.max()))
+    assert hoop == pytest.approx(w.layer_mean_hoop_stress()[1].min())
+    assert len(viol) == 3  # below, above, negative hoop
+    # relative excesses: 0.1/1.1 below, 1/0.9 - 1 above, plus the hoop term
+    assert score == pytest.approx(0.1 / 1.1 + (1 / 0.9 - 1) + -hoop / P.max(), rel=1e-9)
+    ok = replace(tgt, pressure_min=0.0, pressure_max=math.inf, allow_negative_hoop=True)
+    assert _constraints(w, depth, ok)[3] == []
+
+
+@pytest.mark.parametrize(
+    ("kw", "field"),
+    [
+        ({"reading": -3}, "--target"),
+        ({"reading": 50, "taper_kind": "table"}, "--taper"),
+        ({"reading": 50, "taper_max": 1.5}, "--max-taper"),
+        ({"reading": 50, "pressure_min": 5e5, "pressure_max": 1e5}, "--pressure"),
+        ({"reading": 50, "tolerance": 0}, "--tolerance"),
+    ],
+)
+def test_bad_targets(kw, field):
+    with pytest.raises(InputError) as exc:
+        DesignTarget(**kw)
+    assert exc.value.field == field
+
+
+@pytest.mark.parametrize(
+    ("args", "field"),
+    [
+        (["--target", "60 furlongs"], "--target"),
+        (["--target", "60 Rho", "--pressure", "10 kPa"], "--pressure"),
+        (["--target", "60 Rho", "--tension", "1 pli..x"], "--tension"),
+        (["--target", "60 R"], "readings"),  # a Schmidt target for a Rho-meter case
+    ],
+)
+def test_cli_design_bad_input_one_line(args, field):
+    res = CliRunner().invoke(app, ["design", "pet1-26.7N", *args])
+    assert res.exit_code == 2, res.output
+    lines = [line for line in res.output.splitlines() if line.strip()]
+    assert len(lines) == 1 and f"{field}:" in lines[0], res.output
+
+
+@pytest.mark.slow
+def test_design_reads_the_target_and_reports_what_it_cannot_meet():
+    from woundroll.diagnosis import RollModel
+    from woundroll.winding.tension import Taper
+
+    case = load_case("pet1-26.7N")
+    tgt = DesignTarget(
+        reading=55.0,
+        pressure_min=10e3,
+        pressure_max=200e3,
+        tension_min=0.3e6,
+        tension_max=8e6,
+        taper_max=0.6,
+    )
+    d = design_setpoints(case, tgt)
+    # an independent full forward run at the designed setpoints reads the target
+    model = RollModel.from_case(case)
+    model = replace(model, schedule=replace(model.schedule, taper=Taper("linear", d.taper)))
+    assert abs(model.evaluate(d.web_tension).reading - 55.0) <= 1.0
+    # PET1 on its steel core keeps a negative hoop stress near the core for every linear
+    # taper up to 60 %: reported as infeasible, with the reason, not hidden
+    assert not d.feasible
+    assert any("negative hoop" in v for v in d.violations)
+    assert d.margins["min_hoop_stress_Pa"] < 0
+    solved = [c for c in d.candidates if c.web_tension is not None]
+    assert min(c.score for c in solved) == pytest.approx(
+        next(c.score for c in solved if c.taper == d.taper)
+    )
+    json.dumps(d.to_dict())
+    # allowing it, the design is feasible and keeps the pressure inside the window
+    d2 = design_setpoints(case, replace(tgt, allow_negative_hoop=True))
+    assert d2.feasible
+    assert 10e3 <= d2.margins["min_pressure_Pa"] and d2.margins["max_pressure_Pa"] <= 200e3
+    assert np.isfinite(d2.reading) and abs(d2.reading - 55.0) <= 1.0
