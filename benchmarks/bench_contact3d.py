@@ -39,6 +39,13 @@ def main() -> None:
     ap.add_argument("--case", default="pet2-26.7N")
     ap.add_argument("--depth", type=float, default=2.1e-3)
     ap.add_argument("--skip-solvers", action="store_true")
+    ap.add_argument("--skip-curve", action="store_true")
+    ap.add_argument(
+        "--solver-n-fine",
+        type=int,
+        default=10,
+        help="n_fine of the mesh the solvers are compared on (10: the default mesh)",
+    )
     args = ap.parse_args()
 
     from woundroll.contact.heads import Head
@@ -51,10 +58,18 @@ def main() -> None:
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
 
     if not args.skip_solvers:
-        model = build_roll3d(web, core, radius, sigma_r, head=head, depth_max=args.depth)
+        from woundroll.contact.solver3d import Contact3DOptions
+
+        opts = Contact3DOptions(n_fine=args.solver_n_fine)
+        model = build_roll3d(
+            web, core, radius, sigma_r, head=head, depth_max=args.depth, options=opts
+        )
         D = model.moduli(model.sigma_pre)
         U = model.asm.upper(D)
-        print(f"default mesh: {model.mesh.shape} nodes, {U.shape[0]} DOF, nnz(K upper) {U.nnz}")
+        print(
+            f"mesh (n_fine {args.solver_n_fine}): {model.mesh.shape} nodes, "
+            f"{U.shape[0]} DOF, nnz(K upper) {U.nnz}"
+        )
         rhs = np.random.default_rng(0).standard_normal((U.shape[0], 50))
         for name in ("pardiso", "splu", "amg"):
             s = make_solver(name, U)
@@ -76,6 +91,8 @@ def main() -> None:
                 f"(wall {time.perf_counter() - w0:.1f} s)"
             )
 
+    if args.skip_curve:
+        return
     t0, c0 = time.perf_counter(), time.process_time()
     res = indent3d(web, core, radius, sigma_r, head=head, depth_max=args.depth)
     dt, cpu = time.perf_counter() - t0, time.process_time() - c0

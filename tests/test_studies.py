@@ -238,6 +238,7 @@ def test_full_table2_study_and_all(tmp_path):
         "tension_impulse.png",
         "pile_height_pressure.png",
         "pile_height_rho.png",
+        "pile_height_under_head.png",
         "slip_factor.png",
     }
     data = json.loads((tmp_path / "study.json").read_text(encoding="utf-8"))

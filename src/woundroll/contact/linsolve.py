@@ -76,7 +76,12 @@ class _SuperLU:
     def factor(self, values: FloatArray) -> None:
         self.A.data[:] = values
         try:
-            self.lu = spla.splu(_full(self.A).tocsc(), permc_spec="COLAMD")
+            self.lu = spla.splu(
+                _full(self.A).tocsc(),
+                permc_spec="MMD_AT_PLUS_A",  # symmetric ordering, no pivoting: SPD
+                diag_pivot_thresh=0.0,
+                options={"SymmetricMode": True},
+            )
         except RuntimeError as exc:
             raise ConvergenceError(f"stiffness matrix is singular ({exc})") from None
 
