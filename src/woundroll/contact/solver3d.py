@@ -98,7 +98,7 @@ class Contact3DOptions:
         Linear solver (:mod:`woundroll.contact.linsolve`); auto: PARDISO if installed.
     """
 
-    n_steps: int = 16
+    n_steps: int = 24
     step_exponent: float = 1.5
     surface_size: float | None = None
     radial_growth: float = 1.3

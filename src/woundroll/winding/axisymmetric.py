@@ -441,6 +441,15 @@ def default_groups(n_layers: int, max_layers: int = MAX_GROUP_LAYERS) -> int:
     return G
 
 
+def _one_blas_thread() -> Any:
+    """One BLAS thread while winding: the banded factorisations (bandwidth ~2 n_sectors) gain
+    nothing from threads and lose 7x with them on a loaded 2-core machine (20.5 vs 3.0 ms a
+    Table 3 window, docs/profile.md section 7)."""
+    from threadpoolctl import threadpool_limits
+
+    return threadpool_limits(limits=1, user_api="blas")
+
+
 def _check_inputs(
     web: Any,
     core: Any,
@@ -931,25 +940,26 @@ def wind_axisymmetric(
         corrections=corrections,
     )
     G = build.m.size
-    for g in range(G):
-        sig = roll.wound_on_tension(g, tension, nip, outer_radius)
-        roll.lay_group(g, sig)
-        if progress is not None:
-            progress(g + 1, G)
-    return roll.result(
-        {
-            "n_layers": build.n_layers,
-            "n_groups": G,
-            "grouping": grouping,
-            "model": "axisymmetric FE (u_r, u_z)" if fe else "independent plane-stress sectors",
-            "shape": shape,
-            "shear_coupling": shear_coupling,
-            "E_r_floor_Pa": floor,
-            "line_force_N": tension.web_stress * web.thickness * float(np.sum(build.w)),
-            "slack_depth_m": SLACK_DEPTH,
-            "grouping_check": check,
-        }
-    )
+    with _one_blas_thread():
+        for g in range(G):
+            sig = roll.wound_on_tension(g, tension, nip, outer_radius)
+            roll.lay_group(g, sig)
+            if progress is not None:
+                progress(g + 1, G)
+        return roll.result(
+            {
+                "n_layers": build.n_layers,
+                "n_groups": G,
+                "grouping": grouping,
+                "model": "axisymmetric FE (u_r, u_z)" if fe else "independent plane-stress sectors",
+                "shape": shape,
+                "shear_coupling": shear_coupling,
+                "E_r_floor_Pa": floor,
+                "line_force_N": tension.web_stress * web.thickness * float(np.sum(build.w)),
+                "slack_depth_m": SLACK_DEPTH,
+                "grouping_check": check,
+            }
+        )
 
 
 def group_convergence(
