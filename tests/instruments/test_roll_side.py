@@ -134,3 +134,15 @@ def test_as_roll_spring_accepts_every_source():
     with pytest.raises(InputError) as exc:
         RollSpring.quadratic(1e8, 1e5, restitution=1.2)
     assert exc.value.field == "roll_spring.restitution"
+
+
+def test_regularised_gamma3_matches_scipy() -> None:
+    # the written-out P(3, x) of the tapered column {18} against SciPy's gammainc, over the
+    # range u = ln(1 + H/a) spans (x = 2u from 1e-8 to 100) and across the switch at x = 1:
+    # both are accurate to round-off, so 1e-12 relative
+    from scipy.special import gammainc
+
+    from woundroll.instruments.roll_side import _regularised_gamma3
+
+    x = np.concatenate([np.logspace(-8, 2, 500), [1 - 1e-9, 1.0, 1 + 1e-9]])
+    np.testing.assert_allclose(_regularised_gamma3(x), gammainc(3.0, x), rtol=1e-12)
