@@ -156,3 +156,15 @@ friction = 0.3
     assert res.exit_code == 0, res.output
     assert "warning: winding.tension: wound-on stress 56.9 MPa" in res.output
     assert "mu N / h = 43.8 MPa" in res.output
+
+
+def test_help_keeps_bracketed_units_and_sections():
+    # help texts are plain text (rich_markup_mode=None): "[Rho]", "[uncertainty]" and
+    # "[defects]"-style words are units and case sections, and must not vanish as markup
+    for cmd, word in (
+        (["run", "--help"], "[uncertainty]"),
+        (["readings", "--help"], "[Rho]"),
+        (["fit-stack", "--help"], "[kPa]"),
+    ):
+        res = runner.invoke(app, cmd, env={"COLUMNS": "200"})
+        assert res.exit_code == 0 and word in res.output, (cmd, res.output)

@@ -24,6 +24,8 @@ if TYPE_CHECKING:
 
 app = typer.Typer(
     add_completion=False,
+    # help texts are plain text: "[kPa]", "[readings]" are units and case sections, not markup
+    rich_markup_mode=None,
     no_args_is_help=True,
     help="Wound-roll stresses from winder settings, and the hardness readings they cause.",
 )
@@ -357,9 +359,7 @@ def fit_stack_cmd(
     csv_file: Annotated[
         Path,
         typer.Argument(
-            help=escape(
-                "CSV with columns strain and pressure (units in the header: 'pressure [kPa]')."
-            )
+            help="CSV with columns strain and pressure (units in the header: 'pressure [kPa]')."
         ),
     ],
     law: Annotated[str, typer.Option(help="pfeiffer, polynomial, constant, or all.")] = "all",

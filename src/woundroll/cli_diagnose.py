@@ -237,7 +237,7 @@ def defects_cmd(
     ] = None,
 ) -> None:
     """Defect risk of a roll from its wound-in stresses: starring, core crush, slip,
-    telescoping, blocking, slack (limits in the case's [defects])."""
+    telescoping, blocking, slack (limits in the case's defects section)."""
     import json
 
     from woundroll.case import load_case
