@@ -74,9 +74,9 @@ from scipy.linalg.blas import dsbmv
 from scipy.linalg.lapack import dtbtrs
 from scipy.optimize import nnls
 
-from woundroll.contact.fem import Assembler, element_basis, plane_strain_moduli
+from woundroll.contact.fem import Assembler, plane_strain_moduli
 from woundroll.contact.mesh import RollMesh, build_mesh
-from woundroll.contact.solver import ContactOptions
+from woundroll.contact.solver import ContactOptions, _Roll
 from woundroll.errors import ConvergenceError, InputError
 
 if TYPE_CHECKING:
@@ -217,13 +217,9 @@ def _lcp(W: FloatArray, q: FloatArray) -> FloatArray:
     return lam
 
 
-class _FeRoll:
-    """Mesh, element data, boundary conditions, mass and pre-impact state of the roll section.
-
-    The boundary conditions are the quasi-static model's (:mod:`woundroll.contact.solver`):
-    u_theta = 0 on the core and on the symmetry lines; a rigid core (u = 0) or a radial
-    Winkler spring E_c / r_c per unit area lumped on the tributary arcs.
-    """
+class _FeRoll(_Roll):
+    """The quasi-static model's roll section (:class:`woundroll.contact.solver._Roll`: mesh,
+    element data, boundary conditions, pre-impact state) with its mass matrix."""
 
     def __init__(
         self,
@@ -236,46 +232,12 @@ class _FeRoll:
         density: float,
         consistent: bool,
     ) -> None:
-        self.web = web
-        self.mesh = mesh
-        self.basis = element_basis(
-            mesh,
-            element=opts.element,
-            reduced_shear=opts.reduced_shear,
-            assumed_hoop=opts.assumed_hoop,
-        )
-        n_dof = 2 * mesh.n_nodes
-        free = np.ones(n_dof, dtype=bool)
-        core_nodes = mesh.core_nodes()
-        free[2 * core_nodes + 1] = False
-        free[2 * mesh.edge_nodes() + 1] = False
-        diagonal = None
-        if core.rigid:
-            free[2 * core_nodes] = False
-        else:
-            th = mesh.theta
-            if mesh.periodic:
-                dth = np.diff(np.concatenate([th, [th[0] + 2 * math.pi]]))
-                trib = 0.5 * (dth + np.roll(dth, 1))
-            else:
-                dth = np.diff(th)
-                trib = 0.5 * (np.concatenate([[0.0], dth]) + np.concatenate([dth, [0.0]]))
-            diagonal = np.zeros(n_dof)
-            diagonal[2 * core_nodes] = core.stiffness * trib
-        self.free = free
-        self.asm = Assembler(self.basis, free, diagonal)
+        super().__init__(web, core, radius, sigma_r, mesh, opts)
+        self.asm = self.assembler
         self.fi = self.asm.free_index
         self.n = self.asm.n_free
-        self.xy = mesh.node_xy()
-        self.angle = mesh.node_angle()
-        self.surface = mesh.surface_nodes()
-        rc = np.hypot(self.basis.centre_xy[:, 0], self.basis.centre_xy[:, 1])
-        self.r_centre = rc
-        self.sigma_pre = np.interp(rc, radius, sigma_r)
-        self.E_floor = opts.min_modulus_ratio * web.E_theta
-        self.E_cap = (
-            math.inf if opts.max_modulus_ratio is None else opts.max_modulus_ratio * web.E_theta
-        )
+        n_dof = 2 * mesh.n_nodes
+        free = self.free
         # mass on the free DOFs: lumped diagonal or banded consistent (same band as K)
         Me = element_mass(mesh) * density
         self.m_lumped = np.bincount(
@@ -319,22 +281,6 @@ class _FeRoll:
         out = np.zeros(self.free.size)
         out[self.free] = x_free
         return out
-
-    def cartesian(self, u: FloatArray, nodes: NDArray[np.int64]) -> FloatArray:
-        ur, ut = u[2 * nodes], u[2 * nodes + 1]
-        c, s = np.cos(self.angle[nodes]), np.sin(self.angle[nodes])
-        return np.stack([c * ur - s * ut, s * ur + c * ut], axis=1)
-
-    def polar(self, vec: FloatArray, nodes: NDArray[np.int64]) -> tuple[FloatArray, FloatArray]:
-        c, s = np.cos(self.angle[nodes]), np.sin(self.angle[nodes])
-        return c * vec[:, 0] + s * vec[:, 1], -s * vec[:, 0] + c * vec[:, 1]
-
-    def stress_increment(self, mod: tuple[FloatArray, ...], du_full: FloatArray) -> FloatArray:
-        C11, C12, C22, G = mod
-        e = np.einsum("eij,ej->ei", self.basis.B_centre, du_full[self.basis.dofs])
-        return np.stack(
-            [C11 * e[:, 0] + C12 * e[:, 1], C12 * e[:, 0] + C22 * e[:, 1], G * e[:, 2]], axis=1
-        )
 
 
 @dataclass(frozen=True, eq=False)
