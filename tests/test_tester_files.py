@@ -113,3 +113,43 @@ def test_bad_files(tmp_path, text, fmt, match):
     with pytest.raises(InputError, match=re.escape(match)) as exc:
         read_tester_file(p, format=fmt)
     assert exc.value.field == "readings" and "\n" not in str(exc.value)
+
+
+def test_cli_readings_formats_and_roll():
+    """`woundroll readings FILE [--format F] [--roll ID]` reads every layout, as `report` does:
+    the JSON equals the reader's readings; a roll-id problem is the --roll option's error."""
+    import json
+
+    from typer.testing import CliRunner
+
+    from woundroll.cli import app
+
+    runner = CliRunner()
+    sheet = str(DATA / "tappi_t834_sheet.csv")
+    rolls = read_tappi_sheet(DATA / "tappi_t834_sheet.csv")
+    for args in (["--roll", "2611-01"], ["--roll", "2611-01", "--format", "tappi"]):
+        res = runner.invoke(app, ["readings", sheet, *args, "--json"])
+        assert res.exit_code == 0, res.output
+        d = json.loads(res.output)
+        assert d["passes"] == 2 and d["mean"] == rolls["2611-01"].mean.tolist()
+    res = runner.invoke(app, ["readings", sheet, "--roll", "2611-03"])
+    assert res.exit_code == 0 and "roll 2611-03" in res.output
+    prof = str(DATA / "profile_export_dense.csv")
+    exp = read_profile_export(DATA / "profile_export_dense.csv").readings
+    for args in ([], ["--format", "profile"]):
+        res = runner.invoke(app, ["readings", prof, *args, "--json"])
+        assert res.exit_code == 0, res.output
+        d = json.loads(res.output)
+        assert d["scale"] == "g" and d["mean"] == exp.mean.tolist()
+    res = runner.invoke(app, ["readings", str(DATA / "readings_rho_3passes.csv"), "--json"])
+    assert res.exit_code == 0 and json.loads(res.output)["passes"] == 3
+    for path, args, field in [
+        (sheet, [], "--roll"),  # three rolls on the sheet: pick one
+        (sheet, ["--roll", "nope"], "--roll"),
+        (prof, ["--roll", "2611-01"], "--roll"),  # a profile export holds one roll
+        (prof, ["--format", "pdf"], "--format"),
+        (prof, ["--format", "tappi"], "CSV_FILE"),
+    ]:
+        res = runner.invoke(app, ["readings", path, *args])
+        lines = [ln for ln in res.output.splitlines() if ln.strip()]
+        assert res.exit_code == 2 and len(lines) == 1 and f"{field}:" in lines[0], res.output

@@ -33,8 +33,9 @@ def readings_cmd(
     csv_file: Annotated[
         str,
         typer.Argument(
-            help="Readings CSV: 'position [in],reading [Rho]' (or [R], [L], [g]; lane numbers "
-            "with --lane-width); several value columns or repeated positions are passes."
+            help="Readings file: a CSV 'position [in],reading [Rho]' (or [R], [L], [g]; lane "
+            "numbers with --lane-width; several value columns or repeated positions are "
+            "passes), a TAPPI T 834 sheet or a dense profile export (see --format)."
         ),
     ],
     width: Annotated[
@@ -44,19 +45,46 @@ def readings_cmd(
     lane_width: Annotated[
         str | None, typer.Option("--lane-width", help="Lane width for lane numbers ('6 in').")
     ] = None,
+    fmt: Annotated[
+        str,
+        typer.Option(
+            "--format",
+            help="File layout: auto (detected), generic, tappi (T 834 sheet), profile.",
+        ),
+    ] = "auto",
+    roll: Annotated[
+        str | None, typer.Option("--roll", help="Roll id on a TAPPI sheet with several rolls.")
+    ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print the readings as JSON.")] = False,
 ) -> None:
     """Read a sheet of hardness readings; print the mean and scatter per position."""
     from woundroll.cli import _fail, out
-    from woundroll.readings import read_readings
+    from woundroll.tester_files import FORMATS, detect_format, read_tester_file
 
     try:
-        r = read_readings(
-            csv_file,
-            width=_length(width, "--width"),
-            lane_width=_length(lane_width, "--lane-width"),
-            field="CSV_FILE",
-        )
+        if fmt not in FORMATS:
+            raise InputError(f"unknown format {fmt!r}; one of {', '.join(FORMATS)}", "--format")
+        layout = detect_format(csv_file, "CSV_FILE") if fmt == "auto" else fmt
+        if roll is not None and layout != "tappi":
+            raise InputError(
+                f"only a TAPPI T 834 sheet holds several rolls; this is {layout}", "--roll"
+            )
+        try:
+            r = read_tester_file(
+                csv_file,
+                format=layout,
+                roll=roll,
+                width=_length(width, "--width"),
+                lane_width=_length(lane_width, "--lane-width"),
+                field="CSV_FILE",
+            )
+        except InputError as exc:
+            # a missing or unknown roll id is the --roll option's error
+            if layout == "tappi" and (
+                exc.message.startswith("no roll") or "pick one" in exc.message
+            ):
+                raise InputError(exc.message, "--roll") from None
+            raise
     except InputError as exc:
         _fail(exc, 2)
     except ConvergenceError as exc:  # pragma: no cover - nothing iterative here

@@ -1,4 +1,5 @@
-"""``woundroll sweep CASE --vary KEY=SPEC ... --out DIR``: parameter sweeps (woundroll.sweep).
+"""``woundroll sweep CASE --vary KEY=SPEC ... [--uncertainty N] --out DIR``: parameter sweeps
+(woundroll.sweep).
 
 Registered in :mod:`woundroll.cli`; heavy imports happen inside the command.
 """
@@ -46,6 +47,15 @@ def sweep_cmd(
         str | None,
         typer.Option(help="Dask scheduler address (tcp://host:8786): run on that cluster."),
     ] = None,
+    uncertainty: Annotated[
+        int,
+        typer.Option(
+            "--uncertainty",
+            help="Monte Carlo samples of the case's [uncertainty] per roll (0: none; >= 10): "
+            "adds 95 % band columns (winding.core_pressure_low/_high, hardness.reading_low/_high).",
+            min=0,
+        ),
+    ] = 0,
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar.")] = False,
 ) -> None:
     """Run a case over a grid, random or Latin-hypercube design of inputs; write one table."""
@@ -66,6 +76,7 @@ def sweep_cmd(
             workers=workers,
             scheduler=scheduler,
             progress=tick,
+            uncertainty=uncertainty,
         )
 
     try:

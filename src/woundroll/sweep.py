@@ -18,6 +18,10 @@
 * the **table**: one row per roll, a column per varied input (``winding.tension [N]``) and
   per scalar result of the run's JSON, named by its dotted key with the unit taken from the
   key's suffix (``winding.core_pressure [Pa]``, ``hardness.reading [rho]``), then ``error``;
+* with ``uncertainty=N`` (``--uncertainty N``) each roll also propagates the case's
+  ``[uncertainty]`` (:func:`woundroll.uncertainty.propagate`, as ``woundroll run
+  --uncertainty N``) and the table gets the 95 % bands: ``winding.core_pressure_low [Pa]``
+  / ``_high``, ``hardness.reading_low [rho]`` / ``_high`` (:func:`uncertainty_columns`);
 * **where it runs**: serially (``workers=1``), on the machine's cores (a process pool; by
   default when the rolls would take more than 15 s serially), or on a Dask distributed
   cluster (``scheduler="tcp://host:8786"``, or a ``distributed.Client``). The table does
@@ -51,6 +55,7 @@ __all__ = [
     "result_columns",
     "run_point",
     "run_sweep",
+    "uncertainty_columns",
 ]
 
 DESIGNS = ("grid", "random", "lhs")
@@ -281,20 +286,73 @@ def _column_name(key: str, readout: str | None) -> str:
     return f"{key} [-]"
 
 
-def run_point(case: Any, overrides: dict[str, Any]) -> dict[str, Any]:
-    """Run one roll: ``case`` (path, bundled name or dict) with ``overrides`` set.
+#: Percentiles of the band columns of ``--uncertainty`` (a 95 % band).
+PERCENTILES_BAND = (2.5, 97.5)
+
+
+def run_point(
+    case: Any, overrides: dict[str, Any], uncertainty: int = 0, seed: int = 0
+) -> dict[str, Any]:
+    """Run one roll: ``case`` (path, bundled name or dict) with ``overrides`` set; with
+    ``uncertainty`` = N > 0 also the Monte Carlo bands of its ``[uncertainty]``
+    (:func:`uncertainty_columns`, ``seed`` the same for every roll).
 
     Returns the result columns, or ``{"error": "field: message"}``; never raises (a sweep
-    records the failures of single rolls).
+    records the failures of single rolls). A roll that ran but whose propagation failed
+    keeps its results and gets ``"uncertainty: message"`` in ``error``.
     """
     from woundroll.pipeline import run
 
     try:
-        return result_columns(run(_load_point(case, overrides)).to_dict())
+        c = _load_point(case, overrides)
+        d = run(c).to_dict()
+        cols = result_columns(d)
     except (InputError, ConvergenceError) as exc:
         return {"error": str(exc)}
     except Exception as exc:  # a bug in one roll must not end a 10 000-roll study
         return {"error": f"{type(exc).__name__}: {exc}"}
+    if uncertainty:
+        from woundroll.uncertainty import propagate
+
+        try:
+            uq = propagate(c, uncertainty, seed=seed)
+        except (InputError, ConvergenceError) as exc:
+            msg = exc.message if isinstance(exc, InputError) else str(exc)
+            return {**cols, "error": f"uncertainty: {msg}"}
+        except Exception as exc:
+            return {**cols, "error": f"uncertainty: {type(exc).__name__}: {exc}"}
+        readout = (d.get("hardness") or {}).get("readout")
+        cols.update(uncertainty_columns(uq, readout))
+    return cols
+
+
+def uncertainty_columns(uq: Any, readout: str | None = None) -> dict[str, float]:
+    """The 95 % bands (2.5 and 97.5 percentiles) of a roll's Monte Carlo
+    (:class:`woundroll.uncertainty.UncertaintyResult`) as table columns.
+
+    A band with a nominal column in the table is named after it (``winding.core_pressure_low
+    [Pa]``, ``hardness.reading_high [rho]``); the others under ``uncertainty.``. The reading
+    band (surrogate, checked against full runs: ``uncertainty.surrogate_error``) is there
+    only when the case's tester has a contact model (not an explicit roll spring).
+    """
+    lo, hi = PERCENTILES_BAND
+
+    def band(key: str, unit: str, a: Any) -> dict[str, float]:
+        p = np.percentile(np.asarray(a, float), [lo, hi])
+        return {f"{key}_low [{unit}]": float(p[0]), f"{key}_high [{unit}]": float(p[1])}
+
+    out = {
+        **band("winding.core_pressure", "Pa", uq.core_pressure),
+        **band("uncertainty.surface_pressure", "Pa", uq.surface_pressure),
+        **band("uncertainty.min_hoop_stress", "Pa", uq.min_hoop),
+        "uncertainty.negative_hoop_share [-]": uq.negative_hoop_share,
+    }
+    if uq.reading is not None:
+        unit = readout or uq.scale
+        out.update(band("hardness.reading", unit, uq.reading))
+        err = uq.surrogate.get("max_abs_error")
+        out[f"uncertainty.surrogate_error [{unit}]"] = math.nan if err is None else float(err)
+    return out
 
 
 def _load_point(case: Any, overrides: dict[str, Any]) -> Any:
@@ -451,6 +509,7 @@ def run_sweep(
     workers: int | None = None,
     scheduler: Any = None,
     progress: SweepProgress | None = None,
+    uncertainty: int = 0,
 ) -> SweepResult:
     """Run a sweep; see the module docstring.
 
@@ -467,12 +526,17 @@ def run_sweep(
         A Dask scheduler address (``tcp://host:8786``) or a client: run there instead.
     progress : callable, optional
         ``progress(done, total)`` as rolls finish.
+    uncertainty : int
+        N > 0: propagate the case's ``[uncertainty]`` with N Monte Carlo samples for every
+        roll (:func:`woundroll.uncertainty.propagate`, the same ``seed`` for every roll) and
+        add the band columns (:func:`uncertainty_columns`).
 
     Raises
     ------
     InputError
         Bad axes or design; a varied key the case does not know (checked on the first roll
-        before anything runs); an unreachable scheduler (``--scheduler``).
+        before anything runs); an unreachable scheduler (``--scheduler``); ``uncertainty``
+        below 10 (``--uncertainty``) or a base case without tolerances (``uncertainty``).
     """
     from woundroll.case import load_case
 
@@ -484,7 +548,15 @@ def run_sweep(
         from woundroll.case import resolve_case_path
 
         case = str(resolve_case_path(case))
-    load_case(case)  # the base case must be valid: its errors are not a roll's
+    base = load_case(case)  # the base case must be valid: its errors are not a roll's
+    if isinstance(uncertainty, bool) or not isinstance(uncertainty, int) or uncertainty < 0:
+        raise InputError(f"must be a whole number of samples, got {uncertainty!r}", "--uncertainty")
+    if uncertainty:
+        from woundroll.uncertainty import uncertain_parameters
+
+        if uncertainty < 10:
+            raise InputError(f"needs at least 10 samples, got {uncertainty}", "--uncertainty")
+        uncertain_parameters(base)  # no [uncertainty] table: the sweep's error, not each roll's
     points = design_points(axes, design, samples, seed)
     overrides = [{a.key: a.case_value(v) for a, v in zip(axes, p, strict=True)} for p in points]
     first = run_point_check(case, overrides[0])
@@ -498,9 +570,9 @@ def run_sweep(
 
     tick(0)
     if scheduler is not None:
-        results = _run_dask(case, overrides, scheduler, tick)
+        results = _run_dask(case, overrides, scheduler, tick, uncertainty, seed)
     else:
-        results = _run_local(case, overrides, workers, tick)
+        results = _run_local(case, overrides, workers, tick, uncertainty, seed)
     inputs = [a.column for a in axes]
     result_cols: list[str] = []
     seen: set[str] = set()
@@ -537,7 +609,12 @@ POOL_THRESHOLD = 15.0
 
 
 def _run_local(
-    case: Any, overrides: list[dict[str, Any]], workers: int | None, tick: Callable[[int], None]
+    case: Any,
+    overrides: list[dict[str, Any]],
+    workers: int | None,
+    tick: Callable[[int], None],
+    uncertainty: int = 0,
+    seed: int = 0,
 ) -> list[dict[str, Any]]:
     """Serially (``workers=1``), on a pool of ``workers`` processes, or (None) automatically:
     two rolls in this process, then a pool of all cores for the rest if they would take longer
@@ -547,7 +624,7 @@ def _run_local(
     if workers is None:
         for o in overrides[:2]:
             t0 = time.perf_counter()
-            out.append(run_point(case, o))
+            out.append(run_point(case, o, uncertainty, seed))
             tick(len(out))
         per_roll = time.perf_counter() - t0 if out else 0.0
         rest = overrides[len(out) :]
@@ -559,7 +636,7 @@ def _run_local(
         rest = overrides
     if workers == 1 or len(rest) < 2:
         for o in rest:
-            out.append(run_point(case, o))
+            out.append(run_point(case, o, uncertainty, seed))
             tick(len(out))
         return out
     import multiprocessing as mp
@@ -569,7 +646,7 @@ def _run_local(
     start = len(out)
     results: list[dict[str, Any] | None] = [None] * len(rest)
     with ProcessPoolExecutor(min(workers, len(rest)), mp_context=mp.get_context("spawn")) as pool:
-        futs = {pool.submit(run_point, case, o): i for i, o in enumerate(rest)}
+        futs = {pool.submit(run_point, case, o, uncertainty, seed): i for i, o in enumerate(rest)}
         for done, fut in enumerate(as_completed(futs), 1):
             results[futs[fut]] = fut.result()
             tick(start + done)
@@ -577,7 +654,12 @@ def _run_local(
 
 
 def _run_dask(
-    case: Any, overrides: list[dict[str, Any]], scheduler: Any, tick: Callable[[int], None]
+    case: Any,
+    overrides: list[dict[str, Any]],
+    scheduler: Any,
+    tick: Callable[[int], None],
+    uncertainty: int = 0,
+    seed: int = 0,
 ) -> list[dict[str, Any]]:
     try:
         from distributed import Client, as_completed
@@ -594,7 +676,10 @@ def _run_dask(
     else:
         client = scheduler
     try:
-        futs = client.map(run_point, [case] * len(overrides), overrides, pure=False)
+        n = len(overrides)
+        futs = client.map(
+            run_point, [case] * n, overrides, [uncertainty] * n, [seed] * n, pure=False
+        )
         index = {f.key: i for i, f in enumerate(futs)}
         results: list[dict[str, Any] | None] = [None] * len(futs)
         for done, fut in enumerate(as_completed(futs), 1):
