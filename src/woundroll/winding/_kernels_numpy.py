@@ -188,9 +188,20 @@ def run_groups(
                 Fs = F[J : n + 1] * invr[J : n + 1]
                 P0 = -0.5 * (Fs[:-1] + Fs[1:])
                 d_old = None
+                # warm start: the previous increment's shape at the same depth below the
+                # load, scaled to this one (as the compiled kernel)
+                warm = iterate and w != 0.0 and state_i[5] >= 0
+                if warm:
+                    n_prev = int(state_i[5])
+                    shift = n - n_prev
+                    lo_g = max(J, int(state_i[6]) + shift)
+                    guess = np.zeros(n + 1 - J)
+                    if lo_g <= n:
+                        guess[lo_g - J :] = dF[lo_g - shift : n_prev + 1] * (dsub / dF[n_prev])
+                    dF[J : n + 1] = guess
                 for it in range(maxit + 1):
                     state_i[3] += n - J
-                    if it > 0 and w != 0.0:
+                    if (it > 0 or warm) and w != 0.0:
                         ds = dF[J : n + 1] * invr[J : n + 1]
                         P = P0 - w * 0.5 * (ds[:-1] + ds[1:])
                     else:
@@ -211,6 +222,8 @@ def run_groups(
                             state_i[1] = k
                             return g
                     d_old = dF[J:n].copy()
+                state_i[5] = n
+                state_i[6] = J
                 F[J:n] += dF[J:n]
                 st[J:n] += _below(beta, c, J, n) * dF[J:n] / r[J:n]
                 if J > 0:

@@ -435,7 +435,8 @@ def wind(
         # the window must hold the groups added since the last flush
         wl = max(options.window_layers, 2 * options.flush_interval * options.layers_per_increment)
         wnodes = wl * options.subdivisions
-    state_i = np.zeros(5, dtype=np.int64)
+    state_i = np.zeros(7, dtype=np.int64)
+    state_i[5] = -1  # no increment iterated yet (warm start, _kernels.run_groups)
     B = np.zeros(_MAX_LEVELS + 1, dtype=np.int64)  # level boundaries (elements)
     S = np.zeros(_MAX_LEVELS + 1)  # pending increment at the top of each level
     n_groups = prob.gnode.size - 1
