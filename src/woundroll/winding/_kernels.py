@@ -333,6 +333,7 @@ def run_groups(
                     scale = dsub / dF[n_prev]
                     for e in range(n_inc, J - 1, -1):  # top down: reads below, shift >= 0
                         dF[e] = dF[e - shift] * scale if e >= lo_g else 0.0
+                err_prev = 0.0
                 for it in range(maxit + 1):
                     state_i[3] += n_inc - J
                     _sweep(
@@ -364,7 +365,13 @@ def run_groups(
                             d = abs(dF[e] - dFold[e])
                             if d > err:
                                 err = d
-                        if err <= rtol * abs(dsub):
+                        # converged: the change, or the contraction's a-posteriori bound
+                        # on the remaining error, err * rho / (1 - rho) with
+                        # rho = err / err_prev (docs/winding.md), is within rtol
+                        tol = rtol * abs(dsub)
+                        if err <= tol or (
+                            it > 1 and err <= 0.5 * err_prev and err * err <= tol * (err_prev - err)
+                        ):
                             if it > state_i[2]:
                                 state_i[2] = it
                             break
@@ -372,6 +379,7 @@ def run_groups(
                             state_i[0] = count
                             state_i[1] = k
                             return g
+                        err_prev = err
                     for e in range(J, n_inc):
                         dFold[e] = dF[e]
                 state_i[5] = n_inc

@@ -199,6 +199,7 @@ def run_groups(
                     if lo_g <= n:
                         guess[lo_g - J :] = dF[lo_g - shift : n_prev + 1] * (dsub / dF[n_prev])
                     dF[J : n + 1] = guess
+                err_prev = 0.0
                 for it in range(maxit + 1):
                     state_i[3] += n - J
                     if (it > 0 or warm) and w != 0.0:
@@ -214,13 +215,17 @@ def run_groups(
                         break
                     if d_old is not None:
                         err = float(np.max(np.abs(dF[J:n] - d_old)))
-                        if err <= rtol * abs(dsub):
+                        tol = rtol * abs(dsub)  # change, or the contraction's bound on it
+                        if err <= tol or (
+                            it > 1 and err <= 0.5 * err_prev and err * err <= tol * (err_prev - err)
+                        ):
                             state_i[2] = max(int(state_i[2]), it)
                             break
                         if it == maxit:
                             state_i[0] = count
                             state_i[1] = k
                             return g
+                        err_prev = err
                     d_old = dF[J:n].copy()
                 state_i[5] = n
                 state_i[6] = J
