@@ -107,7 +107,9 @@ class WindingOptions:
     modulus_update : {"midpoint", "end", "explicit"}
         Where in the increment E_r is evaluated (module docstring).
     rtol : float
-        Fixed-point tolerance on the increment, relative to the applied one.
+        Fixed-point tolerance on the increment, relative to the applied one (started from
+        the previous increment's shape; stops when the change, or the contraction's bound
+        on the remaining error, is within it: docs/winding.md).
     max_iterations : int
         Fixed-point iterations per increment before :class:`ConvergenceError`.
     modulus_floor : float
