@@ -300,7 +300,8 @@ def run_groups(
     """Wind groups g0..g1-1 (one increment each). Returns -1, or the group that failed.
 
     ``state_i = [increments since the last refresh, refreshes so far, max iterations used,
-    element evaluations in the window, in refreshes]``
+    element evaluations in the window, in refreshes, top node and lowest window node of the
+    last iterated increment (-1: none; the warm start's shape)]``
     and the level boundaries ``B`` and pending increments ``S`` carry the lazy deep part
     between calls (:func:`_refresh`). ``wnodes < 0``: no lazy part (the window reaches the
     core). ``body``: the new group is part of the elastic body and its load acts on its
@@ -320,6 +321,19 @@ def run_groups(
                 J = m
             dsub = dtop / nsub
             for _sub in range(nsub):
+                # warm start: the previous increment's shape at the same depth below the
+                # load, scaled to this one (midpoint/end rules; docs/winding.md)
+                warm = iterate and w != 0.0 and state_i[5] >= 0
+                if warm:
+                    n_prev = state_i[5]
+                    shift = n_inc - n_prev
+                    lo_g = state_i[6] + shift
+                    if lo_g < J:
+                        lo_g = J
+                    scale = dsub / dF[n_prev]
+                    for e in range(n_inc, J - 1, -1):  # top down: reads below, shift >= 0
+                        dF[e] = dF[e - shift] * scale if e >= lo_g else 0.0
+                err_prev = 0.0
                 for it in range(maxit + 1):
                     state_i[3] += n_inc - J
                     _sweep(
@@ -331,7 +345,7 @@ def run_groups(
                         invd,
                         F,
                         dF,
-                        w if it > 0 else 0.0,
+                        w if (it > 0 or warm) else 0.0,
                         kp,
                         ke,
                         slope,
@@ -351,7 +365,13 @@ def run_groups(
                             d = abs(dF[e] - dFold[e])
                             if d > err:
                                 err = d
-                        if err <= rtol * abs(dsub):
+                        # converged: the change, or the contraction's a-posteriori bound
+                        # on the remaining error, err * rho / (1 - rho) with
+                        # rho = err / err_prev (docs/winding.md), is within rtol
+                        tol = rtol * abs(dsub)
+                        if err <= tol or (
+                            it > 1 and err <= 0.5 * err_prev and err * err <= tol * (err_prev - err)
+                        ):
                             if it > state_i[2]:
                                 state_i[2] = it
                             break
@@ -359,8 +379,11 @@ def run_groups(
                             state_i[0] = count
                             state_i[1] = k
                             return g
+                        err_prev = err
                     for e in range(J, n_inc):
                         dFold[e] = dF[e]
+                state_i[5] = n_inc
+                state_i[6] = J
                 for i in range(J, n_inc):
                     F[i] += dF[i]
                     bl = beta[i - 1] if i > 0 else c

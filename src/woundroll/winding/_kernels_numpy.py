@@ -28,14 +28,31 @@ def _moduli(P: np.ndarray, kp: np.ndarray, ke: np.ndarray, floor: float, slope: 
     return np.maximum(E, floor)
 
 
+# Horner coefficients of the k d < 0.1 series of p d and q d (rows), highest power first
+_SERIES = np.array(
+    [[2.0 / 945.0, -1.0 / 45.0, 1.0 / 3.0], [-31.0 / 15120.0, 7.0 / 360.0, -1.0 / 6.0]]
+)
+
+
 def _pq(g: np.ndarray, d: np.ndarray, inv_d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Vectorised :func:`woundroll.winding._kernels.element_pq` (series for k d < 0.1)."""
+    """Vectorised :func:`woundroll.winding._kernels.element_pq` (series for k d < 0.1).
+
+    The series of p and q are evaluated together (one (2, n) Horner chain, the same
+    operations per element as two separate ones: equal bit for bit, half the NumPy calls).
+    """
     x2 = g * d * d
     big = x2 >= 0.01
     n_big = np.count_nonzero(big)
     if n_big < big.shape[0]:
-        p = (1.0 + x2 * (1.0 / 3.0 + x2 * (-1.0 / 45.0 + x2 * (2.0 / 945.0)))) * inv_d
-        q = (1.0 + x2 * (-1.0 / 6.0 + x2 * (7.0 / 360.0 + x2 * (-31.0 / 15120.0)))) * inv_d
+        s = _SERIES[:, 0:1] * x2
+        s += _SERIES[:, 1:2]
+        s *= x2
+        s += _SERIES[:, 2:3]
+        s *= x2
+        s += 1.0
+        s *= inv_d
+        p = s[0]
+        q = s[1]
         if n_big == 0:
             return p, q
         g = g[big]
@@ -55,16 +72,17 @@ def _pq(g: np.ndarray, d: np.ndarray, inv_d: np.ndarray) -> tuple[np.ndarray, np
 
 def _riccati(p: np.ndarray, q: np.ndarray, b: float, alpha, beta, e0: int) -> None:
     """``alpha_e = q/(p + beta_{e-1})``, ``beta_e = p - q alpha_e`` from ``beta_{e0-1} = b``."""
-    n = p.shape[0]
-    al = [0.0] * n
-    bl = [0.0] * n
-    for i, (pp, qq) in enumerate(zip(p.tolist(), q.tolist(), strict=True)):
+    al: list[float] = []
+    bl: list[float] = []
+    put_a = al.append
+    put_b = bl.append
+    for pp, qq in zip(p.tolist(), q.tolist(), strict=True):
         a = qq / (pp + b)
         b = pp - qq * a
-        al[i] = a
-        bl[i] = b
-    alpha[e0 : e0 + n] = al
-    beta[e0 : e0 + n] = bl
+        put_a(a)
+        put_b(b)
+    alpha[e0 : e0 + len(al)] = al
+    beta[e0 : e0 + len(bl)] = bl
 
 
 def _below(beta: np.ndarray, c: float, lo: int, hi: int) -> np.ndarray:
@@ -101,8 +119,8 @@ def _push(P, t, e0, e1, hist, thist) -> None:
     h = hist[e0:e1]
     th = thist[e0:e1]
     new = th[:, 0] != t
-    h[new, 1] = h[new, 0]
-    th[new, 1] = th[new, 0]
+    np.copyto(h[:, 1], h[:, 0], where=new)
+    np.copyto(th[:, 1], th[:, 0], where=new)
     th[:, 0] = t
     h[:, 0] = P
 
@@ -149,14 +167,19 @@ def _refresh(
         x = ts - t
         none = (t1 < 0) | (t1 >= t)
         one = ~none & ((t2 < 0) | (t2 >= t1))
-        two = ~none & ~one
-        c1 = np.zeros_like(P)
-        c2 = np.zeros_like(P)
-        c1[one] = x[one] / (t - t1[one])
-        if two.any():
-            y = x[two] * (ts[two] - t1[two]) / (t - t2[two])
-            c1[two] = x[two] / (t - t1[two]) + y / (t - t1[two])
-            c2[two] = y / (t1[two] - t2[two])
+        if not (none.any() or one.any()):  # the usual case: two past refreshes everywhere
+            y = x * (ts - t1) / (t - t2)
+            c1 = x / (t - t1) + y / (t - t1)
+            c2 = y / (t1 - t2)
+        else:
+            two = ~none & ~one
+            c1 = np.zeros_like(P)
+            c2 = np.zeros_like(P)
+            c1[one] = x[one] / (t - t1[one])
+            if two.any():
+                y = x[two] * (ts[two] - t1[two]) / (t - t2[two])
+                c1[two] = x[two] / (t - t1[two]) + y / (t - t1[two])
+                c2[two] = y / (t1[two] - t2[two])
         E = _moduli(P + c1 * (P - P1) - c2 * (P1 - P2), kp, ke, floor, slope)
         _push(P, t, lo, b0, hist, thist)
         p, q = _pq(Et / E, dlog[lo:b0], invd[lo:b0])
@@ -188,9 +211,21 @@ def run_groups(
                 Fs = F[J : n + 1] * invr[J : n + 1]
                 P0 = -0.5 * (Fs[:-1] + Fs[1:])
                 d_old = None
+                # warm start: the previous increment's shape at the same depth below the
+                # load, scaled to this one (as the compiled kernel)
+                warm = iterate and w != 0.0 and state_i[5] >= 0
+                if warm:
+                    n_prev = int(state_i[5])
+                    shift = n - n_prev
+                    lo_g = max(J, int(state_i[6]) + shift)
+                    guess = np.zeros(n + 1 - J)
+                    if lo_g <= n:
+                        guess[lo_g - J :] = dF[lo_g - shift : n_prev + 1] * (dsub / dF[n_prev])
+                    dF[J : n + 1] = guess
+                err_prev = 0.0
                 for it in range(maxit + 1):
                     state_i[3] += n - J
-                    if it > 0 and w != 0.0:
+                    if (it > 0 or warm) and w != 0.0:
                         ds = dF[J : n + 1] * invr[J : n + 1]
                         P = P0 - w * 0.5 * (ds[:-1] + ds[1:])
                     else:
@@ -203,14 +238,20 @@ def run_groups(
                         break
                     if d_old is not None:
                         err = float(np.max(np.abs(dF[J:n] - d_old)))
-                        if err <= rtol * abs(dsub):
+                        tol = rtol * abs(dsub)  # change, or the contraction's bound on it
+                        if err <= tol or (
+                            it > 1 and err <= 0.5 * err_prev and err * err <= tol * (err_prev - err)
+                        ):
                             state_i[2] = max(int(state_i[2]), it)
                             break
                         if it == maxit:
                             state_i[0] = count
                             state_i[1] = k
                             return g
+                        err_prev = err
                     d_old = dF[J:n].copy()
+                state_i[5] = n
+                state_i[6] = J
                 F[J:n] += dF[J:n]
                 st[J:n] += _below(beta, c, J, n) * dF[J:n] / r[J:n]
                 if J > 0:

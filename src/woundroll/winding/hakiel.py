@@ -107,7 +107,9 @@ class WindingOptions:
     modulus_update : {"midpoint", "end", "explicit"}
         Where in the increment E_r is evaluated (module docstring).
     rtol : float
-        Fixed-point tolerance on the increment, relative to the applied one.
+        Fixed-point tolerance on the increment, relative to the applied one (started from
+        the previous increment's shape; stops when the change, or the contraction's bound
+        on the remaining error, is within it: docs/winding.md).
     max_iterations : int
         Fixed-point iterations per increment before :class:`ConvergenceError`.
     modulus_floor : float
@@ -435,7 +437,8 @@ def wind(
         # the window must hold the groups added since the last flush
         wl = max(options.window_layers, 2 * options.flush_interval * options.layers_per_increment)
         wnodes = wl * options.subdivisions
-    state_i = np.zeros(5, dtype=np.int64)
+    state_i = np.zeros(7, dtype=np.int64)
+    state_i[5] = -1  # no increment iterated yet (warm start, _kernels.run_groups)
     B = np.zeros(_MAX_LEVELS + 1, dtype=np.int64)  # level boundaries (elements)
     S = np.zeros(_MAX_LEVELS + 1)  # pending increment at the top of each level
     n_groups = prob.gnode.size - 1
