@@ -106,3 +106,51 @@ def test_cli_run_uncertainty_json(tmp_path):
     assert d["uncertainty"]["n"] == 12 and "winding" in d
     res = CliRunner().invoke(app, ["run", "pet1-26.7N", "--uncertainty", "12", "--json"])
     assert res.exit_code == 2 and "uncertainty:" in res.output
+
+
+def test_profile_band_against_brute_force_monte_carlo():
+    # reduced case: 5 sectors, 20 winding increments; tension 5 % and caliper 2 % (no K1/K2:
+    # every sample then uses the same forward curve, so the brute force is cheap)
+    from woundroll.diagnosis import RollModel, forward_curve
+    from woundroll.uncertainty import profile_bands, reduced_profile
+
+    case = load_case(
+        "pet3-2.3MPa",
+        [
+            "profile.sectors=5",
+            "profile.groups=20",
+            "uncertainty.tension='5 %'",
+            "uncertainty.thickness='2 %'",
+        ],
+    )
+    model = RollModel.from_case(case)
+    curve = forward_curve(model)
+    params = uncertain_parameters(case)
+    u = draw_samples(case, 60, seed=3)
+    bands = profile_bands(case, model, u, params, curve=curve, n_sectors=5)
+    brute = np.array(
+        [
+            reduced_profile(case, model, curve, params, {k: float(v[i]) for k, v in u.items()}, 5)[
+                1
+            ]
+            for i in range(60)
+        ]
+    )
+    sur = bands["_samples"]
+    inside = ~np.array(bands["outside_curve"])
+    assert inside.sum() >= 2  # the thick lanes carry pressure; slack lanes are flagged
+    sd = brute.std(axis=0, ddof=1)
+    # quadratic per parameter without cross terms, from steps of 2 SD, against the model
+    # itself at each sample: the neglected tension x caliper cross term and the cubic terms
+    # are a few per cent of the sector's spread
+    err = np.abs(sur - brute)[:, inside]
+    assert np.all(err.max(axis=0) < 0.1 * sd[inside] + 0.05), (err.max(axis=0), sd)
+    np.testing.assert_allclose(np.array(bands["rho_sd"])[inside], sd[inside], rtol=0.05)
+    # the 95 % band against the brute force's percentiles (same samples)
+    lo, hi = np.percentile(brute, [2.5, 97.5], axis=0)
+    np.testing.assert_allclose(np.array(bands["rho_low"])[inside], lo[inside], atol=0.2)
+    np.testing.assert_allclose(np.array(bands["rho_high"])[inside], hi[inside], atol=0.2)
+    # 5 % tension: the loaded lanes read a few Rho wider (dRho/dlnT ~ 40-80 Rho)
+    assert np.all(np.array(bands["rho_sd"])[inside] > 1.0)
+    # sectors outside the curve's pressures (slack lanes) get no band, and say so
+    assert np.allclose(np.array(bands["rho_sd"])[~inside], 0.0)
