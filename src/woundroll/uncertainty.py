@@ -53,6 +53,8 @@ FloatArray = NDArray[np.float64]
 PERCENTILES = (2.5, 50.0, 97.5)
 #: Step of the surrogate's central differences, in SDs.
 SURROGATE_STEP = 2.0
+#: Tension factors of the profile band's forward curve (down to 1/16: light lanes too).
+PROFILE_CURVE_FACTORS = (0.0625, 0.25, 0.5, 1.0, 2.0, 4.0)
 
 __all__ = [
     "UncertaintyResult",
@@ -292,6 +294,16 @@ class UncertaintyResult:
             ax.fill_between(zc, p["rho_low"], p["rho_high"], color="C3", alpha=0.3, lw=0)
             ax.plot(zc, p["rho_nominal"], color="C3", marker="o", ms=3, label=p["centre"])
             ax.plot([], [], color="C3", alpha=0.3, lw=6, label="95 % band")
+            off = np.array(p["outside_curve"], dtype=bool)
+            if off.any():
+                ax.plot(
+                    zc[off],
+                    np.array(p["rho_nominal"])[off],
+                    "x",
+                    color="k",
+                    ms=7,
+                    label="no band (pressure outside the forward curve: slack lane)",
+                )
             ax.set_xlabel("CMD position [cm]")
             ax.set_ylabel(f"reading [{self.scale}]")
             ax.set_title(f"CMD profile, {self.n} samples (reduced-model surrogate)", fontsize=9)
@@ -478,11 +490,14 @@ def reduced_profile(
     n_sectors: int,
     *,
     pressure: bool = False,
+    coupled: bool = False,
 ) -> tuple[FloatArray, FloatArray]:
     """Sector centres and readings (or near-surface pressures [Pa] with ``pressure``) of the
     reduced profile model at standardised offsets: uncoupled axisymmetric winding, ``P_s``
     one head radius deep, the reading along ``curve`` (linear in ln P, held at the curve's
-    ends: a sector outside the curve's pressures, slack ones, gets no band)."""
+    ends: a sector outside the curve's pressures, slack ones, gets no band). ``coupled``: the
+    shear-coupled winding instead (closer to the full profile model, about 10 s for 61
+    sectors instead of 1-2 s; docs/diagnosis.md)."""
     from woundroll.diagnosis import near_surface_pressure
     from woundroll.materials.thickness_profile import ThicknessProfile
     from woundroll.winding.axisymmetric import wind_axisymmetric
@@ -501,7 +516,7 @@ def reduced_profile(
         prof,
         n_sectors=n_sectors,
         n_groups=case.profile.groups,
-        shear_coupling=False,
+        shear_coupling=coupled,
     )
     ps = np.array(
         [near_surface_pressure(*w.sector_profile(j), model.depth) for j in range(w.z.size)]
@@ -545,7 +560,7 @@ def profile_bands(
             progress("profile surrogate", done / total)
 
     if curve is None:
-        curve = forward_curve(model)
+        curve = forward_curve(model, factors=PROFILE_CURVE_FACTORS)
     tick()
     grid = curve.web_stress
     curves: dict[tuple[str, float], Any] = {}
@@ -577,6 +592,7 @@ def profile_bands(
     for name in names:
         uu = np.asarray(u[name])[:, None]
         delta = delta + a[name][None, :] * uu + 0.5 * b[name][None, :] * uu**2
+    delta[:, outside] = 0.0  # slack or off-curve lanes: the reduced model says nothing
     if full is not None:
         centre = np.interp(z, full.z, full.rho)
         source = "full profile run"
@@ -595,6 +611,8 @@ def profile_bands(
         "rho_sd": samples.std(axis=0, ddof=1).tolist(),
         "reduced_nominal": r0.tolist(),
         "outside_curve": [bool(x) for x in outside],
+        "outside_note": "sectors whose near-surface pressure lies outside the forward "
+        "curve's (slack lanes) get no band (low = high = nominal)",
         "surrogate": {
             "kind": "reduced profile model, quadratic per standardised parameter",
             "step_sd": h,
