@@ -108,7 +108,7 @@ def test_cli_run_uncertainty_json(tmp_path):
     assert res.exit_code == 2 and "uncertainty:" in res.output
 
 
-def test_profile_band_against_brute_force_monte_carlo():
+def test_profile_band_against_brute_force_monte_carlo(tmp_path):
     # reduced case: 5 sectors, 20 winding increments; tension 5 % and caliper 2 % (no K1/K2:
     # every sample then uses the same forward curve, so the brute force is cheap)
     from woundroll.diagnosis import RollModel, forward_curve
@@ -156,6 +156,17 @@ def test_profile_band_against_brute_force_monte_carlo():
     assert np.all(np.array(bands["rho_sd"])[inside] > 1.0)
     # sectors outside the curve's pressures (slack lanes) get no band, and say so
     assert np.allclose(np.array(bands["rho_sd"])[~inside], 0.0)
+    # JSON and plot: the band rides on a result (here the linear roll's, for speed)
+    from dataclasses import replace
+
+    res = replace(propagate(load_case(LINEAR), 10), profile=bands)
+    paths = res.write(tmp_path)
+    d = json.loads((tmp_path / "uncertainty.json").read_text())["profile"]
+    assert len(d["rho_low"]) == len(d["rho_high"]) == 5 and "_samples" not in d
+    assert d["centre"] == "reduced model"
+    assert np.all(np.array(d["rho_low"]) <= np.array(d["rho_high"]))
+    assert tmp_path / "uncertainty_profile.png" in paths
+    assert any("CMD profile" in k for k, _ in res.summary())
 
 
 @pytest.mark.slow
