@@ -210,3 +210,57 @@ def test_cli_diagnose_json_and_bad_readings(tmp_path):
     )
     # the interpolant reproduces the full chain at the median result
     assert abs(d["verification"]["error"]) < 0.05
+
+
+def _coverage_readings(truths, passes, sd, seed):
+    """``passes`` readings per position around each true reading, normal scatter ``sd``."""
+    from woundroll.readings import readings_from_arrays
+
+    rng = np.random.default_rng(seed)
+    truths = np.asarray(truths, dtype=float)
+    x = np.repeat(np.linspace(0.005, 0.095, truths.size), passes)
+    v = np.repeat(truths, passes) + sd * rng.standard_normal(x.size)
+    return readings_from_arrays(x, v, scale="Rho")
+
+
+def test_interval_coverage_on_synthetic_scatter():
+    # 200 positions of 3 readings with normal scatter (SD 1.5 Rho) around the full chain's
+    # reading at 1.2 x the tension: the 95 % interval (t with 2 dof, mapped through the
+    # monotone curve, exact for normal scatter) must hold the true tension at ~95 % of them.
+    # Binomial SD of the share over 200: 1.5 %; allowed 90-99 % (> 3 SD). Measured 95.0 %.
+    case = load_case("pet1-26.7N")
+    model = RollModel.from_case(case)
+    t_true = 1.2 * model.tension
+    truth = model.evaluate(t_true)
+    d = diagnose(case, _coverage_readings([truth.reading] * 200, 3, 1.5, 7), verify=False)
+    assert d.status.count("ok") == 200
+    cover = np.mean((d.web_tension_low < t_true) & (t_true < d.web_tension_high))
+    assert 0.90 <= cover <= 0.99, cover
+    p = truth.surface_pressure
+    assert np.mean((d.surface_pressure_low < p) & (p < d.surface_pressure_high)) == cover
+
+
+@pytest.mark.slow
+def test_interval_coverage_with_material_uncertainty():
+    # each position a roll of its own K2, drawn from the case's [uncertainty] K2 SD, read
+    # 3 times with SD 1 Rho; the combined interval (scatter and first-order material, in
+    # quadrature) must hold the true tension at ~95 % of 60 positions (binomial SD 2.8 %;
+    # allowed 85-100 %)
+    from dataclasses import replace
+
+    case = load_case("pet1-26.7N", ["uncertainty.K2=6"])
+    model = RollModel.from_case(case)
+    t_true = 1.2 * model.tension
+    rng = np.random.default_rng(11)
+    law = model.web.radial_modulus
+    truths = [
+        model.with_web(
+            replace(model.web, radial_modulus=replace(law, K2=law.K2 + 6.0 * rng.standard_normal()))
+        )
+        .evaluate(t_true)
+        .reading
+        for _ in range(60)
+    ]
+    d = diagnose(case, _coverage_readings(truths, 3, 1.0, 5), verify=False)
+    cover = np.mean((d.web_tension_low < t_true) & (t_true < d.web_tension_high))
+    assert 0.85 <= cover <= 1.0, cover

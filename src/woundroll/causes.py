@@ -105,7 +105,7 @@ class ProfileModel:
 
     def sector_pressure(self, theta: FloatArray) -> tuple[FloatArray, FloatArray, Any]:
         """Sector centres [m], near-surface pressure [Pa] per sector, and the winding."""
-        from woundroll.profile.thickness import ThicknessProfile
+        from woundroll.materials.thickness_profile import ThicknessProfile
         from woundroll.winding.axisymmetric import wind_axisymmetric
 
         ln_s, d, c = self.split(theta)
@@ -306,7 +306,7 @@ def fit_causes(
         base = case.thickness_profile
         notes.append(f"starting guess: the case's thickness profile ({base.source})")
     else:
-        from woundroll.profile.thickness import ThicknessProfile
+        from woundroll.materials.thickness_profile import ThicknessProfile
 
         base = ThicknessProfile.uniform(roll.web.thickness, roll.web.width)
     pos = np.linspace(base.position[0], base.position[-1], 241)

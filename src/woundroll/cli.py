@@ -124,7 +124,9 @@ def run(
             else:
                 result = _with_progress(lambda progress: run_case(c, progress=progress))
             written = result.write(out_dir) if out_dir is not None else []
-            uq = _cli_diagnose.run_uncertainty(c, uncertainty, out_dir, written, quiet or as_json)
+            uq = _cli_diagnose.run_uncertainty(
+                c, uncertainty, out_dir, written, quiet or as_json, result.profile
+            )
             if report:
                 from woundroll.defects import defect_report
                 from woundroll.report import write_report

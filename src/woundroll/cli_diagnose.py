@@ -322,18 +322,19 @@ def _write(out_dir: Path, payload: dict, d, defects) -> list[Path]:  # type: ign
     ]
 
 
-def run_uncertainty(case, n: int, out_dir: Path | None, written: list, quiet: bool):  # type: ignore[no-untyped-def]
+def run_uncertainty(case, n: int, out_dir: Path | None, written: list, quiet: bool, profile=None):  # type: ignore[no-untyped-def]
     """``woundroll run --uncertainty N``: the Monte Carlo bands (None for N = 0); adds its
-    files to ``written`` when ``out_dir`` is given."""
+    files to ``written`` when ``out_dir`` is given. ``profile``: the run's CMD profile, the
+    centre of the profile band."""
     if not n:
         return None
     from woundroll.cli import _with_progress
     from woundroll.uncertainty import propagate
 
     if quiet or not sys.stderr.isatty():
-        uq = propagate(case, n)
+        uq = propagate(case, n, profile=profile)
     else:
-        uq = _with_progress(lambda progress: propagate(case, n, progress=progress))
+        uq = _with_progress(lambda progress: propagate(case, n, progress=progress, profile=profile))
     if out_dir is not None:
         written.extend(uq.write(out_dir))
     return uq

@@ -15,6 +15,18 @@ as ``woundroll fit-stack`` reports it), of the web thickness and of the tension 
   the first ``verify`` samples (``surrogate.max_abs_error`` in the JSON), and in the tests
   against a full Monte Carlo.
 
+* **CMD profile** (cases with ``winding.thickness_profile``): the full profile run (about
+  20 s) is too slow per sample. Per sector, the reading is propagated through the reduced
+  profile model of :mod:`woundroll.causes` (axisymmetric winding with uncoupled sectors,
+  about 1 s for 61 sectors, then the near-surface pressure ``P_s`` of each sector mapped to
+  the reading along the case's forward curve, :mod:`woundroll.diagnosis`), with the same
+  quadratic-per-parameter surrogate (steps of 2 SD): ``2 p + 1`` reduced runs. K1 and K2
+  change the contact too: their steps use a forward curve of the perturbed web (one curve,
+  about 5-10 s, per step); thickness (a uniform relative change of the whole CMD profile)
+  and tension keep the nominal curve. The band is the surrogate's change from its nominal,
+  added to the full run's profile when it is given (``propagate(..., profile=...)``).
+  Checked against a brute-force Monte Carlo of the reduced model in the tests.
+
 Sampling: K1, K2 bivariate normal with the given correlation; thickness and tension normal;
 samples are clipped to K1 >= 0, K2 > 0, thickness > 0, tension >= 0 (a truncation that
 matters only for SDs comparable to the value; stated in docs/diagnosis.md).
@@ -41,8 +53,17 @@ FloatArray = NDArray[np.float64]
 PERCENTILES = (2.5, 50.0, 97.5)
 #: Step of the surrogate's central differences, in SDs.
 SURROGATE_STEP = 2.0
+#: Tension factors of the profile band's forward curve (down to 1/16: light lanes too).
+PROFILE_CURVE_FACTORS = (0.0625, 0.25, 0.5, 1.0, 2.0, 4.0)
 
-__all__ = ["UncertaintyResult", "draw_samples", "propagate", "uncertain_parameters"]
+__all__ = [
+    "UncertaintyResult",
+    "draw_samples",
+    "profile_bands",
+    "reduced_profile",
+    "propagate",
+    "uncertain_parameters",
+]
 
 
 def uncertain_parameters(case: Case) -> dict[str, float]:
@@ -167,6 +188,7 @@ class UncertaintyResult:
     surrogate: dict[str, Any] = field(default_factory=dict)
     pressure_depth: float = 0.0
     notes: tuple[str, ...] = ()
+    profile: dict[str, Any] | None = None
 
     @property
     def negative_hoop_share(self) -> float:
@@ -195,6 +217,8 @@ class UncertaintyResult:
                 **_band(self.reading),
             }
             out["surrogate"] = self.surrogate
+        if self.profile is not None:
+            out["profile"] = {k: v for k, v in self.profile.items() if not k.startswith("_")}
         return out
 
     def summary(self) -> list[tuple[str, str]]:
@@ -215,6 +239,14 @@ class UncertaintyResult:
             err = self.surrogate.get("max_abs_error")
             if err is not None:
                 rows.append(("surrogate vs full runs, max error", f"{err:.2g} {self.scale}"))
+        if self.profile is not None:
+            half = 0.5 * (np.array(self.profile["rho_high"]) - np.array(self.profile["rho_low"]))
+            rows.append(
+                (
+                    f"CMD profile [{self.scale}], 95 % half-band",
+                    f"{half.min():.2g}-{half.max():.2g} over {half.size} sectors",
+                )
+            )
         return rows
 
     def plot(self, path_prefix: str | Path | None = None) -> list[Any]:
@@ -255,10 +287,36 @@ class UncertaintyResult:
             ax.legend(fontsize=8)
             fig2.tight_layout()
             figs.append(fig2)
+        if self.profile is not None:
+            p = self.profile
+            fig3, ax = plt.subplots(figsize=(7.2, 3.8))
+            zc = np.array(p["z_m"]) * 100
+            ax.fill_between(zc, p["rho_low"], p["rho_high"], color="C3", alpha=0.3, lw=0)
+            ax.plot(zc, p["rho_nominal"], color="C3", marker="o", ms=3, label=p["centre"])
+            ax.plot([], [], color="C3", alpha=0.3, lw=6, label="95 % band")
+            off = np.array(p["outside_curve"], dtype=bool)
+            if off.any():
+                ax.plot(
+                    zc[off],
+                    np.array(p["rho_nominal"])[off],
+                    "x",
+                    color="k",
+                    ms=7,
+                    label="no band (pressure outside the forward curve: slack lane)",
+                )
+            ax.set_xlabel("CMD position [cm]")
+            ax.set_ylabel(f"reading [{self.scale}]")
+            ax.set_title(f"CMD profile, {self.n} samples (reduced-model surrogate)", fontsize=9)
+            ax.grid(alpha=0.3)
+            ax.legend(fontsize=8)
+            fig3.tight_layout()
+            figs.append(fig3)
         if path_prefix is not None:
             figs[0].savefig(f"{path_prefix}_stresses.png", dpi=120)
-            if len(figs) > 1:
+            if self.reading is not None:
                 figs[1].savefig(f"{path_prefix}_reading.png", dpi=120)
+            if self.profile is not None:
+                figs[-1].savefig(f"{path_prefix}_profile.png", dpi=120)
         return figs
 
     def write(self, out_dir: str | Path) -> list[Path]:
@@ -288,6 +346,7 @@ def propagate(
     seed: int = 0,
     verify: int = 2,
     progress: Callable[[str, float], None] | None = None,
+    profile: Any = None,
 ) -> UncertaintyResult:
     """Monte Carlo of the case's tolerances through the winding model, and through a verified
     surrogate of the contact and impact steps for the reading (module docstring).
@@ -301,7 +360,11 @@ def propagate(
     verify : int
         Full forward runs at the first ``verify`` samples to check the surrogate.
     progress : callable, optional
-        ``progress(stage, fraction)``; stages "winding samples", "reading surrogate".
+        ``progress(stage, fraction)``; stages "winding samples", "reading surrogate",
+        "profile surrogate".
+    profile : ProfileResult, optional
+        The case's full CMD profile run: the profile band is centred on its readings
+        (otherwise on the reduced model's).
     """
     from woundroll.case import Case, load_case
     from woundroll.diagnosis import RollModel, near_surface_pressure
@@ -322,7 +385,10 @@ def propagate(
     depth = setup.instrument.head_radius if setup is not None else 0.0065
     notes = []
     if case.winding.thickness_profile is not None:
-        notes.append("1D model at the nominal thickness; bands of the CMD profile not computed")
+        notes.append(
+            "stresses: 1D model at the nominal thickness; CMD profile: reduced model "
+            "(uncoupled sectors, P_s -> reading along the forward curve)"
+        )
     nominal = wind(web0, core, r_out, sched0, options=options)
     radius = nominal.radius
     sr = np.empty((n, radius.size))
@@ -408,4 +474,151 @@ def propagate(
         "checks": checks,
         "max_abs_error": max((abs(c["full"] - c["surrogate"]) for c in checks), default=None),
     }
-    return replace(result, reading=reading, reading_nominal=r0, scale=model.scale, surrogate=sur)
+    result = replace(result, reading=reading, reading_nominal=r0, scale=model.scale, surrogate=sur)
+    if case.winding.thickness_profile is None:
+        return result
+    bands = profile_bands(case, model, u, params, full=profile, progress=progress)
+    return replace(result, profile=bands)
+
+
+def reduced_profile(
+    case: Case,
+    model: Any,
+    curve: Any,
+    params: dict[str, float],
+    offsets: dict[str, float],
+    n_sectors: int,
+    *,
+    pressure: bool = False,
+    coupled: bool = False,
+) -> tuple[FloatArray, FloatArray]:
+    """Sector centres and readings (or near-surface pressures [Pa] with ``pressure``) of the
+    reduced profile model at standardised offsets: uncoupled axisymmetric winding, ``P_s``
+    one head radius deep, the reading along ``curve`` (linear in ln P, held at the curve's
+    ends: a sector outside the curve's pressures, slack ones, gets no band). ``coupled``: the
+    shear-coupled winding instead (closer to the full profile model, about 10 s for 61
+    sectors instead of 1-2 s; docs/diagnosis.md)."""
+    from woundroll.diagnosis import near_surface_pressure
+    from woundroll.materials.thickness_profile import ThicknessProfile
+    from woundroll.winding.axisymmetric import wind_axisymmetric
+
+    web0 = model.web
+    base = case.thickness_profile
+    web, t = _perturb(web0, model.schedule.web_stress, params, offsets)
+    prof = ThicknessProfile(
+        base.position, base.thickness * (web.thickness / web0.thickness), base.source
+    )
+    w = wind_axisymmetric(
+        web,
+        model.core,
+        model.outer_radius,
+        replace(model.schedule, web_stress=t),
+        prof,
+        n_sectors=n_sectors,
+        n_groups=case.profile.groups,
+        shear_coupling=coupled,
+    )
+    ps = np.array(
+        [near_surface_pressure(*w.sector_profile(j), model.depth) for j in range(w.z.size)]
+    )
+    if pressure:
+        return w.z, ps
+    lp = np.log(np.maximum(ps, 1.0))
+    return w.z, np.interp(lp, np.log(curve.surface_pressure), curve.reading)
+
+
+def profile_bands(
+    case: Case,
+    model: Any,
+    u: dict[str, FloatArray],
+    params: dict[str, float],
+    *,
+    full: Any = None,
+    curve: Any = None,
+    n_sectors: int | None = None,
+    progress: Callable[[str, float], None] | None = None,
+) -> dict[str, Any]:
+    """Bands of the CMD reading profile: the reduced model's quadratic surrogate per sector
+    (module docstring) at the samples ``u``; ``full`` (a ProfileResult) centres them.
+
+    Returns the JSON-ready ``uncertainty.profile`` dictionary, with the per-sample readings
+    under the private key ``_samples`` (n, sectors).
+    """
+    from woundroll.diagnosis import forward_curve
+
+    ns = n_sectors if n_sectors is not None else case.profile.sectors
+    web0 = model.web
+    h = SURROGATE_STEP
+    names = list(params)
+    total = 2 + 2 * len(names)
+    done = 0
+
+    def tick() -> None:
+        nonlocal done
+        done += 1
+        if progress is not None:
+            progress("profile surrogate", done / total)
+
+    if curve is None:
+        curve = forward_curve(model, factors=PROFILE_CURVE_FACTORS)
+    tick()
+    grid = curve.web_stress
+    curves: dict[tuple[str, float], Any] = {}
+
+    def sector_readings(offsets: dict[str, float]) -> tuple[FloatArray, FloatArray]:
+        cv = curve
+        material = [k for k in ("K1", "K2") if offsets.get(k)]
+        if material:  # the contact sees the perturbed web: its own curve, same tensions
+            key = (material[0], offsets[material[0]])
+            if key not in curves:
+                web, _ = _perturb(web0, model.schedule.web_stress, params, offsets)
+                curves[key] = forward_curve(model.with_web(web), tensions=grid)
+            cv = curves[key]
+        return reduced_profile(case, model, cv, params, offsets, ns)
+
+    z, r0 = sector_readings({})
+    p_s = reduced_profile(case, model, curve, params, {}, ns, pressure=True)[1]
+    outside = (p_s < curve.surface_pressure.min()) | (p_s > curve.surface_pressure.max())
+    tick()
+    a, b = {}, {}
+    for name in names:
+        rp = sector_readings({name: h})[1]
+        tick()
+        rm = sector_readings({name: -h})[1]
+        tick()
+        a[name] = (rp - rm) / (2 * h)
+        b[name] = (rp - 2 * r0 + rm) / h**2
+    delta = np.zeros((np.asarray(next(iter(u.values()))).size, z.size))
+    for name in names:
+        uu = np.asarray(u[name])[:, None]
+        delta = delta + a[name][None, :] * uu + 0.5 * b[name][None, :] * uu**2
+    delta[:, outside] = 0.0  # slack or off-curve lanes: the reduced model says nothing
+    if full is not None:
+        centre = np.interp(z, full.z, full.rho)
+        source = "full profile run"
+    else:
+        centre = r0
+        source = "reduced model"
+    samples = centre[None, :] + delta
+    lo, mid, hi = np.percentile(samples, PERCENTILES, axis=0)
+    return {
+        "z_m": z.tolist(),
+        "rho_nominal": centre.tolist(),
+        "centre": source,
+        "rho_low": lo.tolist(),
+        "rho_p50": mid.tolist(),
+        "rho_high": hi.tolist(),
+        "rho_sd": samples.std(axis=0, ddof=1).tolist(),
+        "reduced_nominal": r0.tolist(),
+        "outside_curve": [bool(x) for x in outside],
+        "outside_note": "sectors whose near-surface pressure lies outside the forward "
+        "curve's (slack lanes) get no band (low = high = nominal)",
+        "surrogate": {
+            "kind": "reduced profile model, quadratic per standardised parameter",
+            "step_sd": h,
+            "linear": {k: v.tolist() for k, v in a.items()},
+            "quadratic": {k: v.tolist() for k, v in b.items()},
+            "curve_runs": len(curve.points) * (1 + len(curves)),
+        },
+        "_samples": samples,
+    }
