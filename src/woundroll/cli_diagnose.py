@@ -15,6 +15,7 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
+from woundroll._output import strict_json
 from woundroll.errors import ConvergenceError, InputError
 
 
@@ -90,9 +91,7 @@ def readings_cmd(
     except ConvergenceError as exc:  # pragma: no cover - nothing iterative here
         _fail(exc, 1)
     if as_json:
-        import json
-
-        sys.stdout.write(json.dumps(r.to_dict()) + "\n")
+        sys.stdout.write(strict_json(r.to_dict()) + "\n")
         return
     t = Table(
         "position [in]",
@@ -197,9 +196,7 @@ def diagnose_cmd(
     except ConvergenceError as exc:
         _fail(exc, 1)
     if as_json:
-        import json
-
-        sys.stdout.write(json.dumps(payload) + "\n")
+        sys.stdout.write(strict_json(payload) + "\n")
         return
     if quiet:
         return
@@ -266,7 +263,6 @@ def defects_cmd(
 ) -> None:
     """Defect risk of a roll from its wound-in stresses: starring, core crush, slip,
     telescoping, blocking, slack (limits in the case's defects section)."""
-    import json
 
     from woundroll.case import load_case
     from woundroll.cli import _fail
@@ -283,7 +279,7 @@ def defects_cmd(
 
             try:
                 out_dir.mkdir(parents=True, exist_ok=True)
-                (out_dir / "defects.json").write_text(json.dumps(rep.to_dict()), encoding="utf-8")
+                (out_dir / "defects.json").write_text(strict_json(rep.to_dict()), encoding="utf-8")
                 plt.close(rep.plot(out_dir / "defects.png"))
             except OSError as exc:
                 raise InputError(
@@ -294,13 +290,12 @@ def defects_cmd(
     except ConvergenceError as exc:
         _fail(exc, 1)
     if as_json:
-        sys.stdout.write(json.dumps({"defects": rep.to_dict()}) + "\n")
+        sys.stdout.write(strict_json({"defects": rep.to_dict()}) + "\n")
         return
     _print_defects(rep)
 
 
 def _write(out_dir: Path, payload: dict, d, defects) -> list[Path]:  # type: ignore[no-untyped-def]
-    import json
 
     import matplotlib
 
@@ -310,7 +305,7 @@ def _write(out_dir: Path, payload: dict, d, defects) -> list[Path]:  # type: ign
     try:
         out_dir.mkdir(parents=True, exist_ok=True)
         paths = [out_dir / "diagnosis.json"]
-        paths[0].write_text(json.dumps(payload, indent=1), encoding="utf-8")
+        paths[0].write_text(strict_json(payload, indent=1), encoding="utf-8")
         plt.close(d.readings.plot(out_dir / "readings.png"))
         for fig in d.plot(out_dir / "diagnosis"):
             plt.close(fig)
@@ -414,7 +409,6 @@ def design_cmd(
 ) -> None:
     """Setpoint design: tension, taper and nip load for a target hardness, a pressure
     window and no negative hoop stress, within the winder's ranges."""
-    import json
 
     from woundroll.case import _tension, load_case
     from woundroll.cli import _fail, out
@@ -472,7 +466,7 @@ def design_cmd(
 
             try:
                 out_dir.mkdir(parents=True, exist_ok=True)
-                (out_dir / "design.json").write_text(json.dumps(d.to_dict()), encoding="utf-8")
+                (out_dir / "design.json").write_text(strict_json(d.to_dict()), encoding="utf-8")
                 plt.close(d.plot(out_dir / "design.png"))
             except OSError as exc:
                 raise InputError(
@@ -483,7 +477,7 @@ def design_cmd(
     except ConvergenceError as exc:
         _fail(exc, 1)
     if as_json:
-        sys.stdout.write(json.dumps({"design": d.to_dict()}) + "\n")
+        sys.stdout.write(strict_json({"design": d.to_dict()}) + "\n")
         return
     tb = Table("quantity", "value", title=escape(f"{c.title or case}: setpoint design"))
     for name, value in d.summary():

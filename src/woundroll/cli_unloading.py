@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import json
 import sys
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from woundroll._output import strict_json
 from woundroll.errors import ConvergenceError, InputError
 
 
@@ -31,7 +31,7 @@ def fit_cycle_cmd(
         fail(exc, 1)
         return
     if as_json:
-        sys.stdout.write(json.dumps(fit.to_dict()) + "\n")
+        sys.stdout.write(strict_json(fit.to_dict()) + "\n")
         return
     t = Table("branch", "points", "RMS rel. error", "case-file key")
     t.add_row(

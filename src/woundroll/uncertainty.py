@@ -43,6 +43,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from woundroll._output import strict_json
 from woundroll.errors import InputError
 
 if TYPE_CHECKING:
@@ -321,7 +322,6 @@ class UncertaintyResult:
 
     def write(self, out_dir: str | Path) -> list[Path]:
         """``uncertainty.json`` and the plots into ``out_dir``."""
-        import json
 
         import matplotlib
 
@@ -331,7 +331,7 @@ class UncertaintyResult:
         out = Path(out_dir)
         try:
             out.mkdir(parents=True, exist_ok=True)
-            (out / "uncertainty.json").write_text(json.dumps(self.to_dict()), encoding="utf-8")
+            (out / "uncertainty.json").write_text(strict_json(self.to_dict()), encoding="utf-8")
             for fig in self.plot(out / "uncertainty"):
                 plt.close(fig)
         except OSError as exc:
