@@ -153,3 +153,21 @@ def test_plot_with_and_without_lanes(tmp_path):
     fig = rep.plot(tmp_path / "d.png")
     assert (tmp_path / "d.png").stat().st_size > 1000 and len(fig.axes) == 1
     plt.close(fig)
+
+
+def test_cli_defects_out_beside_a_run(tmp_path):
+    # defects.json/png go into a run's --out directory beside its files (written atomically,
+    # never a NaN token) and leave the run's own files and result.json alone
+    (tmp_path / "result.json").write_text('{"files": ["winding.png", "result.json"]}')
+    (tmp_path / "winding.png").write_bytes(b"png")
+    res = CliRunner().invoke(app, ["defects", "pet2-80N", "--out", str(tmp_path)])
+    assert res.exit_code == 0, res.output
+    data = json.loads((tmp_path / "defects.json").read_text(), parse_constant=_no_nan)
+    assert {c["name"] for c in data["roll"]} >= {"starring", "core crush", "slack"}
+    assert (tmp_path / "defects.png").stat().st_size > 1000
+    assert (tmp_path / "winding.png").read_bytes() == b"png"
+    assert not list(tmp_path.glob(".woundroll-tmp-*"))
+
+
+def _no_nan(token: str) -> float:
+    raise AssertionError(f"non-standard JSON token {token}")

@@ -104,17 +104,19 @@ class OutputDir:
             return []
 
     def publish(
-        self, names: list[str], stale_patterns: tuple[str, ...] = ()
+        self, names: list[str], stale_patterns: tuple[str, ...] = (), *, replaces_run: bool = True
     ) -> tuple[list[Path], list[str]]:
-        """Move ``names`` from :attr:`tmp` into ``out`` (the last one last); remove files the
-        previous ``result.json`` listed and this run did not write.
+        """Move ``names`` from :attr:`tmp` into ``out`` (the last one last); with
+        ``replaces_run`` (a run's own output), remove files the previous ``result.json``
+        listed and this run did not write. False: files beside a run (``defects.json``,
+        ``design.json``) that leave the run's files alone.
 
         Returns the written paths and notes on stale files (removed or left).
         """
         notes: list[str] = []
         keep = set(names)
         removed = []
-        for name in self.previous_files():
+        for name in self.previous_files() if replaces_run else []:
             if name not in keep and (self.out / name).is_file():
                 (self.out / name).unlink()
                 removed.append(name)
@@ -141,3 +143,18 @@ class OutputDir:
                 f"cannot write to {self.out}: {exc.strerror or exc}", "--out"
             ) from None
         return written, notes
+
+
+def write_result_files(out_dir: str | Path, name: str, result: Any) -> list[Path]:
+    """``name.json`` (strict JSON of ``result.to_dict()``) and ``name.png``
+    (``result.plot(path)``) into ``out_dir``, atomically beside whatever is there."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    with OutputDir(out_dir) as od:
+        (od.tmp / f"{name}.json").write_text(strict_json(result.to_dict()), encoding="utf-8")
+        plt.close(result.plot(od.tmp / f"{name}.png"))
+        written, _ = od.publish([f"{name}.png", f"{name}.json"], replaces_run=False)
+    return written

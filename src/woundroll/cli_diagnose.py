@@ -15,7 +15,7 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from woundroll._output import strict_json
+from woundroll._output import strict_json, write_result_files
 from woundroll.errors import ConvergenceError, InputError
 
 
@@ -272,19 +272,7 @@ def defects_cmd(
         c = load_case(case, set_ or [])
         rep = defect_report(c)
         if out_dir is not None:
-            import matplotlib
-
-            matplotlib.use("Agg", force=False)
-            import matplotlib.pyplot as plt
-
-            try:
-                out_dir.mkdir(parents=True, exist_ok=True)
-                (out_dir / "defects.json").write_text(strict_json(rep.to_dict()), encoding="utf-8")
-                plt.close(rep.plot(out_dir / "defects.png"))
-            except OSError as exc:
-                raise InputError(
-                    f"cannot write to {out_dir}: {exc.strerror or exc}", "--out"
-                ) from None
+            write_result_files(out_dir, "defects", rep)
     except InputError as exc:
         _fail(exc, 2)
     except ConvergenceError as exc:
@@ -459,19 +447,7 @@ def design_cmd(
         )
         d = design_setpoints(c, tgt)
         if out_dir is not None:
-            import matplotlib
-
-            matplotlib.use("Agg", force=False)
-            import matplotlib.pyplot as plt
-
-            try:
-                out_dir.mkdir(parents=True, exist_ok=True)
-                (out_dir / "design.json").write_text(strict_json(d.to_dict()), encoding="utf-8")
-                plt.close(d.plot(out_dir / "design.png"))
-            except OSError as exc:
-                raise InputError(
-                    f"cannot write to {out_dir}: {exc.strerror or exc}", "--out"
-                ) from None
+            write_result_files(out_dir, "design", d)
     except InputError as exc:
         _fail(exc, 2)
     except ConvergenceError as exc:
