@@ -218,3 +218,14 @@ def test_tappi_sheet_pasted_needs_a_roll(client):
     assert r.json()["error"]["field"] == "readings" and "outside the roll" in r.text
     s = wait(client, client.post("/api/run", json={**body, "roll": "B"}).json()["job"])
     assert s["result"]["measured"]["mean"] == 56.0
+
+
+def test_server_draws_headless():
+    # report figures are drawn from the server's worker threads, where a desktop's GUI
+    # backend must not be driven: the app switches matplotlib to Agg when it is created
+    # (the svg backend stands in here for whatever the user's default would be)
+    import matplotlib
+
+    matplotlib.use("svg")
+    create_app()
+    assert matplotlib.get_backend().lower() == "agg"

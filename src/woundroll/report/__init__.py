@@ -26,6 +26,7 @@ import io
 import json
 import math
 import sys
+import threading
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
@@ -293,13 +294,20 @@ def _png(fig: Any, dpi: int = 110) -> str:
     return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
 
 
+# pyplot keeps one global figure registry and current-figure state, which is not safe when
+# two threads draw at once (the web server renders reports from its worker threads): every
+# figure of a report is drawn, saved and released under this lock.
+_PLOT_LOCK = threading.RLock()
+
+
 def _figures(part: Any, captions: list[str]) -> list[dict[str, str]]:
-    figs = part.plot()
-    figs = list(figs) if isinstance(figs, list | tuple) else [figs]
     out = []
-    for i, fig in enumerate(figs):
-        cap = captions[i] if i < len(captions) else ""
-        out.append({"src": _png(fig), "caption": cap})
+    with _PLOT_LOCK:
+        figs = part.plot()
+        figs = list(figs) if isinstance(figs, list | tuple) else [figs]
+        for i, fig in enumerate(figs):
+            cap = captions[i] if i < len(captions) else ""
+            out.append({"src": _png(fig), "caption": cap})
     return out
 
 

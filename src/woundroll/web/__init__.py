@@ -439,6 +439,15 @@ def result_payload(
     }
 
 
+def _headless_plots() -> None:
+    """Draw with the Agg backend: the server renders report figures from worker threads,
+    and a GUI backend (the default on a desktop with a display) must only be driven from
+    the main thread. The server never shows a window, so nothing is lost."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+
+
 def create_app() -> Any:
     """The FastAPI application (``uvicorn woundroll.web:create_app --factory``)."""
     from fastapi import FastAPI, Request
@@ -449,6 +458,7 @@ def create_app() -> Any:
     from woundroll import __version__
     from woundroll.case import bundled_cases
 
+    _headless_plots()
     app = FastAPI(title="woundroll", version=__version__, docs_url=None, redoc_url=None)
     # Jinja2Templates autoescapes .html templates
     templates = Jinja2Templates(directory=str(resources.files("woundroll.web") / "templates"))
