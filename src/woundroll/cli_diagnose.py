@@ -66,10 +66,6 @@ def readings_cmd(
         if fmt not in FORMATS:
             raise InputError(f"unknown format {fmt!r}; one of {', '.join(FORMATS)}", "--format")
         layout = detect_format(csv_file, "CSV_FILE") if fmt == "auto" else fmt
-        if roll is not None and layout != "tappi":
-            raise InputError(
-                f"only a TAPPI T 834 sheet holds several rolls; this is {layout}", "--roll"
-            )
         try:
             r = read_tester_file(
                 csv_file,

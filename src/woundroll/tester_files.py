@@ -452,7 +452,8 @@ def read_tester_file(
 ) -> Readings:
     """The readings of one roll from any of the layouts (module docstring).
 
-    ``roll`` picks a roll of a TAPPI sheet (needed when the sheet holds several).
+    ``roll`` picks a roll of a TAPPI sheet (needed when the sheet holds several); given
+    for another layout it is an input error rather than silently ignored.
 
     Raises
     ------
@@ -462,6 +463,13 @@ def read_tester_file(
     if format not in FORMATS:
         raise InputError(f"unknown format {format!r}; one of {', '.join(FORMATS)}", field)
     fmt = detect_format(path, field) if format == "auto" else format
+    if roll is not None and fmt != "tappi":
+        # a roll id picks a roll of a TAPPI sheet; on a one-roll file it would be ignored
+        raise InputError(
+            f"--roll {roll} picks a roll of a TAPPI sheet, but {Path(path).name} is a "
+            f"{fmt} file with one roll",
+            "--roll",
+        )
     if fmt == "generic":
         return read_readings(path, width=width, lane_width=lane_width, field=field)
     if fmt == "profile":

@@ -144,6 +144,11 @@ def test_cli_report_and_run_report(tmp_path):
             ["report", "pet1-26.7N", "--out", "OUT", "--readings", "SHEET", "--format", "x"],
             "--readings",
         ),
+        # a roll id on a one-roll file: an error, not silently ignored
+        (
+            ["report", "pet1-26.7N", "--out", "OUT", "--readings", "PROFILE", "--roll", "9"],
+            "--roll",
+        ),
     ],
 )
 def test_cli_bad_input_one_line(args, field, tmp_path):
@@ -151,6 +156,7 @@ def test_cli_bad_input_one_line(args, field, tmp_path):
 
     sheet = Path(__file__).resolve().parents[2] / "examples" / "data" / "tappi_t834_sheet.csv"
     subs = {"OUT": str(tmp_path / "o"), "SHEET": str(sheet)}
+    subs["PROFILE"] = str(sheet.with_name("readings_rho_3passes.csv"))
     args = [subs.get(a, a) for a in args]
     res = CliRunner().invoke(app, [*args, "--set", FAST[0], "--set", FAST[1]])
     assert res.exit_code == 2, res.output
