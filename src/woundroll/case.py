@@ -308,6 +308,24 @@ class ContactSpec(_Section):
     #: "2d" plane strain, "3d" (any head), "auto": 2D for cylinders, 3D for other heads
     model: Literal["2d", "3d", "auto"] = "auto"
     options3d: dict[str, Any] = Field(default_factory=dict)
+    #: slip emulation (Figure 19) in the 2D and 3D models: G_r_theta (and G_r_z) of the
+    #: elements where SF {23} reaches 1 (mu = ``friction``) drop to ``slip_shear_fraction``
+    slip: Literal["none", "reduced-shear"] = "none"
+    slip_shear_fraction: Q("dimensionless") = 0.01
+
+    def _slip_options(self, table: dict[str, Any], name: str) -> dict[str, Any]:
+        """``table`` with the section's slip keys (one spelling for 2D and 3D)."""
+        for key in ("slip", "slip_shear_fraction"):
+            if key in table:
+                raise InputError(
+                    f"set contact.{key}, not contact.{name}.{key}", f"contact.{name}.{key}"
+                )
+        if not self.slip_shear_fraction <= 1.0:
+            raise InputError(
+                f"must lie in (0, 1], got {self.slip_shear_fraction:g}",
+                "contact.slip_shear_fraction",
+            )
+        return {**table, "slip": self.slip, "slip_shear_fraction": self.slip_shear_fraction}
 
     def contact3d_options(self) -> Any:
         """The :class:`~woundroll.contact.solver3d.Contact3DOptions` of ``options3d``."""
@@ -320,10 +338,13 @@ class ContactSpec(_Section):
                 f"unknown option(s) {', '.join(unknown)}; known: {', '.join(sorted(known))}",
                 f"contact.options3d.{unknown[0]}",
             )
+        table = self._slip_options(self.options3d, "options3d")
         try:
-            return Contact3DOptions(**self.options3d)
+            return Contact3DOptions(**table)
         except InputError as exc:
             raise InputError(exc.message, f"contact.options3d.{exc.field.split('.')[-1]}") from None
+        except (TypeError, ValueError) as exc:  # a string where a number belongs
+            raise InputError(f"bad value ({exc}); give SI numbers", "contact.options3d") from None
 
     dynamic: bool = False
     dynamic_options: dict[str, Any] = Field(default_factory=dict)
@@ -357,8 +378,9 @@ class ContactSpec(_Section):
                 f"unknown option(s) {', '.join(unknown)}; known: {', '.join(sorted(known))}",
                 f"contact.options.{unknown[0]}",
             )
+        table = self._slip_options(self.options, "options")
         try:
-            return ContactOptions(**self.options)
+            return ContactOptions(**table)
         except InputError as exc:
             raise exc.at("contact") from None
         except (TypeError, ValueError) as exc:

@@ -285,7 +285,7 @@ def study(
     ] = 1,
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar.")] = False,
     model: Annotated[
-        str, typer.Option(help="Contact model of the pile-height study: 2d or 3d.")
+        str, typer.Option(help="Contact model of the pile-height and slip studies: 2d or 3d.")
     ] = "2d",
 ) -> None:
     """Run one of the reference paper's studies on its Table 2 rolls; print its tables."""
@@ -293,11 +293,17 @@ def study(
     from woundroll.studies import run_study
 
     def job(progress):  # type: ignore[no-untyped-def]
+        if name == "slip" and model in ("2d", "3d"):
+            from woundroll.studies.slip import run as slip_study
+
+            return slip_study(progress, workers=workers, model=model)
         if model != "2d" or name == "pile-height":
             from woundroll.studies.pile_height import pile_height_study
 
             if name != "pile-height" or model not in ("2d", "3d"):
-                raise InputError("--model 3d is for the pile-height study; 2d or 3d", "--model")
+                raise InputError(
+                    "--model 3d is for the pile-height and slip studies; 2d or 3d", "--model"
+                )
             return pile_height_study(progress=progress, workers=workers, model=model)
         return run_study(name, progress=progress, workers=workers)
 

@@ -260,6 +260,10 @@ class ContactResult:
     mesh_shape: tuple[int, int]
     solve_time_s: float
     factorisations: int = 0
+    #: elements with reduced shear at depth_max (slip emulation, Figure 19); None: off
+    slipped: NDArray[np.bool_] | None = None
+    #: increments' slip-zone passes in all (slip emulation)
+    slip_passes: int = 0
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -381,6 +385,14 @@ class ContactResult:
             "n_dof": self.n_dof,
             "solve_time_s": self.solve_time_s,
             "factorisations": self.factorisations,
+            **(
+                {}
+                if self.slipped is None
+                else {
+                    "slipped_elements": int(np.count_nonzero(self.slipped)),
+                    "slip_passes": self.slip_passes,
+                }
+            ),
         }
 
     def plot(self, path: str | Path | None = None) -> Figure:

@@ -110,6 +110,16 @@ class ContactOptions:
         Mesh the half 0 <= theta <= pi with symmetry conditions (u_theta = 0 on theta = 0,
         pi): exact for this symmetric problem, and its banded stiffness is solved by banded
         Cholesky. False: the whole annulus with a sparse LU (used to verify the symmetry).
+    slip : {"none", "reduced-shear"}
+        Slip emulation (the paper's Figure 19, docs/contact.md): an element whose
+        interlayer shear reaches Coulomb's limit, |tau_r_theta| >= mu P (the slip factor
+        {23} reaching 1, mu = ``friction``), keeps ``slip_shear_fraction`` of its G_r_theta
+        for the rest of the loading. Within each increment the slip zone is iterated to
+        consistency (same names as :class:`~woundroll.contact.solver3d.Contact3DOptions`).
+    slip_shear_fraction : float
+        Fraction of G_r_theta left in a slipped element, in (0, 1] (1: no change).
+    slip_max_passes : int
+        Passes of the slip-zone iteration per increment before ConvergenceError.
     """
 
     n_steps: int = 24
@@ -129,8 +139,12 @@ class ContactOptions:
     step_tol: float = 0.02
     half_model: bool = True
     step_exponent: float = 1.5
+    slip: str = "none"
+    slip_shear_fraction: float = 0.01
+    slip_max_passes: int = 50
 
     def __post_init__(self) -> None:
+        _check_slip_options(self)
         if self.element not in ELEMENTS:
             raise InputError(
                 f"must be one of {', '.join(ELEMENTS)}, got {self.element!r}", "options.element"
@@ -185,6 +199,29 @@ class ContactOptions:
             raise InputError(
                 f"must lie in (0, 1), got {self.min_modulus_ratio!r}", "options.min_modulus_ratio"
             )
+
+
+SLIP_MODES = ("none", "reduced-shear")
+#: The slip-zone iteration has settled when no element's slipping share of the increment
+#: grows by more than this.
+SLIP_TOL = 0.05
+
+
+def _check_slip_options(opts: Any) -> None:
+    """The slip emulation's options (shared with the 3D options: one spelling)."""
+    if opts.slip not in SLIP_MODES:
+        raise InputError(f"must be 'none' or 'reduced-shear', got {opts.slip!r}", "options.slip")
+    f = opts.slip_shear_fraction
+    if not (
+        isinstance(f, int | float | np.number)
+        and not isinstance(f, bool)
+        and math.isfinite(f)
+        and 0 < f <= 1
+    ):
+        raise InputError(f"must lie in (0, 1], got {f!r}", "options.slip_shear_fraction")
+    n = getattr(opts, "slip_max_passes", 1)
+    if not isinstance(n, int | np.integer) or isinstance(n, bool) or n < 1:
+        raise InputError(f"must be a positive integer, got {n!r}", "options.slip_max_passes")
 
 
 def _check_scalar(value: float | str, field: str, kind: str = "length") -> float:
@@ -350,6 +387,10 @@ class _Roll:
         self.E_cap = (
             math.inf if opts.max_modulus_ratio is None else opts.max_modulus_ratio * web.E_theta
         )
+        #: slip emulation (None: off): per element the share of the current increment
+        #: it spends slipped (1: slipped since an earlier increment, 0: sticking)
+        self.slip_weight: FloatArray | None = None
+        self.slip_fraction = float(getattr(opts, "slip_shear_fraction", 1.0))
 
     def radial_modulus(self, sigma_r_total: FloatArray) -> FloatArray:
         """E_r [Pa] of the elements at total radial stress ``sigma_r_total`` (law {2},
@@ -357,7 +398,16 @@ class _Roll:
         return np.clip(self.web.E_r(sigma_r_total), self.E_floor, self.E_cap)
 
     def moduli(self, sigma_r_total: FloatArray) -> tuple[FloatArray, ...]:
-        return plane_strain_moduli(self.web, self.radial_modulus(sigma_r_total))
+        C11, C12, C22, G = plane_strain_moduli(self.web, self.radial_modulus(sigma_r_total))
+        if self.slip_weight is not None and np.any(self.slip_weight > 0):
+            # slip emulation (Figure 19): a slipped element keeps a fraction of G_r_theta
+            G = G * self.shear_factor()
+        return C11, C12, C22, G
+
+    def shear_factor(self) -> FloatArray:
+        """G_r_theta used / G_r_theta of the law, per element (slip emulation)."""
+        assert self.slip_weight is not None
+        return 1.0 - self.slip_weight * (1.0 - self.slip_fraction)
 
     def cartesian(self, u: FloatArray, nodes: NDArray[np.int64]) -> FloatArray:
         """Cartesian displacement (n, 2) of ``nodes`` from the polar nodal DOFs ``u``."""
@@ -583,6 +633,28 @@ def _predicted_increment(
     return step, n
 
 
+def _slip_weight(
+    roll: _Roll, sig: FloatArray, dsig: FloatArray, friction: float, before: FloatArray
+) -> FloatArray:
+    """Share of the increment each element spends slipped, from the increment's solution.
+
+    The trial shear is the start-of-step shear plus the increment at the full G_r_theta
+    (``dsig`` divided by the shear factor used): an element slips where it reaches Coulomb's
+    limit mu P (the slip factor {23} reaching 1; P = max(-sigma_r, 0) the total interlayer
+    pressure at the end of the step). Linear in the increment, it reaches the limit after
+    the share x = (mu P - |tau_0|) / (|tau_trial| - |tau_0|) of it, and slips for 1 - x;
+    ``before`` (1: slipped in an earlier increment) stays.
+    """
+    tau0 = sig[:, 2]
+    trial = tau0 + dsig[:, 2] / roll.shear_factor()
+    a0, a1 = np.abs(tau0), np.abs(trial)
+    limit = friction * np.maximum(-(roll.sigma_pre + sig[:, 0] + dsig[:, 0]), 0.0)
+    slips = (a1 >= limit) & (a1 > 0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = np.where(a1 > a0, np.clip((limit - a0) / (a1 - a0), 0.0, 1.0), 0.0)
+    return np.maximum(np.where(slips, 1.0 - x, 0.0), before)
+
+
 def _half_width(
     s: FloatArray, lam: FloatArray, gap: FloatArray, j0: int, sides: tuple[int, ...] = (1, -1)
 ) -> float:
@@ -743,11 +815,15 @@ def indent(
     # fields at every recorded depth (row k at delta[k]; row 0 the pre-impact state)
     sig_hist = np.zeros((n + 1, mesh.n_elements, 3))
     p_hist = np.zeros((n + 1, n_surf))
+    slip_on = opts.slip == "reduced-shear"
+    if slip_on:
+        roll.slip_weight = np.zeros(mesh.n_elements)
     frozen = roll.moduli(roll.sigma_pre) if not update_modulus else None
     tol_gap = 1e-3 * delta[1]
-    step = None
+    step: _Step | None = None
     lu_frozen = _factorize(roll, frozen) if frozen is not None else None
     factorisations = int(lu_frozen is not None)
+    slip_passes = 0
     for k in range(1, n + 1):
         centre = np.array([r_out + head_radius - delta[k], 0.0])
 
@@ -761,18 +837,62 @@ def indent(
         ) -> _Step:
             return _step(roll, mod, lu, u, f_contact, lam, centre, head_radius, tol_gap)
 
-        if frozen is not None and lu_frozen is not None:
-            step = solve(frozen, lu_frozen)  # one factorisation for all increments
-        elif opts.midpoint and opts.predictor:
-            predicted = None
-            if step is not None:
-                ratio = (delta[k] - delta[k - 1]) / (delta[k - 1] - delta[k - 2])
-                predicted = sig[:, 0] + 0.5 * ratio * step.dsig[:, 0]
-            step, n_fact = _predicted_increment(roll, sig[:, 0], predicted, opts.step_tol, solve)
+        def increment(
+            frozen: tuple[FloatArray, ...] | None,
+            lu_frozen: _Factor | None,
+            k: int = k,
+            last: _Step | None = step,
+            sig: FloatArray = sig,
+        ) -> tuple[_Step, int]:
+            """The increment at the current slip zone; (step, factorisations)."""
+            if frozen is not None and lu_frozen is not None:
+                return solve(frozen, lu_frozen), 0  # one factorisation for all increments
+            if opts.midpoint and opts.predictor:
+                predicted = None
+                if last is not None:
+                    ratio = (delta[k] - delta[k - 1]) / (delta[k - 1] - delta[k - 2])
+                    predicted = sig[:, 0] + 0.5 * ratio * last.dsig[:, 0]
+                return _predicted_increment(roll, sig[:, 0], predicted, opts.step_tol, solve)
+            step = _hypoelastic_increment(roll, sig[:, 0], opts.midpoint, solve)
+            return step, 2 if opts.midpoint else 1
+
+        if not slip_on:
+            step, n_fact = increment(frozen, lu_frozen)
             factorisations += n_fact
         else:
-            step = _hypoelastic_increment(roll, sig[:, 0], opts.midpoint, solve)
-            factorisations += 2 if opts.midpoint else 1
+            # slip emulation (Figure 19): the zone where the interlayer shear reaches mu P,
+            # {23}, and each element's slipping share of the increment, iterated until no
+            # share grows by more than SLIP_TOL (monotone: it cannot cycle)
+            assert roll.slip_weight is not None
+            before = roll.slip_weight.copy()
+            for _ in range(opts.slip_max_passes):
+                step, n_fact = increment(frozen, lu_frozen)
+                factorisations += n_fact
+                slip_passes += 1
+                w = np.maximum(
+                    _slip_weight(roll, sig, step.dsig, friction, before), roll.slip_weight
+                )
+                if np.max(w - roll.slip_weight) <= SLIP_TOL:
+                    break
+                roll.slip_weight = w
+                if frozen is not None:
+                    frozen = roll.moduli(roll.sigma_pre)
+                    lu_frozen = _factorize(roll, frozen)
+                    factorisations += 1
+            else:
+                raise ConvergenceError(
+                    f"the slip zone did not settle in {opts.slip_max_passes} passes at depth "
+                    f"{delta[k] * 1e3:.3g} mm ({int(np.count_nonzero(roll.slip_weight))} "
+                    "elements slipping); raise options.slip_max_passes or use more n_steps"
+                )
+            # slipped within this increment: slipped for the rest of the loading
+            settled = np.where(roll.slip_weight > 0, 1.0, 0.0)
+            changed = not np.array_equal(settled, roll.slip_weight)
+            roll.slip_weight = settled
+            if frozen is not None and changed and k < n:
+                frozen = roll.moduli(roll.sigma_pre)
+                lu_frozen = _factorize(roll, frozen)
+                factorisations += 1
         u += step.du
         sig += step.dsig
         lam = step.lam
@@ -825,4 +945,6 @@ def indent(
         mesh_shape=(mesh.n_r - 1, mesh.n_theta),
         solve_time_s=time.perf_counter() - t0,
         factorisations=factorisations,
+        slipped=None if roll.slip_weight is None else roll.slip_weight > 0,
+        slip_passes=slip_passes,
     )

@@ -562,13 +562,13 @@ def impact_fd(
     f_max = 0.0
     a_max = -math.inf
     f_last = x_last = v_last = 0.0
+    arg_last = 0.0
     i = 0
     while True:
         d = x - xg
-        if loading:
-            Fr = Fs(d)
-        else:
-            Fr = Fs(d_max + (d - d_max) * inv_e2)
+        # the law's depth: d while loading, the unloading curve's afterwards
+        arg = d if loading else d_max + (d - d_max) * inv_e2
+        Fr = Fs(arg)
         x_next = 2.0 * x - x_prev - dt2M * (k * x + Fr)  # {9} ({8} when m_r = 0)
         if loading and x_next < x:
             # turning point: vertex of the parabola through x_prev, x, x_next
@@ -582,12 +582,18 @@ def impact_fd(
             # end of contact: f crosses zero between this step and the one before
             s = f_last / (f_last - f_now) if f_last != f_now else 0.0
             break
+        if not loading and arg < 0.0 <= Fr and i > 0:
+            # the striker is back above the roll's surface and the law does not turn
+            # negative there (beta = 0: F = alpha d^2 >= 0 on both sides of d = 0), so f
+            # would never cross zero: the contact ended where the law's depth did
+            s = arg_last / (arg_last - arg) if arg_last != arg else 0.0
+            break
         if i > 0:
             impulse += 0.5 * (f_now + f_last) * dt
         f_max = max(f_max, f_now)
         a_max = max(a_max, (k * x + f_now) / m_s)
         hist.add(i, x, v_now, f_now)
-        f_last, x_last, v_last = f_now, x, v_now
+        f_last, x_last, v_last, arg_last = f_now, x, v_now, arg
         x_prev, x = x, x_next
         i += 1
         if i > max_steps:

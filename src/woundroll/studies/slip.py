@@ -1,8 +1,10 @@
-"""Figure 18: the slip factor {23} near the head at the impact's maximum depth."""
+"""Figure 18: the slip factor {23} near the head at the impact's maximum depth; Figure 19:
+the Table 2 rolls read with and without the reduced-shear slip emulation."""
 
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -11,9 +13,11 @@ import numpy as np
 
 from woundroll.errors import InputError
 from woundroll.studies._common import (
+    TABLE2,
     Progress,
     SummaryTable,
     _fmt,
+    _map,
     _measure,
     _prefix,
     _report,
@@ -48,6 +52,14 @@ class SlipStudy:
         Elements with SF >= 1, and all elements, within 3 a of the axis.
     n_unbounded : int
         Elements within 3 a sheared with no interlayer pressure (SF = inf).
+    emulation : tuple of dict
+        Figure 19: per roll ``case``, ``rho_fd``/``rho_energy``/``delta_max_m`` without slip
+        and the same with ``_slip`` appended with the reduced-shear emulation, and
+        ``slipped_elements`` (empty unless asked for).
+    emulation_model : str
+        Contact model of the emulation rows (``"2d"`` or ``"3d"``).
+    slip_shear_fraction : float
+        Share of the shear modulus a slipped element keeps in those rows.
     """
 
     case: str
@@ -64,6 +76,9 @@ class SlipStudy:
     slip_depth_whole_m: float = math.nan
     contact: Any = field(default=None, repr=False, compare=False)
     name: str = "slip"
+    emulation: tuple[dict[str, Any], ...] = ()
+    emulation_model: str = "2d"
+    slip_shear_fraction: float = 0.01
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -83,6 +98,19 @@ class SlipStudy:
             "unbounded_slip_elements_near_contact": self.n_unbounded,
             "slip_region_depth_whole_model_m": self.slip_depth_whole_m,
             "roll": dict(self.row),
+            **(
+                {
+                    "emulation": {
+                        "figures": "reference paper, Figure 19",
+                        "contact_model": self.emulation_model,
+                        "slip_shear_fraction": self.slip_shear_fraction,
+                        "friction": self.friction,
+                        "rolls": [dict(r) for r in self.emulation],
+                    }
+                }
+                if self.emulation
+                else {}
+            ),
         }
 
     def summary(self) -> list[SummaryTable]:
@@ -112,7 +140,40 @@ class SlipStudy:
                 f"{self.slip_depth_whole_m * 1e3:.1f}",
             )
         ]
-        return [SummaryTable("Slip factor {23} near the head (Figure 18)", header, rows)]
+        tables = [SummaryTable("Slip factor {23} near the head (Figure 18)", header, rows)]
+        if self.emulation:
+            tables.append(
+                SummaryTable(
+                    f"Slip emulation, reduced shear (Figure 19): {self.emulation_model.upper()} "
+                    f"model, mu {self.friction:g}, shear fraction {self.slip_shear_fraction:g}",
+                    (
+                        "case",
+                        "Rho FD",
+                        "Rho FD slip",
+                        "change [%]",
+                        "Rho energy",
+                        "Rho energy slip",
+                        "max depth [mm]",
+                        "max depth slip [mm]",
+                        "slipped elements",
+                    ),
+                    [
+                        (
+                            r["case"],
+                            f"{r['rho_fd']:.1f}",
+                            f"{r['rho_fd_slip']:.1f}",
+                            f"{100 * (r['rho_fd_slip'] / r['rho_fd'] - 1):+.0f}",
+                            f"{r['rho_energy']:.1f}",
+                            f"{r['rho_energy_slip']:.1f}",
+                            f"{r['delta_max_m'] * 1e3:.2f}",
+                            f"{r['delta_max_m_slip'] * 1e3:.2f}",
+                            f"{r['slipped_elements']}",
+                        )
+                        for r in self.emulation
+                    ],
+                )
+            )
+        return tables
 
     def notes(self) -> list[str]:
         return [
@@ -134,7 +195,31 @@ class SlipStudy:
             fontsize=9,
         )
         _savefig(fig, path)
-        return [path]
+        paths = [path]
+        if self.emulation:
+            paths.append(self._plot_emulation(Path(f"{_prefix(prefix, 'slip')}_emulation.png")))
+        return paths
+
+    def _plot_emulation(self, path: Path) -> Path:
+        """``slip_emulation.png``: Rho (FD) of each roll with and without slip (Fig. 19)."""
+        import matplotlib.pyplot as plt
+
+        fig, ax = plt.subplots(figsize=(7, 3.6))
+        x = np.arange(len(self.emulation))
+        ax.bar(x - 0.2, [r["rho_fd"] for r in self.emulation], 0.4, label="no slip")
+        ax.bar(x + 0.2, [r["rho_fd_slip"] for r in self.emulation], 0.4, label="reduced shear")
+        ax.set_xticks(x, [r["case"] for r in self.emulation], fontsize=8)
+        ax.set_ylabel("Rho (FD)")
+        ax.set_title(
+            f"Slip emulation ({self.emulation_model.upper()} contact, mu {self.friction:g}, "
+            f"fraction {self.slip_shear_fraction:g}; cf. Figure 19)",
+            fontsize=9,
+        )
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        _savefig(fig, path)
+        plt.close(fig)
+        return path
 
     def write(self, out_dir: str | Path) -> list[Path]:
         """Write ``study.json`` and the PNG into ``out_dir``; return the paths."""
@@ -142,19 +227,25 @@ class SlipStudy:
 
 
 def slip_factor_study(
-    case: str = "pet2-53.4N", friction: float = 0.3, progress: Progress | None = None
+    case: str = "pet2-53.4N",
+    friction: float = 0.3,
+    progress: Progress | None = None,
+    *,
+    emulation_cases: Sequence[str] = (),
+    slip_shear_fraction: float = 0.01,
+    model: str = "2d",
+    workers: int = 1,
 ) -> SlipStudy:
-    """Figure 18: run ``case`` with interlayer friction ``friction`` and map SF >= 1.
+    """Figure 18: run ``case`` with interlayer friction ``friction`` and map SF >= 1;
+    Figure 19: read ``emulation_cases`` with and without ``contact.slip = "reduced-shear"``.
 
     The no-update solve is switched off. The fields are those at the impact's maximum
-    depth (FD model), from ``ContactResult.at_depth``.
+    depth (FD model), from ``ContactResult.at_depth``. The emulation rows use the contact
+    ``model`` ("2d" or "3d"), mu = ``friction`` and ``slip_shear_fraction``; ``workers``
+    runs them in a process pool.
     """
-    if (
-        isinstance(friction, bool)
-        or not isinstance(friction, int | float)
-        or not (math.isfinite(friction) and friction >= 0)
-    ):
-        raise InputError(f"must be a number >= 0, got {friction!r}", "study.friction")
+    if model not in ("2d", "3d"):
+        raise InputError(f"must be '2d' or '3d', got {model!r}", "study.model")
     _report(progress, f"slip: {case}", 0.0)
     out = _measure(
         case,
@@ -169,8 +260,47 @@ def slip_factor_study(
     near = fields.outer_radius * np.abs(np.asarray(fields.element_theta)) <= 3.0 * a
     sf = np.asarray(fields.slip_factor)[near]
     d, w = fields.slip_extent(3.0 * a)
+    emulation: list[dict[str, Any]] = []
+    if emulation_cases:
+        base = (
+            f"contact.friction={float(friction)!r}",
+            "contact.no_update=false",
+            f"contact.model='{model}'",
+            f"contact.slip_shear_fraction={float(slip_shear_fraction)!r}",
+        )
+        jobs = [
+            (name, (*base, f"contact.slip='{mode}'"), ("contact",) if mode != "none" else ())
+            for name in emulation_cases
+            for mode in ("none", "reduced-shear")
+        ]
+        rows = _map(
+            _measure,
+            jobs,
+            workers=workers,
+            progress=None if progress is None else lambda s, f: progress(s, 0.1 + 0.9 * f),
+            label=lambda i: f"slip emulation: {jobs[i][0]}",
+        )
+        for i, name in enumerate(emulation_cases):
+            plain, slip = rows[2 * i]["row"], rows[2 * i + 1]
+            c = slip["contact"]
+            n = c.stats["slipped_elements"] if c.slipped is None else int(np.sum(c.slipped))
+            emulation.append(
+                {
+                    "case": name,
+                    "rho_fd": plain["rho_fd"],
+                    "rho_energy": plain["rho_energy"],
+                    "delta_max_m": plain["delta_max_m"],
+                    "rho_fd_slip": slip["row"]["rho_fd"],
+                    "rho_energy_slip": slip["row"]["rho_energy"],
+                    "delta_max_m_slip": slip["row"]["delta_max_m"],
+                    "slipped_elements": n,
+                }
+            )
     _report(progress, "done", 1.0)
     return SlipStudy(
+        emulation=tuple(emulation),
+        emulation_model=model,
+        slip_shear_fraction=float(slip_shear_fraction),
         case=case,
         row=row,
         friction=float(friction),
@@ -187,6 +317,9 @@ def slip_factor_study(
     )
 
 
-def run(progress: Progress | None = None, *, workers: int = 1) -> SlipStudy:
-    """The registry's entry: :func:`slip_factor_study` with its defaults (serial: one roll)."""
-    return slip_factor_study(progress=progress)
+def run(progress: Progress | None = None, *, workers: int = 1, model: str = "2d") -> SlipStudy:
+    """The registry's entry: :func:`slip_factor_study` on PET2 53.4 N (Figure 18) and the
+    slip emulation on the seven Table 2 rolls (Figure 19) with the contact ``model``."""
+    return slip_factor_study(
+        progress=progress, emulation_cases=TABLE2, workers=workers, model=model
+    )
