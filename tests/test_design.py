@@ -37,7 +37,9 @@ def test_constraints_by_hand():
     ("kw", "field"),
     [
         ({"reading": -3}, "--target"),
-        ({"reading": 50, "taper_kind": "table"}, "--taper"),
+        ({"reading": 50, "taper_kind": "parabolic"}, "--taper"),
+        ({"reading": 50, "taper_kind": "table", "knots": 1}, "--knots"),
+        ({"reading": 50, "hoop_min": 5e3}, "--hoop-min"),
         ({"reading": 50, "taper_max": 1.5}, "--max-taper"),
         ({"reading": 50, "pressure_min": 5e5, "pressure_max": 1e5}, "--pressure"),
         ({"reading": 50, "tolerance": 0}, "--tolerance"),
@@ -89,13 +91,53 @@ def test_design_reads_the_target_and_reports_what_it_cannot_meet():
     assert not d.feasible
     assert any("negative hoop" in v for v in d.violations)
     assert d.margins["min_hoop_stress_Pa"] < 0
+    # the best available compromise: the candidate whose worst constraint is least violated,
+    # with that constraint named and what relaxing it would take
     solved = [c for c in d.candidates if c.web_tension is not None]
-    assert min(c.score for c in solved) == pytest.approx(
-        next(c.score for c in solved if c.taper == d.taper)
+    assert max(c.worst_slack for c in solved) == pytest.approx(
+        next(c.worst_slack for c in solved if c.taper == d.taper)
     )
+    assert d.binding == "hoop"
+    assert d.relaxations and d.relaxations[0]["constraint"] == "hoop"
+    assert any("1D model's physics" in n for n in d.notes)
     json.dumps(d.to_dict())
     # allowing it, the design is feasible and keeps the pressure inside the window
     d2 = design_setpoints(case, replace(tgt, allow_negative_hoop=True))
     assert d2.feasible
     assert 10e3 <= d2.margins["min_pressure_Pa"] and d2.margins["max_pressure_Pa"] <= 200e3
     assert np.isfinite(d2.reading) and abs(d2.reading - 55.0) <= 1.0
+
+
+def test_table_taper_parameters_round_trip():
+    # knot factors <-> the optimiser's unconstrained parameters: monotone tables stay within
+    # [1 - taper_max, 1] and never rise; the inverse is exact inside the open interval
+    from woundroll.design import _table_factors, _table_params
+
+    tgt = DesignTarget(reading=50, taper_kind="table", taper_max=0.6, knots=5)
+    f = np.array([1.0, 0.9, 0.75, 0.6, 0.55])
+    np.testing.assert_allclose(_table_factors(_table_params(f, tgt), tgt), f, rtol=1e-12)
+    rng = np.random.default_rng(0)
+    for x in rng.normal(0, 3, (50, 4)):
+        g = np.array(_table_factors(x, tgt))
+        assert g[0] == 1.0 and np.all(np.diff(g) <= 0) and g.min() >= 0.4 - 1e-12
+    free = replace(tgt, monotone=False)
+    g = np.array(_table_factors(np.array([3.0, -3.0, 3.0, -3.0]), free))
+    assert np.any(np.diff(g) > 0) and g.min() >= 0.4 and g.max() <= 1.6
+
+
+def test_slacks_by_hand():
+    from woundroll.design import _slacks
+
+    tgt = DesignTarget(
+        reading=50, pressure_min=1e4, pressure_max=2e5, tension_min=1e6, tension_max=4e6,
+        hoop_min=-2e4,
+    )  # fmt: skip
+    s = _slacks(2e4, 1.8e5, -3e4, 1.5e6, 3e6, tgt)
+    assert s["pressure_min"] == pytest.approx(1.0)
+    assert s["pressure_max"] == pytest.approx(0.1)
+    assert s["hoop"] == pytest.approx(-1e4 / 2e5)  # 10 kPa beyond the accepted -20 kPa
+    assert s["tension_min"] == pytest.approx(0.5)
+    assert s["tension_max"] == pytest.approx(0.25)
+    assert "hoop" not in _slacks(
+        2e4, 1.8e5, -3e4, 1.5e6, 3e6, replace(tgt, allow_negative_hoop=True)
+    )

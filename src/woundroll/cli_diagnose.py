@@ -376,8 +376,18 @@ def design_cmd(
     nip: Annotated[
         str | None, typer.Option(help="Nip load range: '0 pli..3 pli' (needs winding.friction).")
     ] = None,
-    taper: Annotated[str, typer.Option(help="Taper law: linear or hyperbolic.")] = "linear",
+    taper: Annotated[
+        str, typer.Option(help="Taper law: linear, hyperbolic or table (knots optimised).")
+    ] = "linear",
     max_taper: Annotated[float, typer.Option(help="Largest taper fraction (0-1).")] = 0.6,
+    knots: Annotated[int, typer.Option(help="Table taper: knots from core to surface.")] = 4,
+    monotone: Annotated[
+        bool, typer.Option(help="Table taper: the tension only falls as the roll grows.")
+    ] = True,
+    hoop_min: Annotated[
+        str | None,
+        typer.Option(help="Smallest accepted layer-mean hoop stress: '-20 kPa' (default 0)."),
+    ] = None,
     tolerance: Annotated[float, typer.Option(help="Accepted |reading - target|.")] = 1.0,
     allow_negative_hoop: Annotated[
         bool, typer.Option(help="Do not require a non-negative hoop stress.")
@@ -398,6 +408,7 @@ def design_cmd(
     from woundroll.cli import _fail, out
     from woundroll.design import DesignTarget, design_setpoints
     from woundroll.readings import _scale_of
+    from woundroll.units import to_si
 
     try:
         c = load_case(case, set_ or [])
@@ -440,6 +451,9 @@ def design_cmd(
             taper_kind=taper,
             taper_max=max_taper,
             allow_negative_hoop=allow_negative_hoop,
+            hoop_min=to_si(hoop_min, "pressure", "--hoop-min") if hoop_min else 0.0,
+            knots=knots,
+            monotone=monotone,
         )
         d = design_setpoints(c, tgt)
         if out_dir is not None:
@@ -457,6 +471,7 @@ def design_cmd(
     out.print(tb)
     for note in d.notes:
         out.print(f"note: {escape(note)}", highlight=False)
+    out.print("case file lines:\n" + escape(d.case_snippet()), highlight=False)
     if out_dir is not None:
         out.print(f"wrote {out_dir / 'design.json'}\nwrote {out_dir / 'design.png'}")
 

@@ -82,3 +82,22 @@ def test_a_floor_soft_roll_is_flagged_not_failed() -> None:
     assert rs.extrapolated
     assert rs.contact.delta[-1] < 0.5 * ins.head_radius
     assert rs.contact.delta[-1] > 0.9 * 0.5 * ins.head_radius  # it did go to the reach
+
+
+def test_fit_is_continuous_in_the_curve() -> None:
+    # a curve that is not a quadratic (F ~ d^2.4), on the contact solver's grid (24 steps,
+    # exponent 1.5, to 1 mm), made 0.2 % stiffer at a time: the striker's depth moves
+    # through the grid points. The spring -- and with it d_max -- must change smoothly:
+    # selecting the grid points inside the window [0, 1.25 d_max] made d_max jump by a
+    # few tenths of a percent each time a point left it (0.3 Rho on a PET roll); the
+    # sampled window leaves only the smooth change (second differences of ln d_max at
+    # the 1e-7 level, against steps of 1.5e-3 per 0.5 % of stiffness; allowed 2 %).
+    ins = get_instrument("rho-meter")
+    d = 1e-3 * (np.arange(25) / 24) ** 1.5
+    scales = 1.005 ** np.arange(160)
+    dmax = np.array([fit_roll_spring(d, s * 2e8 * d**2.4 * 1e3, ins).max_depth for s in scales])
+    assert np.all(np.diff(dmax) < 0)  # stiffer: shallower, monotone
+    steps = np.diff(np.log(dmax))
+    assert np.max(np.abs(np.diff(steps))) < 0.02 * np.max(np.abs(steps))
+    # the window's end crossed grid points (where the old selection jumped)
+    assert np.count_nonzero((d > 1.25 * dmax.min()) & (d < 1.25 * dmax.max())) >= 2

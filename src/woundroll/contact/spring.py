@@ -13,7 +13,9 @@ Choices the paper leaves open (docs/contact.md, "Coupling"):
 * the fit range: the striker's reach, ``d <= 1.25 d_max`` of the energy model {21};
 * alpha, beta >= 0 (non-negative least squares);
 * the depth of the contact solution: ``min(1 mm, H / 5)`` first (H the wound thickness),
-  deepened to 1.25 d_max while the striker goes further than the computed curve.
+  deepened to 1.1 x 1.25 d_max while the fit window 1.25 d_max reaches beyond the computed
+  curve; the window is sampled on the interpolated curve, so that the spring (and the
+  reading) is a continuous function of the roll's state.
 """
 
 from __future__ import annotations
@@ -35,6 +37,13 @@ if TYPE_CHECKING:
 
 #: Depth of the first contact solution [m] (capped at a fifth of the wound thickness).
 FIRST_DEPTH = 1e-3
+#: Points sampled on the interpolated F(d) over the striker's reach for the fit (spaced
+#: like the contact solver's depth steps, ``(k / n)^1.5``).
+WINDOW_SAMPLES = 24
+#: The fit window in units of the striker's depth d_max {21}: ``d <= FIT_REACH d_max``.
+FIT_REACH = 1.25
+#: A deepened solution goes this much beyond the window (d_max moves with the refit).
+DEEPEN_MARGIN = 1.1
 
 
 @dataclass(frozen=True)
@@ -120,8 +129,10 @@ def fit_roll_spring(
     * With an ``instrument``, the fit is narrowed to the depths the striker reaches (the
       paper does not say over which range its quadratic was fitted; F(d) is not exactly
       quadratic, so the range matters): the energy model's maximum depth ``d_max`` {21} is
-      computed with the fit, and the fit is repeated on the points with
-      ``d <= reach * d_max`` (at least ``min_points``), ``passes`` times.
+      computed with the fit, and the fit is repeated ``passes`` times on the curve
+      interpolated (PCHIP through the origin) at ``WINDOW_SAMPLES`` depths spread over
+      ``[0, reach * d_max]`` (capped at the deepest computed point), so that the spring is a
+      continuous function of the roll's state; ``min_points`` is kept for compatibility.
 
     Parameters
     ----------
@@ -157,14 +168,22 @@ def fit_roll_spring(
                 )
             )
 
+        # the window [0, reach d_max] is sampled on the interpolated curve at fixed
+        # fractions of its length, so that the fit -- and the reading -- is a continuous
+        # function of d_max: selecting the computed points inside the window made the
+        # fit jump whenever a point left it (0.3 Rho on PET1 40 N, docs/contact.md)
+        from scipy.interpolate import PchipInterpolator
+
+        curve = PchipInterpolator(np.concatenate([[0.0], d]), np.concatenate([[0.0], f]))
+        frac = (np.arange(1, WINDOW_SAMPLES + 1) / WINDOW_SAMPLES) ** 1.5
         for _ in range(passes):
-            sel = d <= reach * impact_depth(alpha, beta)
-            if np.count_nonzero(sel) < min_points:
-                sel = np.zeros(d.size, dtype=bool)
-                sel[: min(min_points, d.size)] = True
-            alpha, beta = _nnls_quadratic(d[sel], f[sel])
+            window = min(reach * impact_depth(alpha, beta), float(d.max()))
+            ds = window * frac
+            alpha, beta = _nnls_quadratic(ds, curve(ds))
         d_max = impact_depth(alpha, beta)
-    ds, fs = d[sel], f[sel]
+        fs = curve(ds)
+    else:
+        ds, fs = d[sel], f[sel]
     fit = (alpha * ds + beta) * ds
     ss_tot = float(np.sum((fs - fs.mean()) ** 2))
     r2 = 1.0 - float(np.sum((fs - fit) ** 2)) / ss_tot if ss_tot > 0 else 1.0
@@ -366,18 +385,24 @@ def roll_stiffness(
             )
         except InputError as exc:
             raise exc.at(field) from None
-        spring = fit_roll_spring(contact.delta, contact.force, instrument)
-        if not spring.extrapolated or (depth_max is None and depth >= reach):
+        spring = fit_roll_spring(contact.delta, contact.force, instrument, reach=FIT_REACH)
+        # deepen while the fit window [0, FIT_REACH d_max] is cut off by the solution's
+        # depth (not only when d_max itself is beyond it): the window then always has its
+        # full length and the spring stays continuous in the roll's state
+        window_inside = FIT_REACH * float(spring.max_depth) <= depth * (1 + 1e-9)  # type: ignore[arg-type]
+        if window_inside or (depth_max is None and depth >= reach):
             # beyond the model's reach (a slack, floor-soft roll) the fit is extrapolated:
             # RollStiffness.extrapolated says so
             return RollStiffness(contact, spring)
+        if depth_max is not None and not spring.extrapolated:
+            return RollStiffness(contact, spring)  # a fixed depth: the window is cut there
         if depth_max is not None:
             raise InputError(
                 f"the striker reaches {spring.max_depth * 1e3:.3g} mm, deeper than the "
                 f"contact solution ({depth * 1e3:.3g} mm): raise it or leave it unset",
                 f"{field}.depth_max",
             )
-        depth = min(1.25 * float(spring.max_depth), reach)  # type: ignore[arg-type]
+        depth = min(DEEPEN_MARGIN * FIT_REACH * float(spring.max_depth), reach)  # type: ignore[arg-type]
     raise ConvergenceError(
         f"the striker's depth kept growing past the contact solution ({depth * 1e3:.3g} mm) "
         "after 4 solutions"
