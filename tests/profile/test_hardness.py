@@ -304,3 +304,25 @@ def test_slack_lanes_are_flagged() -> None:
     )
     assert res.slack[3] and not res.slack[0]
     assert res.to_dict()["slack"][3] is True
+
+
+def test_early_pool_is_started_before_the_winding_and_reused() -> None:
+    # the sector workers are spawned (and import the contact model) before the winding;
+    # map_sectors runs on that pool and leaves it open for the next stage; no pool for a
+    # callable that does not pickle or for one worker
+    import concurrent.futures as cf
+    import os
+
+    from woundroll.profile.hardness import ContactModel, early_pool, map_sectors
+
+    contact = ContactModel(WEB, CORE, 6.5e-3, 0.0254)
+    with early_pool(contact, 2) as pool:
+        assert isinstance(pool, cf.ProcessPoolExecutor)
+        a, b = map_sectors(divmod, [(7.0, 2.0), (9.0, 4.0)], workers=2, pool=pool)
+        np.testing.assert_array_equal(a, [3.0, 2.0])
+        np.testing.assert_array_equal(b, [1.0, 1.0])
+        assert pool.submit(os.getpid).result() != os.getpid()  # still open, other process
+    with early_pool(lambda r, s: (1.0, 2.0), 2) as pool:
+        assert pool is None
+    with early_pool(contact, 1) as pool:
+        assert pool is None

@@ -379,12 +379,15 @@ def map_sectors(
     *,
     workers: int = 2,
     progress: Callable[[int, int], None] | None = None,
+    pool: cf.Executor | None = None,
 ) -> tuple[FloatArray, FloatArray]:
     """Evaluate ``fn(radius, sigma_r)`` for every sector, in parallel (``fn`` one callable,
     or one per sector).
 
     Processes (``spawn``) when ``fn`` can be pickled and ``workers > 1``, threads when it
-    cannot, in-line when ``workers == 1``. Returns ``(alpha, beta)`` arrays in sector order.
+    cannot, in-line when ``workers == 1``. ``pool``: a process pool already started (e.g.
+    :func:`early_pool`, whose workers imported the contact model while the roll was
+    wound); it is used and left open. Returns ``(alpha, beta)`` arrays in sector order.
     """
     n = len(profiles)
     fns = list(fn) if isinstance(fn, Sequence) else [fn] * n
@@ -401,6 +404,8 @@ def map_sectors(
         return out[:, 0], out[:, 1]
     if _picklable(fns):
         try:
+            if pool is not None:
+                return _run_pool(fns, profiles, out, progress, pool, close=False)
             return _run_pool(fns, profiles, out, progress, sector_pool(workers))
         except (ImportError, AttributeError, pickle.PicklingError, BrokenProcessPool):
             # the callable pickles here but cannot be rebuilt in a fresh process (defined in
@@ -450,10 +455,11 @@ def _run_pool(
     out: FloatArray,
     progress: Callable[[int, int], None] | None,
     ex: cf.Executor,
+    close: bool = True,
 ) -> tuple[FloatArray, FloatArray]:
     n = len(profiles)
     done = 0
-    with ex:
+    with ex if close else contextlib.nullcontext():
         with _worker_env(ex):
             futs = {ex.submit(_call, fns[j], r, s): j for j, (r, s) in enumerate(profiles)}
         for fut in cf.as_completed(futs):
@@ -462,6 +468,37 @@ def _run_pool(
             if progress is not None:
                 progress(done, n)
     return out[:, 0], out[:, 1]
+
+
+def _warm_up() -> int:
+    """Import the contact model in a sector worker (run while the roll is wound)."""
+    import woundroll.contact.solver  # noqa: F401
+    import woundroll.contact.spring  # noqa: F401
+    import woundroll.instruments  # noqa: F401
+
+    return os.getpid()
+
+
+@contextlib.contextmanager
+def early_pool(contact: Any, workers: int) -> Iterator[cf.Executor | None]:
+    """The sector workers, started before the winding: a spawned worker spends about a
+    second importing Python, NumPy, SciPy and the contact model; started first, they do it
+    on the core the (serial) winding leaves free instead of after it. None when the
+    contact callable does not pickle or ``workers == 1`` (:func:`map_sectors` then decides
+    as before). Closed (and its workers joined) on leaving the block."""
+    if workers <= 1 or not _picklable([contact]):
+        yield None
+        return
+    ex = sector_pool(workers)
+    try:
+        with _worker_env(ex):
+            for _ in range(workers):
+                ex.submit(_warm_up)
+        yield ex
+    except BaseException:
+        ex.shutdown(wait=False, cancel_futures=True)  # an error: do not wait for warm-ups
+        raise
+    ex.shutdown(wait=True)
 
 
 def _check_workers(workers: Any) -> int:
@@ -524,8 +561,46 @@ def predict_profile(
     """
     workers = _check_workers(workers)
     t0 = time.perf_counter()
-    timings: dict[str, float] = {}
     readout, contact = _readout_and_contact(web, core, contact, instrument, depth_max)
+    with early_pool(contact, workers) as pool:
+        return _predict_profile(
+            web,
+            core,
+            tension,
+            thickness_profile,
+            outer_radius,
+            contact,
+            readout,
+            n_sectors=n_sectors,
+            n_groups=n_groups,
+            nip=nip,
+            workers=workers,
+            progress=progress,
+            pool=pool,
+            t0=t0,
+        )
+
+
+def _predict_profile(
+    web: Web,
+    core: Core,
+    tension: TensionSchedule,
+    thickness_profile: ThicknessProfile | None,
+    outer_radius: float,
+    contact: ContactFn,
+    readout: ReadoutFn,
+    *,
+    n_sectors: int,
+    n_groups: int | None,
+    nip: NipSpec | None,
+    workers: int,
+    progress: ProgressFn | None,
+    pool: cf.Executor | None,
+    t0: float,
+) -> ProfileResult:
+    """The steps of :func:`predict_profile` (nip foundation, winding, contact, reading) on
+    the sector pool ``pool``."""
+    timings: dict[str, float] = {}
 
     def stage(name: str) -> Callable[[int, int], None] | None:
         if progress is None:
@@ -545,6 +620,7 @@ def predict_profile(
             n_groups=n_groups,
             workers=workers,
             progress=stage("foundation"),
+            pool=pool,
         )
         timings["nip_foundation"] = time.perf_counter() - t0
     # 1. stresses in the roll, (r, z)
@@ -565,7 +641,11 @@ def predict_profile(
     t2 = time.perf_counter()
     profiles = [w.sector_profile(j) for j in range(w.z.size)]
     alpha, beta = map_sectors(
-        sector_contacts(contact, w.slack), profiles, workers=workers, progress=stage("contact")
+        sector_contacts(contact, w.slack),
+        profiles,
+        workers=workers,
+        progress=stage("contact"),
+        pool=pool,
     )
     timings["contact"] = time.perf_counter() - t2
     # 3. the reading
@@ -653,6 +733,7 @@ def _nip_on_the_roll(
     n_groups: int | None,
     workers: int,
     progress: Callable[[int, int], None] | None,
+    pool: cf.Executor | None = None,
 ) -> tuple[Any, float | None, TensionSchedule]:
     """The nip roller riding on the roll: a preliminary roll wound with the uniform
     nip-induced tension, the roll's foundation law for the roller at every
@@ -687,7 +768,11 @@ def _nip_on_the_roll(
     for attempt in range(3):
         found = nip.foundation or ContactModel(web, core, roller.radius, 1.0, f_depth)
         fa, fb = map_sectors(
-            found, [pre.sector_profile(j) for j in picks], workers=workers, progress=progress
+            found,
+            [pre.sector_profile(j) for j in picks],
+            workers=workers,
+            progress=progress,
+            pool=pool,
         )
         alpha_n = np.interp(pre.z, pre.z[picks], fa)
         beta_n = np.interp(pre.z, pre.z[picks], fb)

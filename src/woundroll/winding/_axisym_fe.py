@@ -41,6 +41,7 @@ FloatArray = NDArray[np.float64]
 
 NQ = 6
 _XQ, _WQ = np.polynomial.legendre.leggauss(NQ)
+_PATTERN_CACHE_MAX = 400_000  # entries of a cached assembly pattern (window-sized stacks)
 _GD_MAX = 60.0  # cap of g ln(r2/r1): the shapes are then pure surface exponentials
 
 
@@ -124,6 +125,12 @@ class Stack:
         return 2 * ((k + a) * self.nc1 + j + b) + c
 
     def _element_matrices(self, rn: FloatArray, E_r: FloatArray) -> tuple:
+        """Element stiffness matrices of the groups ``E_r.shape[0]`` x sectors, as
+        ``K[e, c, c', a, a', b, b']`` (component c, radial node a, CMD node b of the row;
+        primed: of the column; ``e`` the element, groups outer, sectors inner): the tensor
+        product of a radial 2x2 integral and an axial 2x2 integral per component pair, laid
+        out so that each pair is one contiguous product (the global dofs are indexed to
+        match in :meth:`_system`). Also returns the material matrices and G_rz."""
         E_t, E_z, nu_tr, nu_zr, nu_tz = self.mat
         r1, r2 = rn[:-1, :, None], rn[1:, :, None]
         rq = 0.5 * (r1 + r2) + 0.5 * (r2 - r1) * _XQ
@@ -135,34 +142,40 @@ class Stack:
         shp = E_r.shape
         nel = int(np.prod(shp))
 
-        # all weighted products of the radial functions [N, dN, L, dL] at once
-        F = np.concatenate([N, dN, L, dL], axis=-1).reshape(nel, NQ, 8)
-        Fw = F[:, None, :, :] * np.stack([wq * rq, wq, wq / rq], axis=-2).reshape(nel, 3, NQ, 1)
-        P = np.swapaxes(Fw, -1, -2) @ F[:, None]  # (nel, 3, 8, 8)
-        n_, d_, l_, g_ = slice(0, 2), slice(2, 4), slice(4, 6), slice(6, 8)
-        Pr, P1, Pi = P[:, 0], P[:, 1], P[:, 2]  # weights r, 1, 1/r
-        Rrr, Rrt, Rtt, Rnn = Pr[:, d_, d_], P1[:, d_, n_], Pi[:, n_, n_], Pr[:, n_, n_]
-        Arz, Atz, Ag = Pr[:, d_, l_], P1[:, n_, l_], Pr[:, n_, g_]
-        Bzz, Bgg = Pr[:, l_, l_], Pr[:, g_, g_]
+        # the nine weighted radial integrals int f_i g_j w dr (weights r, 1, 1/r) at once:
+        # Rrr, Rrt, Rtt, Rnn, Arz, Atz, Ag, Bzz, Bgg, each (nel, 2, 2)
+        wr, wi = (wq * rq)[..., None], (wq / rq)[..., None]
+        w1 = wq[..., None]
+        left = np.stack(
+            [dN * wr, dN * w1, N * wi, N * wr, dN * wr, N * w1, N * wr, L * wr, dL * wr], axis=-3
+        ).reshape(nel, 9, NQ, 2)
+        right = np.stack([dN, N, N, N, L, L, dL, L, dL], axis=-3).reshape(nel, 9, NQ, 2)
+        P = np.swapaxes(left, -1, -2) @ right  # (nel, 9, 2, 2)
+        Rrr, Rrt, Rtt, Rnn, Arz, Atz, Ag, Bzz, Bgg = (P[:, i] for i in range(9))
         Cf = C.reshape(nel, 3, 3)[..., None, None]
         Gq = Gs.reshape(nel, 1, 1)
         Rth = Cf[:, 0, 0] * Rrr + Cf[:, 0, 1] * (Rrt + Rrt.transpose(0, 2, 1)) + Cf[:, 1, 1] * Rtt
         Xuz = Cf[:, 0, 2] * Arz + Cf[:, 1, 2] * Atz
         col = np.broadcast_to(np.arange(shp[-1]), shp).ravel()
-        M0, M1 = self.M0[col][:, None, :, None, :], self.M1[col][:, None, :, None, :]
-        Zx = self.Zx[None, None, :, None, :]
-        ZxT = self.Zx.T[None, None, :, None, :]
+        M0, M1 = self.M0[col][:, None, None], self.M1[col][:, None, None]  # (nel,1,1,b,b')
 
         def kron(Rm: FloatArray, Zm: FloatArray) -> FloatArray:  # (e,a,a') x (e,b,b')
-            return Rm[:, :, None, :, None] * Zm
+            return Rm[:, :, :, None, None] * Zm
 
         K = np.empty((nel, 2, 2, 2, 2, 2, 2))
-        K[:, :, :, 0, :, :, 0] = kron(Rth, M0) + kron(Gq * Rnn, M1)
-        Kuz = kron(Xuz, Zx) + kron(Gq * Ag, ZxT)
-        K[:, :, :, 0, :, :, 1] = Kuz
-        K[:, :, :, 1, :, :, 0] = Kuz.transpose(0, 3, 4, 1, 2)
-        K[:, :, :, 1, :, :, 1] = kron(Cf[:, 2, 2] * Bzz, M1) + kron(Gq * Bgg, M0)
-        return K.reshape(E_r.shape + (8, 8)), C, Gs
+        K[:, 0, 0] = kron(Rth, M0) + kron(Gq * Rnn, M1)
+        K[:, 0, 1] = kron(Xuz, self.Zx) + kron(Gq * Ag, self.Zx.T)
+        K[:, 1, 0] = K[:, 0, 1].transpose(0, 2, 1, 4, 3)
+        K[:, 1, 1] = kron(Cf[:, 2, 2] * Bzz, M1) + kron(Gq * Bgg, M0)
+        return K, C, Gs
+
+    def _element_dofs(self, ne: int) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+        """Global row and column dofs matching :meth:`_element_matrices`' layout."""
+        d = self.dofs(ne).reshape(-1, 2, 2, 2).transpose(0, 3, 1, 2)  # (e, c, a, b)
+        shape = (d.shape[0], 2, 2, 2, 2, 2, 2)
+        rows = np.broadcast_to(d[:, :, None, :, None, :, None], shape).ravel()
+        cols = np.broadcast_to(d[:, None, :, None, :, None, :], shape).ravel()
+        return rows, cols
 
     def bandwidth(self) -> int:
         """Upper bandwidth of the stiffness in the mesh's (layer by layer, then CMD) order:
@@ -179,44 +192,68 @@ class Stack:
         a rigid core, u_z fixed at one node) or carries the condensed stiffness ``S`` of a
         deep part."""
         ne = E_r.shape[0]
-        nc1 = self.nc1
-        n = 2 * (ne + 1) * nc1
+        n = 2 * (ne + 1) * self.nc1
         u = self.bandwidth()
-        rows, cols, vals = [np.zeros(0, np.int64)], [np.zeros(0, np.int64)], [np.zeros(0)]
+        pattern = self._pattern(ne, S is not None)
+        take, pos, fixed = pattern
+        vals = [np.zeros(0)]
         C = Gs = None
         if ne > 0:
             Ke, C, Gs = self._element_matrices(rn, E_r)
-            d = self.dofs(ne)
-            rows.append(np.broadcast_to(d[..., :, None], Ke.shape).ravel())
-            cols.append(np.broadcast_to(d[..., None, :], Ke.shape).ravel())
             vals.append(Ke.ravel())
-        fixed = np.zeros(n, dtype=bool)
         if S is not None:
+            vals.append(S.ravel())
+        elif not self.rigid:
+            vals.append((self.E_c * self.M0).ravel())
+        v_ = np.concatenate(vals)
+        ab = np.bincount(pos, weights=v_[take], minlength=(u + 1) * n).reshape(u + 1, n)
+        ab[u, fixed] = 1.0
+        return ab, fixed, C, Gs
+
+    def _pattern(self, ne: int, condensed: bool) -> tuple:
+        """Where each entry of the element matrices (then the condensed deep part, or the
+        core's spring) goes in the upper band of :meth:`_system`: the indices of the entries
+        kept (upper triangle, free dofs) and their flat positions in ``ab``; the fixed dofs.
+        Cached by stack height and bottom condition (the same every increment)."""
+        cache = self.__dict__.setdefault("_pattern_cache", {})
+        key = (ne, condensed)
+        if key in cache:
+            return cache[key]
+        nc1 = self.nc1
+        n = 2 * (ne + 1) * nc1
+        u = self.bandwidth()
+        rows, cols = [np.zeros(0, np.int64)], [np.zeros(0, np.int64)]
+        if ne > 0:
+            r_e, c_e = self._element_dofs(ne)
+            rows.append(r_e)
+            cols.append(c_e)
+        fixed = np.zeros(n, dtype=bool)
+        if condensed:
             i = np.arange(2 * nc1)
             rows.append(np.repeat(i, i.size))
             cols.append(np.tile(i, i.size))
-            vals.append(S.ravel())
         else:
             if self.rigid:
                 fixed[0 : 2 * nc1 : 2] = True
             else:  # Hakiel's core condition, consistent over each sector's width
-                kc = self.E_c * self.M0  # (ncol, 2, 2): u = r_c sigma_r / E_c, per radian
                 i0 = 2 * np.arange(self.ncol)
                 ii = np.stack([i0, i0 + 2], axis=-1)
-                rows.append(np.broadcast_to(ii[:, :, None], kc.shape).ravel())
-                cols.append(np.broadcast_to(ii[:, None, :], kc.shape).ravel())
-                vals.append(kc.ravel())
+                shape = (self.ncol, 2, 2)
+                rows.append(np.broadcast_to(ii[:, :, None], shape).ravel())
+                cols.append(np.broadcast_to(ii[:, None, :], shape).ravel())
             if ne == 0:
                 fixed[1::2] = True  # no stack: only the core's radial spring
             else:
                 fixed[2 * self.u_z_fixed_node + 1] = True
-        r_, c_, v_ = np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
-        keep = (r_ <= c_) & ~(fixed[r_] | fixed[c_])
-        ab = np.bincount(
-            (u + r_[keep] - c_[keep]) * n + c_[keep], weights=v_[keep], minlength=(u + 1) * n
-        ).reshape(u + 1, n)
-        ab[u, fixed] = 1.0
-        return ab, fixed, C, Gs
+        r_, c_ = np.concatenate(rows), np.concatenate(cols)
+        take = np.flatnonzero((r_ <= c_) & ~(fixed[r_] | fixed[c_]))
+        pos = (u + r_[take] - c_[take]) * n + c_[take]
+        if take.size > _PATTERN_CACHE_MAX:
+            return take, pos, fixed  # a big deep part: not worth the memory
+        if len(cache) >= 16:
+            cache.clear()
+        cache[key] = (take, pos, fixed)
+        return cache[key]
 
     def solve(
         self, rn: FloatArray, E_r: FloatArray, f_top: FloatArray, S: FloatArray | None = None
@@ -243,12 +280,27 @@ class Stack:
         return du_r, du_z, self.centre_stress(rn, E_r, du_r, du_z, C, Gs)
 
     def condense(self, rn: FloatArray, E_r: FloatArray) -> FloatArray:
-        """Freeze the deep part (``E_r.shape[0]`` >= 1 groups on the core): factorise it
-        (``A = U^T U``, banded, in the mesh's layer-by-layer order) so that its top layer is
-        eliminated last: the trailing block ``U_t`` of the factor gives the Schur complement
-        ``S = U_t^T U_t`` (2 (ncol+1))^2 that the deep part presents to the layer above it.
-        Returns S; :meth:`recover` gives the deep response to a displacement of that layer."""
-        ab, fixed, C, Gs = self._system(rn, E_r, None)
+        """Freeze the deep part (``E_r.shape[0]`` >= 1 groups on the core): returns its Schur
+        complement on its top layer (:meth:`condense_band`); :meth:`recover` gives the deep
+        response to a displacement of that layer."""
+        S, self._deep = self.condense_band(rn, E_r, None)
+        return S
+
+    def recover(self, x_top: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Response of the deep part frozen by :meth:`condense` (:meth:`recover_band`)."""
+        return self.recover_band(self._deep, x_top)
+
+    def condense_band(
+        self, rn: FloatArray, E_r: FloatArray, S_below: FloatArray | None
+    ) -> tuple[FloatArray, tuple]:
+        """Freeze a band of ``E_r.shape[0]`` >= 1 groups lying on the core (``S_below``
+        None) or on a frozen band below it whose Schur complement on the band's bottom
+        layer is ``S_below``. The band is factorised (``A = U^T U``, banded, in the mesh's
+        layer-by-layer order, from its bottom up) so that its top layer is eliminated last:
+        the trailing block ``U_t`` of the factor gives the Schur complement
+        ``S = U_t^T U_t`` (2 (ncol+1))^2 that the band and everything below it present to
+        the layer above. Returns S and the band (for :meth:`recover_band`)."""
+        ab, fixed, C, Gs = self._system(rn, E_r, S_below)
         cb = cholesky_banded(ab, check_finite=False)
         u, n = cb.shape[0] - 1, cb.shape[1]
         t = n - 2 * self.nc1
@@ -258,14 +310,19 @@ class Stack:
         Ut = np.where(off >= -u, Ut, 0.0)
         S = Ut.T @ Ut
         S = 0.5 * (S + S.T)
-        self._deep = (cb, S, rn, E_r, C, Gs)
-        return S
+        return S, (cb, S, rn, E_r, C, Gs)
 
-    def recover(self, x_top: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        """Response of the frozen deep part to the displacement ``x_top`` (ncol+1, 2) of its
-        top layer: du_r, du_z of its layers (k_s + 1, ncol + 1) and the stress increments
-        (4, k_s, ncol) of its elements."""
-        cb, S, rn, E_r, C, Gs = self._deep
+    def recover_band(
+        self, band: tuple, x_top: FloatArray
+    ) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Response of a frozen band (:meth:`condense_band`) to the displacement ``x_top``
+        (ncol+1, 2) of its top layer: du_r, du_z of its layers (k_s + 1, ncol + 1, the
+        bottom one being the top layer of the band below, if any) and the stress
+        increments (5, k_s, ncol) of its elements. With a band below, the bottom layer's
+        motion is what that band responds to (its own :meth:`recover_band`): the solve
+        with ``S x_top`` on the top layer returns exactly the displacements that minimise
+        the energy of the band and everything below it with the top layer held at x_top."""
+        cb, S, rn, E_r, C, Gs = band
         nc1 = self.nc1
         rhs = np.zeros(cb.shape[1])
         rhs[-2 * nc1 :] = S @ x_top.ravel()
