@@ -743,6 +743,7 @@ def indent(
     # fields at every recorded depth (row k at delta[k]; row 0 the pre-impact state)
     sig_hist = np.zeros((n + 1, mesh.n_elements, 3))
     p_hist = np.zeros((n + 1, n_surf))
+    u_hist = np.zeros((n + 1, n_surf))  # inward radial displacement of the surface nodes
     frozen = roll.moduli(roll.sigma_pre) if not update_modulus else None
     tol_gap = 1e-3 * delta[1]
     step = None
@@ -785,6 +786,7 @@ def indent(
         p_peak[k] = float(np.max(lam / trib))
         sig_hist[k] = sig
         p_hist[k] = lam / trib
+        u_hist[k] = -u[2 * roll.surface]
     assert step is not None
     sigma_r_total = roll.sigma_pre + sig[:, 0]
     sf = slip_factor(sig[:, 2], sigma_r_total, friction)
@@ -825,4 +827,5 @@ def indent(
         mesh_shape=(mesh.n_r - 1, mesh.n_theta),
         solve_time_s=time.perf_counter() - t0,
         factorisations=factorisations,
+        surface_deflection_history=u_hist,
     )
