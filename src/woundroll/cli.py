@@ -285,7 +285,8 @@ def study(
     ] = 1,
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar.")] = False,
     model: Annotated[
-        str, typer.Option(help="Contact model of the pile-height study: 2d or 3d.")
+        str,
+        typer.Option(help="Pile-height study contact model: 2d, auto (2d + CMD spread), 3d."),
     ] = "2d",
 ) -> None:
     """Run one of the reference paper's studies on its Table 2 rolls; print its tables."""
@@ -296,8 +297,8 @@ def study(
         if model != "2d" or name == "pile-height":
             from woundroll.studies.pile_height import pile_height_study
 
-            if name != "pile-height" or model not in ("2d", "3d"):
-                raise InputError("--model 3d is for the pile-height study; 2d or 3d", "--model")
+            if name != "pile-height" or model not in ("2d", "3d", "auto"):
+                raise InputError("--model is for the pile-height study; 2d, auto or 3d", "--model")
             return pile_height_study(progress=progress, workers=workers, model=model)
         return run_study(name, progress=progress, workers=workers)
 

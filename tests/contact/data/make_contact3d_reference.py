@@ -91,15 +91,16 @@ def run_case(key: str, name: str, overrides: list[str], model: str) -> dict:
     }
 
 
-def run_extra(key: str, name: str, length: float, depth: float) -> dict:
-    """A plain 3D indentation of ``name``'s roll with a head of the given length."""
+def run_extra(key: str, name: str, length: float, depth: float, overrides=()) -> dict:
+    """A plain 3D indentation of ``name``'s roll with a head of the given length (and the
+    case ``overrides``, e.g. another E_z)."""
     from woundroll.case import load_case
     from woundroll.contact.heads import Head
     from woundroll.contact.solver import indent
     from woundroll.contact.solver3d import indent3d
     from woundroll.pipeline import run
 
-    case = load_case(name, ["contact.no_update=false", "contact.model='2d'"])
+    case = load_case(name, ["contact.no_update=false", "contact.model='2d'", *overrides])
     res = run(case)
     web, core = case.web.build(), case.core.build()
     ins = case.tester_setup.instrument
@@ -118,6 +119,7 @@ def run_extra(key: str, name: str, length: float, depth: float) -> dict:
     )
     return {
         "case": name,
+        "overrides": list(overrides),
         "head_length_m": length,
         "curve": _curve(c3),
         "curve_2d": _curve(c2),
@@ -126,8 +128,10 @@ def run_extra(key: str, name: str, length: float, depth: float) -> dict:
 
 
 EXTRA = (
-    ("pet2-53.4N-L50.8mm", "pet2-53.4N", 0.0508, 1.3e-3),
-    ("pet1-26.7N-L50.8mm", "pet1-26.7N", 0.0508, 0.8e-3),
+    ("pet2-53.4N-L50.8mm", "pet2-53.4N", 0.0508, 1.3e-3, ()),
+    ("pet1-26.7N-L50.8mm", "pet1-26.7N", 0.0508, 0.8e-3, ()),
+    # the CMD stiffness an eighth of the hoop's: checks the (E_z/E_theta)^(1/4) scaling
+    ("pet1-26.7N-Ez/8", "pet1-26.7N", 0.0254, 0.8e-3, ("web.E_z='710 MPa'",)),
 )
 
 
@@ -151,13 +155,13 @@ def main(argv: list[str] | None = None) -> None:
             flush=True,
         )
     if not args.no_extra:
-        for key, name, length, depth in EXTRA:
+        for key, name, length, depth, ov in EXTRA:
             if (key in data["extra"] and args.only is None) or (
                 args.only is not None and key not in args.only
             ):
                 continue
             t0 = time.time()
-            data["extra"][key] = run_extra(key, name, length, depth)
+            data["extra"][key] = run_extra(key, name, length, depth, ov)
             OUT.write_text(json.dumps(data, indent=1) + "\n")
             print(f"{key}: done ({time.time() - t0:.0f} s wall)", flush=True)
 
