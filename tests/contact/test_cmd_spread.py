@@ -18,8 +18,9 @@ import pytest
 from woundroll.case import load_case
 from woundroll.contact import indent, roll_stiffness
 from woundroll.contact.cmd_spread import (
+    BASIN_FACTOR,
+    END_FACTOR,
     MODEL_NAME,
-    SPREAD_FACTOR,
     apply_cmd_spread,
     deflection_decay_length,
 )
@@ -29,9 +30,8 @@ from woundroll.pipeline import run
 DATA = Path(__file__).with_name("data")
 REF = json.loads((DATA / "contact3d_reference.json").read_text())
 CASES = sorted(REF["cases"])
-#: rolls whose 3D curves chose the basin measure (lambda at 1/e) and c (docs/contact.md);
-#: the others validate it
-FIT_SET = ("pet1-26.7N", "pet1-33.4N", "pet1-40N", "pet1-46.7N")
+#: the rolls c_b and c_a were fitted on (docs/contact.md); the other nine validate them
+FIT_SET = ("pet1-26.7N", "pet2-53.4N")
 
 
 def _overrides(key: str) -> list[str]:
@@ -102,25 +102,29 @@ def test_correction_vanishes_for_a_long_head(pet2_solution) -> None:
     # a web without CMD stiffness has nothing to carry the load past the ends
     soft = replace(web, E_z=web.E_theta * 1e-12)
     assert apply_cmd_spread(c, soft).length_ratio[-1] - 1 < 2e-3
+    # without both terms the correction is the identity
+    none = apply_cmd_spread(c, web, basin_factor=0.0, end_factor=0.0)
+    assert np.array_equal(none.corrected.force, c.force)
     with pytest.raises(InputError) as exc:
-        apply_cmd_spread(c, web, factor=-1.0)
-    assert exc.value.field == "contact.spread_factor"
+        apply_cmd_spread(c, web, end_factor=-1.0)
+    assert exc.value.field == "contact.end_factor"
 
 
 @pytest.mark.parametrize("key", CASES)
 def test_fast_path_within_3_percent_of_3d(key: str) -> None:
     """Rho (FD) of the corrected 2D path against the cached 3D model, every case.
 
-    Tolerance 3 % (the issue's bar): the 3D reference itself carries ~1 % (mesh < 1 %, 24
-    increments ~1 % at the shallow end of the curve, docs/contact.md "Refinement"); the
-    correction's own error was 0.7-2.3 % on the rolls it was chosen on (docs/contact.md).
+    Tolerance 3 % (the issue's bar) on the nine validation rolls: the 3D reference itself
+    carries ~1 % (mesh < 1 %, 24 increments ~1 % at the shallow end of the curve,
+    docs/contact.md "Refinement"). The two rolls c_b, c_a were fitted on read the 3D Rho to
+    0.1 % by construction: 0.5 % there (round-off of the constants, solver changes).
     Raw plane strain misses by 23-37 %: this test cannot pass without the correction.
     """
     ref = REF["cases"][key]["3d"]
     res = run(load_case(_case_name(key), _overrides(key)))
     assert res.contact.model == MODEL_NAME
     rho = res.hardness.to_dict()["rho_fd"]
-    assert rho == pytest.approx(ref["rho_fd"], rel=0.03)
+    assert rho == pytest.approx(ref["rho_fd"], rel=0.005 if key in FIT_SET else 0.03)
     raw = REF["cases"][key]["2d"]["rho_fd"]
     assert abs(raw / ref["rho_fd"] - 1) > 0.15
 
@@ -129,7 +133,7 @@ def test_pipeline_json_names_the_model() -> None:
     auto = json.loads(run(load_case("pet1-26.7N")).to_json())["contact"]
     assert auto["model"] == MODEL_NAME
     cs = auto["cmd_spread"]
-    assert cs["spread_factor_c"] == SPREAD_FACTOR
+    assert (cs["basin_factor_c_b"], cs["end_factor_c_a"]) == (BASIN_FACTOR, END_FACTOR)
     n = len(auto["delta_m"])
     assert len(cs["decay_length_m"]) == len(cs["length_ratio"]) == n
     # the corrected force is the plane-strain force times L_eff / L
