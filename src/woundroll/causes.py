@@ -458,7 +458,7 @@ def _verify(model: ProfileModel, theta: FloatArray) -> dict[str, Any]:
         web = replace(r.web, thickness=float(res.thickness[j]))
         st = roll_stiffness(
             web, r.core, rr, res.sigma_r[:, j], r.setup.instrument, friction=r.friction,
-            options=r.contact_options,
+            options=r.contact_options, model=r.contact_model,
         )  # fmt: skip
         h = hardness_on_roll(r.setup, st, float(rr[-1] - rr[0]), web.density)
         full = reading_of(h, r.scale)

@@ -285,7 +285,11 @@ def study(
     ] = 1,
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar.")] = False,
     model: Annotated[
-        str, typer.Option(help="Contact model of the pile-height and slip studies: 2d or 3d.")
+        str,
+        typer.Option(
+            help="Contact model of the pile-height (2d, auto = 2d + CMD spread, 3d) and slip "
+            "(2d, 3d) studies."
+        ),
     ] = "2d",
 ) -> None:
     """Run one of the reference paper's studies on its Table 2 rolls; print its tables."""
@@ -300,9 +304,10 @@ def study(
         if model != "2d" or name == "pile-height":
             from woundroll.studies.pile_height import pile_height_study
 
-            if name != "pile-height" or model not in ("2d", "3d"):
+            if name != "pile-height" or model not in ("2d", "3d", "auto"):
                 raise InputError(
-                    "--model 3d is for the pile-height and slip studies; 2d or 3d", "--model"
+                    "--model is for the pile-height (2d, auto or 3d) and slip (2d or 3d) studies",
+                    "--model",
                 )
             return pile_height_study(progress=progress, workers=workers, model=model)
         return run_study(name, progress=progress, workers=workers)

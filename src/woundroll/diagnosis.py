@@ -111,6 +111,7 @@ class RollModel:
     depth: float = 0.0
     semi_contact_width_given: bool = False
     winding_options: Any = None
+    contact_model: str = "2d"
 
     @classmethod
     def from_case(cls, case: Case, scale: str | None = None) -> RollModel:
@@ -151,6 +152,7 @@ class RollModel:
             depth=inst.head_radius,
             semi_contact_width_given="semi_contact_width" in (case.tester or {}),
             winding_options=WindingOptions.from_dict(case.winding.options, "winding.options"),
+            contact_model=case.contact.model,
         )
 
     @property
@@ -177,6 +179,7 @@ class RollModel:
             self.setup.instrument,
             friction=self.friction,
             options=self.contact_options,
+            model=self.contact_model,
         )
         H = self.outer_radius - self.core.outer_radius
         h = hardness_on_roll(

@@ -350,11 +350,14 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     H = r_out - core.outer_radius
     a_given = "semi_contact_width" in (case.tester or {})
     spec = case.contact
+    # the FE impact (contact.dynamic) is on the plane-strain roll: the 1.5D models beside it
+    # take the same roll's spring, without the CMD-spreading correction of "auto"
+    plane = spec.dynamic and spec.model == "auto" and setup.instrument.head_shape == "cylinder"
     args = {
         "depth_max": spec.depth_max,
         "friction": spec.friction,
         "options": spec.contact_options(),
-        "model": spec.model,
+        "model": "2d" if plane else spec.model,
         "options3d": spec.contact3d_options(),
     }
     report("contact", 0.0)
@@ -411,6 +414,11 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
             options=spec.dynamic_settings(),
         )
         report("dynamic", 1.0)
+        if plane:
+            unloading_notes.append(
+                "dynamic: the FE impact runs on the plane-strain roll, so the 1.5D models use "
+                "the plane-strain spring too (contact.model '2d', no CMD-spreading correction)"
+            )
         if spec.model == "3d":
             unloading_notes.append(
                 "dynamic: the impact in time runs on the 2D FE roll (the 3D dynamic model is "
@@ -519,6 +527,7 @@ def _run_profile(
         spec.depth_max,
         instrument=instrument,
         options=case.contact.contact_options(),
+        model="2d" if case.contact.model == "2d" else "auto",  # no 3D solve per sector
     )
 
     def progress(stage: str, done: int, total: int) -> None:

@@ -224,6 +224,10 @@ class ContactResult:
         :meth:`at_depth` for the fields at any depth.
     contact_pressure_history : ndarray (n_steps + 1, n_surface_nodes) [Pa]
         ``contact_pressure`` at every computed depth.
+    surface_deflection_history : ndarray (n_steps + 1, n_surface_nodes) [m] or None
+        Inward radial displacement -u_r of the surface nodes (at ``contact_s``) at every
+        computed depth (2D model; the CMD-spreading correction reads the deflection basin
+        from it, :mod:`woundroll.contact.cmd_spread`).
     """
 
     delta: FloatArray
@@ -264,6 +268,7 @@ class ContactResult:
     slipped: NDArray[np.bool_] | None = None
     #: increments' slip-zone passes in all (slip emulation)
     slip_passes: int = 0
+    surface_deflection_history: FloatArray | None = None
 
     def __post_init__(self) -> None:
         for f in fields(self):

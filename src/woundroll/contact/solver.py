@@ -818,6 +818,7 @@ def indent(
     slip_on = opts.slip == "reduced-shear"
     if slip_on:
         roll.slip_weight = np.zeros(mesh.n_elements)
+    u_hist = np.zeros((n + 1, n_surf))  # inward radial displacement of the surface nodes
     frozen = roll.moduli(roll.sigma_pre) if not update_modulus else None
     tol_gap = 1e-3 * delta[1]
     step: _Step | None = None
@@ -905,6 +906,7 @@ def indent(
         p_peak[k] = float(np.max(lam / trib))
         sig_hist[k] = sig
         p_hist[k] = lam / trib
+        u_hist[k] = -u[2 * roll.surface]
     assert step is not None
     sigma_r_total = roll.sigma_pre + sig[:, 0]
     sf = slip_factor(sig[:, 2], sigma_r_total, friction)
@@ -947,4 +949,5 @@ def indent(
         factorisations=factorisations,
         slipped=None if roll.slip_weight is None else roll.slip_weight > 0,
         slip_passes=slip_passes,
+        surface_deflection_history=u_hist,
     )

@@ -206,14 +206,23 @@ class RollStiffness:
     Attributes
     ----------
     contact : ContactResult
-        The 2D contact model's F(d), a(d) and fields (at its largest depth).
+        The contact model's F(d), a(d) and fields (at its largest depth); on the corrected
+        2D path F(d) includes the CMD spreading (the fields are the 2D ones).
     spring : SpringFit
         ``alpha``, ``beta`` fitted over the depths the striker reaches, with the impact's
         maximum depth by the energy model {21}.
+    model : str
+        The contact model used: ``"2d"`` (plane strain), ``"2d+cmd-spread"`` (plane strain
+        corrected for the load carried past the head's ends, the default for cylindrical
+        heads, :mod:`woundroll.contact.cmd_spread`) or ``"3d"``.
+    cmd_spread : CmdSpread or None
+        The correction on the ``"2d+cmd-spread"`` path (L_eff(d), the plane-strain force).
     """
 
     contact: ContactResult
     spring: SpringFit
+    model: str = "2d"
+    cmd_spread: Any = None
 
     @property
     def alpha(self) -> float:
@@ -258,6 +267,8 @@ class RollStiffness:
             "fit_max_rel_residual": out.pop("fit_max_rel_residual"),
         }
         out.update(self.spring.to_dict())
+        out["model"] = self.model
+        out["cmd_spread"] = None if self.cmd_spread is None else self.cmd_spread.to_dict()
         at = self.at_impact
         out["semi_contact_width_m"] = at.semi_contact_width
         out["depth_max_m"] = float(self.contact.delta[-1])
@@ -327,9 +338,12 @@ def roll_stiffness(
     field : str
         Table named in error messages (``"contact"``, ``"profile"``).
     model : {"2d", "3d", "auto"}
-        The contact model: the plane-strain 2D model, the 3D model
-        (:func:`woundroll.contact.solver3d.indent3d`, any head), or ``"auto"``: 2D for a
-        cylindrical head, 3D for the heads 2D cannot represent (sphere, punch).
+        The contact model: the plane-strain 2D model as it is, the 3D model
+        (:func:`woundroll.contact.solver3d.indent3d`, any head), or ``"auto"``: for a
+        cylindrical head the 2D model corrected for the load the roll carries past the
+        head's ends (:mod:`woundroll.contact.cmd_spread`, within 3 % of the 3D model's Rho
+        on the Table 2 rolls and pile heights), the 3D model for the heads 2D cannot
+        represent (sphere, punch).
     options3d : Contact3DOptions, optional
         Settings of the 3D model.
 
@@ -345,6 +359,7 @@ def roll_stiffness(
     if model not in ("2d", "3d", "auto"):
         raise InputError(f"must be '2d', '3d' or 'auto', got {model!r}", f"{field}.model")
     use_3d = model == "3d" or (model == "auto" and instrument.head_shape != "cylinder")
+    spread = model == "auto" and not use_3d  # plane strain + CMD spreading
     if use_3d:
         from woundroll.contact.heads import Head
         from woundroll.contact.solver3d import indent3d
@@ -385,6 +400,13 @@ def roll_stiffness(
             )
         except InputError as exc:
             raise exc.at(field) from None
+        correction = None
+        if spread:
+            from woundroll.contact.cmd_spread import MODEL_NAME, apply_cmd_spread
+
+            correction = apply_cmd_spread(contact, web)
+            contact = correction.corrected
+        name = "3d" if use_3d else (MODEL_NAME if spread else "2d")
         spring = fit_roll_spring(contact.delta, contact.force, instrument, reach=FIT_REACH)
         # deepen while the fit window [0, FIT_REACH d_max] is cut off by the solution's
         # depth (not only when d_max itself is beyond it): the window then always has its
@@ -393,9 +415,10 @@ def roll_stiffness(
         if window_inside or (depth_max is None and depth >= reach):
             # beyond the model's reach (a slack, floor-soft roll) the fit is extrapolated:
             # RollStiffness.extrapolated says so
-            return RollStiffness(contact, spring)
+            return RollStiffness(contact, spring, name, correction)
         if depth_max is not None and not spring.extrapolated:
-            return RollStiffness(contact, spring)  # a fixed depth: the window is cut there
+            # a fixed depth: the window is cut there
+            return RollStiffness(contact, spring, name, correction)
         if depth_max is not None:
             raise InputError(
                 f"the striker reaches {spring.max_depth * 1e3:.3g} mm, deeper than the "

@@ -90,6 +90,9 @@ class ContactModel:
     depth_max: float = 1e-3
     instrument: Any = None
     options: Any = None
+    #: contact.model of the instrument's spring (roll_stiffness): "auto" corrects the
+    #: plane strain for the CMD spreading past the head's ends
+    model: str = "2d"
 
     def __call__(self, radius: FloatArray, sigma_r: FloatArray) -> tuple[float, float]:
         from woundroll.contact import fit_roll_spring, indent, roll_stiffness
@@ -104,6 +107,7 @@ class ContactModel:
                 start_depth=self.depth_max,
                 options=self.options,
                 field="profile",
+                model=self.model,
             )
             return rs.alpha, rs.beta
         res = indent(

@@ -322,6 +322,7 @@ def _pile_height_job(
         start_depth=ref["depth_max"],
         friction=case.contact.friction,
         options=case.contact.contact_options(),
+        model=case.contact.model,
     )
     row["alpha_ref_prestress_N_per_m2"] = stiff.alpha
     row["beta_ref_prestress_N_per_m"] = stiff.beta
@@ -367,9 +368,10 @@ def pile_height_study(
     progress : callable(stage, fraction), optional
     workers : int
         1: serial; 2: a spawned 2-process pool (the reference roll always runs first).
-    model : {"2d", "3d"}
-        Contact model of the roll spring (``contact.model``); with ``"3d"`` the
-        pre-stress decomposition column is not computed.
+    model : {"2d", "auto", "3d"}
+        Contact model of the roll spring (``contact.model``; ``"auto"``: 2D with the
+        CMD-spreading correction); with ``"3d"`` the pre-stress decomposition column is not
+        computed.
 
     The no-update solve is switched off (``contact.no_update=false``): not needed here.
     """

@@ -1,0 +1,203 @@
+"""The fast path against the 3D model: plane strain corrected for the CMD spreading.
+
+The 3D reference (Rho, F(d)) of the 7 Table 2 rolls and of PET2 53.4 N wound to
+H = 2, 4, 6 cm is cached in ``data/contact3d_reference.json`` (computed once by
+``data/make_contact3d_reference.py``, ~1 CPU min a roll); the slow tests recompute two of
+its 3D curves.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from woundroll.case import load_case
+from woundroll.contact import indent, roll_stiffness
+from woundroll.contact.cmd_spread import (
+    BASIN_FACTOR,
+    END_FACTOR,
+    MODEL_NAME,
+    apply_cmd_spread,
+    deflection_decay_length,
+)
+from woundroll.errors import InputError
+from woundroll.pipeline import run
+
+DATA = Path(__file__).with_name("data")
+REF = json.loads((DATA / "contact3d_reference.json").read_text())
+CASES = sorted(REF["cases"])
+#: the rolls c_b and c_a were fitted on (docs/contact.md); the other nine validate them
+FIT_SET = ("pet1-26.7N", "pet2-53.4N")
+
+
+def _overrides(key: str) -> list[str]:
+    return [*REF["cases"][key]["3d"]["overrides"], "contact.no_update=false"]
+
+
+def _case_name(key: str) -> str:
+    return REF["cases"][key]["3d"]["case"]
+
+
+def test_decay_length_of_an_exponential_basin() -> None:
+    s = np.linspace(0.0, 0.1, 2001)
+    lam = 7e-3
+    assert deflection_decay_length(s, 2e-4 * np.exp(-s / lam)) == pytest.approx(lam, rel=1e-4)
+    # linear interpolation between nodes: exact for a linear basin
+    assert deflection_decay_length([0, 1, 2], [1.0, 0.5, 0.0]) == pytest.approx(
+        2 * (1 - 1 / math.e)
+    )
+    # no deflection: no spreading; a basin that never falls to 1/e: the model's extent
+    assert deflection_decay_length(s, np.zeros_like(s)) == 0.0
+    assert deflection_decay_length(s, np.ones_like(s)) == pytest.approx(0.1)
+
+
+@pytest.fixture(scope="module")
+def pet2_solution():
+    case = load_case("pet2-53.4N", ["contact.no_update=false"])
+    res = run(case)
+    web, core = case.web.build(), case.core.build()
+    ins = case.tester_setup.instrument
+    c = indent(
+        web,
+        core,
+        res.winding.radius,
+        res.winding.sigma_r,
+        head_radius=ins.head_radius,
+        head_length=ins.head_length,
+        depth_max=1.2e-3,
+    )
+    return web, c
+
+
+def test_deflection_basin_is_the_2d_solution(pet2_solution) -> None:
+    web, c = pet2_solution
+    u = np.asarray(c.surface_deflection_history)
+    # the surface under the head moves in with it (the head's axis node is in contact)
+    assert u[1:, 0] == pytest.approx(c.delta[1:], rel=1e-3)
+    assert np.all(u[0] == 0.0)
+    spread = apply_cmd_spread(c, web)
+    lam = spread.decay_length
+    # the basin is far wider than the contact and widens with the depth
+    assert np.all(lam[2:] > 3 * np.asarray(c.half_width)[2:])
+    assert np.all(np.diff(lam[1:]) > 0)
+
+
+def test_correction_vanishes_for_a_long_head(pet2_solution) -> None:
+    """Plane strain is the limit of a head much longer than the basin (lambda ~ 1-3 cm)."""
+    web, c = pet2_solution
+    from dataclasses import replace
+
+    L = 25.4e-3
+    for length, bound in ((10 * L, 0.25), (1000 * L, 0.0025)):
+        long = replace(c, head_length=length, force=np.asarray(c.force) * length / L)
+        sp = apply_cmd_spread(long, web)
+        extra = float(sp.length_ratio[-1]) - 1.0
+        # the spread does not depend on L: the excess falls as 1/L
+        assert 0 < extra < bound
+        assert sp.spread == pytest.approx(apply_cmd_spread(c, web).spread, rel=1e-12)
+    # a web without CMD stiffness has nothing to carry the load past the ends
+    soft = replace(web, E_z=web.E_theta * 1e-12)
+    assert apply_cmd_spread(c, soft).length_ratio[-1] - 1 < 2e-3
+    # without both terms the correction is the identity
+    none = apply_cmd_spread(c, web, basin_factor=0.0, end_factor=0.0)
+    assert np.array_equal(none.corrected.force, c.force)
+    with pytest.raises(InputError) as exc:
+        apply_cmd_spread(c, web, end_factor=-1.0)
+    assert exc.value.field == "contact.end_factor"
+
+
+@pytest.mark.parametrize("key", CASES)
+def test_fast_path_within_3_percent_of_3d(key: str) -> None:
+    """Rho (FD) of the corrected 2D path against the cached 3D model, every case.
+
+    Tolerance 3 % (the issue's bar) on the nine validation rolls: the 3D reference itself
+    carries ~1 % (mesh < 1 %, 24 increments ~1 % at the shallow end of the curve,
+    docs/contact.md "Refinement"). The two rolls c_b, c_a were fitted on read the 3D Rho to
+    0.1 % by construction: 0.5 % there (round-off of the constants, solver changes).
+    Raw plane strain misses by 23-37 %: this test cannot pass without the correction.
+    """
+    ref = REF["cases"][key]["3d"]
+    res = run(load_case(_case_name(key), _overrides(key)))
+    assert res.contact.model == MODEL_NAME
+    rho = res.hardness.to_dict()["rho_fd"]
+    assert rho == pytest.approx(ref["rho_fd"], rel=0.005 if key in FIT_SET else 0.03)
+    raw = REF["cases"][key]["2d"]["rho_fd"]
+    assert abs(raw / ref["rho_fd"] - 1) > 0.15
+
+
+def test_pipeline_json_names_the_model() -> None:
+    auto = json.loads(run(load_case("pet1-26.7N")).to_json())["contact"]
+    assert auto["model"] == MODEL_NAME
+    cs = auto["cmd_spread"]
+    assert (cs["basin_factor_c_b"], cs["end_factor_c_a"]) == (BASIN_FACTOR, END_FACTOR)
+    n = len(auto["delta_m"])
+    assert len(cs["decay_length_m"]) == len(cs["length_ratio"]) == n
+    # the corrected force is the plane-strain force times L_eff / L
+    np.testing.assert_allclose(
+        np.asarray(auto["force_N"]),
+        np.asarray(cs["plane_strain_force_N"]) * np.asarray(cs["length_ratio"]),
+        rtol=1e-12,
+    )
+    raw = json.loads(run(load_case("pet1-26.7N", ["contact.model='2d'"])).to_json())["contact"]
+    assert raw["model"] == "2d" and raw["cmd_spread"] is None
+    assert auto["alpha_N_per_m2"] > 2 * raw["alpha_N_per_m2"]
+
+
+def test_longer_head_against_3d() -> None:
+    """The spread does not depend on the head's length: a 50.8 mm head (twice the
+    Rho-meter's), cached 3D curve, against the correction (same lambda(d), half the
+    relative excess)."""
+    for key, e in REF["extra"].items():
+        case = load_case(e["case"], ["contact.no_update=false", "contact.model='2d'"])
+        res = run(case)
+        web, core = case.web.build(), case.core.build()
+        ins = case.tester_setup.instrument
+        cur = e["curve"]
+        d = np.asarray(cur["delta_m"])
+        c = indent(
+            web,
+            core,
+            res.winding.radius,
+            res.winding.sigma_r,
+            head_radius=ins.head_radius,
+            head_length=e["head_length_m"],
+            depth_max=float(d[-1]),
+        )
+        sp = apply_cmd_spread(c, web)
+        f3 = np.asarray(cur["force_N"])
+        fc = np.interp(d, sp.corrected.delta, sp.corrected.force)
+        f2 = np.interp(d, c.delta, c.force)
+        sel = d > 0.3 * d[-1]
+        # 6 %: F(d), not Rho (a force error of ~2x the Rho error), over 0.3-1 depth_max
+        assert np.max(np.abs(fc[sel] / f3[sel] - 1)) < 0.06, key
+        assert np.min(f3[sel] / f2[sel]) > 1.3, key
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("key", ["pet1-26.7N", "pet2-53.4N-H2cm"])
+def test_3d_reference_recomputed(key: str) -> None:
+    """The cached 3D curves are what the 3D model gives now (~1 CPU min each)."""
+    ref = REF["cases"][key]["3d"]
+    case = load_case(_case_name(key), [*_overrides(key), "contact.model='3d'"])
+    res = run(case)
+    assert res.contact.model == "3d"
+    d = np.asarray(ref["curve"]["delta_m"])
+    c = res.contact.contact
+    f_now = np.interp(d[1:], c.delta, c.force)
+    # the same code and mesh: only the sparse solver's threading rounding differs, but the
+    # depth search may end at another depth_max, which regrades the increments: 1 %
+    assert f_now == pytest.approx(np.asarray(ref["curve"]["force_N"])[1:], rel=0.01)
+    assert res.hardness.to_dict()["rho_fd"] == pytest.approx(ref["rho_fd"], rel=0.01)
+    st = roll_stiffness(
+        case.web.build(),
+        case.core.build(),
+        res.winding.radius,
+        res.winding.sigma_r,
+        case.tester_setup.instrument,
+        model="auto",
+    )
+    assert st.model == MODEL_NAME
