@@ -123,6 +123,19 @@ def test_fit_stack_rejects_data_no_law_fits(tmp_path, rows, words):
     assert len(lines) == 1 and lines[0].startswith("error: CSV_FILE:") and words in lines[0]
 
 
+def test_fit_stack_cycle_without_unloading_names_the_option(tmp_path):
+    # strain rising then falling: the loading check fails and the message names --unloading
+    f = tmp_path / "cycle.csv"
+    f.write_text("strain,pressure [kPa]\n0.1,5\n0.2,20\n0.3,80\n0.25,30\n0.2,8\n")
+    res = runner.invoke(app, ["fit-stack", str(f), "--json"])
+    assert res.exit_code == 2, res.output
+    assert "--unloading" in res.output and "Traceback" not in res.output
+    # a dip in a loading curve is not a cycle: no hint
+    f.write_text("strain,pressure [kPa]\n0.1,5\n0.2,10\n0.3,8\n0.4,20\n")
+    res = runner.invoke(app, ["fit-stack", str(f), "--json"])
+    assert res.exit_code == 2 and "--unloading" not in res.output
+
+
 def test_bad_out_is_found_before_the_run(tmp_path):
     blocker = tmp_path / "file"
     blocker.write_text("x")

@@ -402,7 +402,15 @@ def fit_stack_cmd(
         try:
             check_stack_data(eps, p)
         except InputError as exc:
-            raise InputError(f"{csv_file.name}: {exc.message}", "CSV_FILE") from None
+            # strain rising, then falling in file order: a loading/unloading cycle
+            top = int(eps.argmax())
+            hint = (
+                "; this looks like a loading/unloading cycle: fit it with "
+                "`woundroll fit-stack --unloading`"
+                if 0 < top < eps.size - 1 and bool((eps[top + 1 :] <= eps[top:-1]).all())
+                else ""
+            )
+            raise InputError(f"{csv_file.name}: {exc.message}{hint}", "CSV_FILE") from None
         laws = FIT_LAWS if law == "all" else (law,)
         fits = {}
         for name in laws:
