@@ -12,6 +12,15 @@ Prints
 
 With ``--plots DIR`` the CMD figures (thickness and Rho on twin axes, sigma_r(r, z) map) are
 written there. Run: ``.venv/bin/python benchmarks/bench_profile.py [--quick] [--plots out]``.
+
+Issue 14 item 3 (the Table 3 profile in <= 10 s on 2 cores), ``--process [--before REF]``:
+``woundroll run CASE --json`` as a fresh process on the current tree and, interleaved, on
+git revision REF (``git archive``, first on ``PYTHONPATH``): wall time, the process's CPU
+time (user + sys of the whole process tree, workers included, from ``wait4``), the stages'
+wall times from the JSON, the load average, and the same-run ratios. ``--deep`` times the
+axisymmetric winding alone in-process (CPU), the deep part in levels against the single
+frozen stack (``levels=False``) and against the whole stack every increment, with their
+differences.
 """
 
 from __future__ import annotations
@@ -93,6 +102,95 @@ def window_factorisation(repeat: int = 5) -> None:
     )
 
 
+def run_process(args: list[str], env: dict[str, str]) -> tuple[float, float, dict]:
+    """Wall and CPU time (user + sys of the process and its children) of one fresh process,
+    and its JSON output."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    t0 = time.perf_counter()
+    proc = subprocess.Popen(
+        [sys.executable, *args], env=env, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL
+    )
+    out = proc.stdout.read() if proc.stdout else b""
+    _, status, usage = os.wait4(proc.pid, 0)
+    wall = time.perf_counter() - t0
+    # ru_* of wait4 covers the child and its waited-for descendants (the sector workers)
+    cpu = usage.ru_utime + usage.ru_stime
+    if status != 0:
+        raise RuntimeError(f"{args} failed with status {status}")
+    return wall, cpu, json.loads(out)
+
+
+def whole_process(cases: list[str], before: str | None, repeat: int) -> None:
+    """``woundroll run CASE --json``: current tree and ``before``, interleaved."""
+    import os
+    import sys
+    import tempfile
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from bench_startup import source_of
+
+    env_now = dict(os.environ)
+    trees = {"now": env_now}
+    print(f"whole process, min of {repeat} (interleaved), {os.cpu_count()} cores")
+    with tempfile.TemporaryDirectory() as tmp:
+        if before:
+            trees[before] = {**env_now, "PYTHONPATH": str(source_of(before, Path(tmp)))}
+        for case in cases:
+            args = ["-m", "woundroll.cli", "run", case, "--json"]
+            best: dict[str, tuple] = {}
+            loads = [os.getloadavg()[0]]
+            for _ in range(repeat):
+                for tree, env in trees.items():
+                    wall, cpu, js = run_process(args, env)
+                    tm = js["profile"].get("timings_s", {})
+                    if tree not in best or wall < best[tree][0]:
+                        best[tree] = (wall, cpu, tm, np.asarray(js["profile"]["rho"]))
+                    loads.append(os.getloadavg()[0])
+            print(f"  {case}  (load average {min(loads):.1f}-{max(loads):.1f} during the runs)")
+            for tree, (wall, cpu, tm, _) in best.items():
+                parts = ", ".join(f"{k} {v:.1f}" for k, v in tm.items())
+                print(f"    {tree:10s} wall {wall:6.1f} s  CPU {cpu:6.1f} s  ({parts})")
+            if before:
+                (w1, c1, _, r1), (w0, c0, _, r0) = best["now"], best[before]
+                dev = np.max(np.abs(r1 / r0 - 1))
+                print(
+                    f"    ratio {before}/now: wall {w0 / w1:.2f}x, CPU {c0 / c1:.2f}x;"
+                    f" Rho per sector: max |now / {before} - 1| = {100 * dev:.3f} %"
+                )
+
+
+def deep_part(G: int | None = None) -> None:
+    """The (r, z) winding of Table 3 alone, in-process CPU time: levels, single stack and
+    the whole stack every increment, with the differences of the lazy ones from it."""
+    prof = bundled_profile()
+    ten = TensionSchedule(web_stress=2.3e6)
+    runs = {}
+    for name, kw in [
+        ("levels (default)", {}),
+        ("single stack, 24 / 8 (before)", {"levels": False, "window": 24, "flush": 8}),
+        ("whole stack every increment", {"window": None}),
+    ]:
+        c0 = time.process_time()
+        w = wind_axisymmetric(WEB, CORE, R_OUT, ten, prof, n_groups=G, **kw)
+        runs[name] = (time.process_time() - c0, w)
+    ex = runs["whole stack every increment"][1]
+    peak = np.max(np.abs(ex.sigma_r))
+    big = np.abs(ex.sigma_r) > 0.01 * peak
+    print(f"   (r, z) winding, Table 3, {ex.layers_per_group.size} groups, 61 sectors, CPU")
+    for name, (t, w) in runs.items():
+        d = np.abs(w.sigma_r - ex.sigma_r)
+        print(
+            f"   {name:32s} {t:7.2f} s  max |d sigma_r| {100 * d.max() / peak:.3f} % of peak,"
+            f" pointwise {100 * np.max(d[big] / np.abs(ex.sigma_r[big])):.3f} %, core"
+            f" {100 * np.max(np.abs(w.core_pressure / ex.core_pressure - 1)):.3f} %,"
+            f" groups factorised in refreshes {w.info['deep_groups_factorised']}"
+        )
+
+
 def timed(fn):
     t0 = time.perf_counter()
     out = fn()
@@ -104,7 +202,18 @@ def main() -> None:
     ap.add_argument("--quick", action="store_true", help="skip the 1-worker and nip runs")
     ap.add_argument("--plots", type=Path, default=None)
     ap.add_argument("--winding", action="store_true", help="sections 1-2 only (winding alone)")
+    ap.add_argument("--process", action="store_true", help="whole-process runs only")
+    ap.add_argument("--before", default=None, help="git revision to compare with (--process)")
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--cases", default="pet3-2.3MPa,pet3-3.45MPa-nip")
+    ap.add_argument("--deep", action="store_true", help="the deep part's schemes only")
     args = ap.parse_args()
+    if args.process:
+        whole_process(args.cases.split(","), args.before, args.repeat)
+        return
+    if args.deep:
+        deep_part(400)
+        return
     prof = bundled_profile()
 
     print("1. axisymmetric winding alone, Table 3, 61 sectors, bundled synthetic profile")

@@ -326,3 +326,74 @@ def test_early_pool_is_started_before_the_winding_and_reused() -> None:
         assert pool is None
     with early_pool(contact, 1) as pool:
         assert pool is None
+
+
+def _sector_rho(w, sectors, contact, readout) -> np.ndarray:
+    return np.array(
+        [readout(*map(np.atleast_1d, contact(*w.sector_profile(j))))[0] for j in sectors]
+    )
+
+
+def test_deep_levels_keep_the_reading_of_the_previous_winding() -> None:
+    # Rho per sector from the default winding (deep part in levels, window 16 / flush 4)
+    # against the previous single frozen stack (window 24 / flush 8) and the whole stack
+    # every increment, same contact model: Table 3 web, bundled profile, 9 sectors, R 13 cm
+    # (374 layers), 120 groups (three levels), three sectors (one hard, two slack).
+    # Measured: 0.013 % / 0.05 % (the contact's own step error on this small roll is
+    # larger: 1.6-3.4 % between its default steps and 48). Tolerance 0.2 %, well inside the
+    # issue's 0.5 % bar for the reading.
+    pytest.importorskip("woundroll.contact")
+    from woundroll.instruments import get_instrument
+    from woundroll.profile.hardness import ContactModel, EnergyReadout
+    from woundroll.winding.axisymmetric import wind_axisymmetric
+
+    inst = get_instrument("rho-meter")
+    ten = TensionSchedule(web_stress=2.3e6)
+    kw = dict(n_sectors=9, n_groups=120)
+    new = wind_axisymmetric(WEB, CORE, 0.13, ten, bundled_profile(), **kw)
+    old = wind_axisymmetric(
+        WEB, CORE, 0.13, ten, bundled_profile(), levels=False, window=24, flush=8, **kw
+    )
+    exact = wind_axisymmetric(WEB, CORE, 0.13, ten, bundled_profile(), window=None, **kw)
+    assert new.info["deep_part"] == "levels" and old.info["deep_part"] == "single"
+    readout = EnergyReadout(inst)
+    contact = ContactModel(WEB, CORE, inst.head_radius, inst.head_length, instrument=inst)
+    sectors = [1, 4, 7]
+    rho = {
+        k: _sector_rho(w, sectors, contact, readout)
+        for k, w in (("new", new), ("old", old), ("exact", exact))
+    }
+    assert np.all(np.isfinite(rho["new"])) and np.all(rho["new"] > 0)
+    np.testing.assert_allclose(rho["new"], rho["old"], rtol=2e-3)
+    np.testing.assert_allclose(rho["new"], rho["exact"], rtol=2e-3)
+
+
+@pytest.mark.slow
+def test_table3_reading_of_the_deep_levels_equals_the_exact_winding() -> None:
+    # issue 14 item 3's accuracy bar on the bundled Table 3 case (61 sectors, 1,337 layers,
+    # 400 groups): Rho per sector from the default winding (deep part in levels) against the
+    # whole stack solved every increment (window=None), same contact model. Measured
+    # (docs/profile.md section 7): within 0.28 %, where the previous single frozen stack
+    # was up to 5.8 % off on the slack sectors (their near-surface sigma_r of a few hundred
+    # Pa is set by the deep part through the E_r floor). Tolerance 0.5 %.
+    pytest.importorskip("woundroll.contact")
+    from woundroll.instruments import get_instrument
+    from woundroll.profile.hardness import (
+        ContactModel,
+        EnergyReadout,
+        map_sectors,
+        sector_contacts,
+    )
+    from woundroll.winding.axisymmetric import wind_axisymmetric
+
+    inst = get_instrument("rho-meter")
+    ten = TensionSchedule(web_stress=2.3e6)
+    contact = ContactModel(WEB, CORE, inst.head_radius, inst.head_length, instrument=inst)
+    readout = EnergyReadout(inst)
+    rho = {}
+    for name, kw in (("levels", {}), ("exact", {"window": None})):
+        w = wind_axisymmetric(WEB, CORE, 0.2032, ten, bundled_profile(), n_groups=400, **kw)
+        fns = sector_contacts(contact, w.slack)
+        a, b = map_sectors(fns, [w.sector_profile(j) for j in range(61)], workers=2)
+        rho[name] = readout(a, b)
+    np.testing.assert_allclose(rho["levels"], rho["exact"], rtol=5e-3)
