@@ -166,6 +166,12 @@ def test_case_keys_one_spelling_for_2d_and_3d() -> None:
     with pytest.raises(InputError) as e:
         load_case("pet2-53.4N", ["contact.slip='coulomb'"])
     assert e.value.field == "contact.slip"
+    # a quantity string where the 3D options take SI numbers: a one-line error, no traceback
+    with pytest.raises(InputError) as e:
+        load_case(
+            "pet2-53.4N", ["contact.options3d.axial_size='0.5 mm'"]
+        ).contact.contact3d_options()
+    assert e.value.field == "contact.options3d"
 
 
 def test_pipeline_reading_with_slip_is_lower() -> None:

@@ -244,6 +244,12 @@ def slip_factor_study(
     ``model`` ("2d" or "3d"), mu = ``friction`` and ``slip_shear_fraction``; ``workers``
     runs them in a process pool.
     """
+    if (
+        isinstance(friction, bool)
+        or not isinstance(friction, int | float)
+        or not (math.isfinite(friction) and friction >= 0)
+    ):
+        raise InputError(f"must be a number >= 0, got {friction!r}", "study.friction")
     if model not in ("2d", "3d"):
         raise InputError(f"must be '2d' or '3d', got {model!r}", "study.model")
     _report(progress, f"slip: {case}", 0.0)
