@@ -44,7 +44,7 @@ def main() -> None:
     best = float("inf")
     for _ in range(20):
         t0 = time.perf_counter()
-        apply_cmd_spread(c, web)
+        apply_cmd_spread(c)
         best = min(best, time.perf_counter() - t0)
     print(f"2D solve (PET2 53.4 N, 1.34 mm, {c.n_dof} DOF): {t_solve:.3f} s")
     print(f"CMD-spreading correction: {best * 1e3:.2f} ms ({best / t_solve:.2%} of the solve)")

@@ -385,7 +385,7 @@ def roll_stiffness(
         if spread:
             from woundroll.contact.cmd_spread import MODEL_NAME, apply_cmd_spread
 
-            correction = apply_cmd_spread(contact, web)
+            correction = apply_cmd_spread(contact)
             contact = correction.corrected
         spring = fit_roll_spring(contact.delta, contact.force, instrument)
         if not spring.extrapolated or (depth_max is None and depth >= reach):
