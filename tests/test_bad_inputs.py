@@ -190,7 +190,14 @@ def test_roll_too_thin_for_the_tester_names_its_size(outer):
     # never set, not a solver failure with exit 1). (3 layers used to end here too, because
     # the FD impact on its beta = 0 spring never ended; it now reads like 2 layers, below.)
     res = runner.invoke(
-        app, ["run", "pet1-26.7N", "-q", "--set", f'winding.outer_radius="{outer}"']
+        app,
+        [
+            "run",
+            "pet1-26.7N",
+            "-q",
+            "--set",
+            f'winding.outer_radius="{outer}"',
+        ],
     )
     lines = [line for line in res.output.splitlines() if line.strip()]
     assert res.exit_code == 2, res.output

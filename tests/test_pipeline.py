@@ -118,13 +118,22 @@ def test_out_writes_json_and_plots(tmp_path):
 def test_head_length_override_scales_the_force():
     # plane strain: the force on the head is the per-length force times the head length,
     # so doubling tester.head_length doubles F(d) exactly (same mesh, same depths)
-    opts = ["contact.no_update=false", "contact.depth_max='1 mm'"]
+    opts = ["contact.no_update=false", "contact.depth_max='1 mm'", "contact.model='2d'"]
     base = woundroll.run(woundroll.load_case("pet1-26.7N", opts))
     long = woundroll.run(woundroll.load_case("pet1-26.7N", [*opts, "tester.head_length='5.08 cm'"]))
     assert long.contact.contact.force == pytest.approx(2 * base.contact.contact.force, rel=1e-9)
     assert long.contact.to_dict()["head_length_m"] == pytest.approx(0.0508)
     # and the reading rises (a stiffer spring for the same striker)
     assert long.hardness.to_dict()["rho_energy"] > base.hardness.to_dict()["rho_energy"]
+    # the default path adds the load spread past the ends, s(d), which does not depend on
+    # the head's length: F_long / F = (2 L + 2 s) / (L + 2 s)
+    opts[-1] = "contact.model='auto'"
+    base = woundroll.run(woundroll.load_case("pet1-26.7N", opts)).contact
+    long = woundroll.run(woundroll.load_case("pet1-26.7N", [*opts, "tester.head_length='5.08 cm'"]))
+    s, L = base.cmd_spread.spread[1:], 0.0254
+    assert long.contact.contact.force[1:] == pytest.approx(
+        base.contact.force[1:] * (2 * L + 2 * s) / (L + 2 * s), rel=1e-9
+    )
 
 
 @pytest.mark.parametrize(

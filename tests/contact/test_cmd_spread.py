@@ -79,7 +79,7 @@ def test_deflection_basin_is_the_2d_solution(pet2_solution) -> None:
     # the surface under the head moves in with it (the head's axis node is in contact)
     assert u[1:, 0] == pytest.approx(c.delta[1:], rel=1e-3)
     assert np.all(u[0] == 0.0)
-    spread = apply_cmd_spread(c, web)
+    spread = apply_cmd_spread(c)
     lam = spread.decay_length
     # the basin is far wider than the contact and widens with the depth
     assert np.all(lam[2:] > 3 * np.asarray(c.half_width)[2:])
@@ -94,19 +94,16 @@ def test_correction_vanishes_for_a_long_head(pet2_solution) -> None:
     L = 25.4e-3
     for length, bound in ((10 * L, 0.25), (1000 * L, 0.0025)):
         long = replace(c, head_length=length, force=np.asarray(c.force) * length / L)
-        sp = apply_cmd_spread(long, web)
+        sp = apply_cmd_spread(long)
         extra = float(sp.length_ratio[-1]) - 1.0
         # the spread does not depend on L: the excess falls as 1/L
         assert 0 < extra < bound
-        assert sp.spread == pytest.approx(apply_cmd_spread(c, web).spread, rel=1e-12)
-    # a web without CMD stiffness has nothing to carry the load past the ends
-    soft = replace(web, E_z=web.E_theta * 1e-12)
-    assert apply_cmd_spread(c, soft).length_ratio[-1] - 1 < 2e-3
+        assert sp.spread == pytest.approx(apply_cmd_spread(c).spread, rel=1e-12)
     # without both terms the correction is the identity
-    none = apply_cmd_spread(c, web, basin_factor=0.0, end_factor=0.0)
+    none = apply_cmd_spread(c, basin_factor=0.0, end_factor=0.0)
     assert np.array_equal(none.corrected.force, c.force)
     with pytest.raises(InputError) as exc:
-        apply_cmd_spread(c, web, end_factor=-1.0)
+        apply_cmd_spread(c, end_factor=-1.0)
     assert exc.value.field == "contact.end_factor"
 
 
@@ -147,34 +144,59 @@ def test_pipeline_json_names_the_model() -> None:
     assert auto["alpha_N_per_m2"] > 2 * raw["alpha_N_per_m2"]
 
 
-def test_longer_head_against_3d() -> None:
+def _extra_curves(key: str):
+    """The cached 3D curve of an extra case and the corrected 2D curve at its depths."""
+    e = REF["extra"][key]
+    overrides = ["contact.no_update=false", "contact.model='2d'", *e.get("overrides", [])]
+    case = load_case(e["case"], overrides)
+    res = run(case)
+    web, core = case.web.build(), case.core.build()
+    ins = case.tester_setup.instrument
+    d = np.asarray(e["curve"]["delta_m"])
+    c = indent(
+        web,
+        core,
+        res.winding.radius,
+        res.winding.sigma_r,
+        head_radius=ins.head_radius,
+        head_length=e["head_length_m"],
+        depth_max=float(d[-1]),
+    )
+    sp = apply_cmd_spread(c)
+    sel = d > 0.25 * d[-1]
+    f3 = np.asarray(e["curve"]["force_N"])[sel]
+    fc = np.interp(d[sel], sp.corrected.delta, sp.corrected.force)
+    f2 = np.interp(d[sel], c.delta, c.force)
+    return f3, fc, f2
+
+
+@pytest.mark.parametrize("key", ["pet1-26.7N-L50.8mm", "pet2-53.4N-L50.8mm"])
+def test_longer_head_against_3d(key: str) -> None:
     """The spread does not depend on the head's length: a 50.8 mm head (twice the
-    Rho-meter's), cached 3D curve, against the correction (same lambda(d), half the
-    relative excess)."""
-    for key, e in REF["extra"].items():
-        case = load_case(e["case"], ["contact.no_update=false", "contact.model='2d'"])
-        res = run(case)
-        web, core = case.web.build(), case.core.build()
-        ins = case.tester_setup.instrument
-        cur = e["curve"]
-        d = np.asarray(cur["delta_m"])
-        c = indent(
-            web,
-            core,
-            res.winding.radius,
-            res.winding.sigma_r,
-            head_radius=ins.head_radius,
-            head_length=e["head_length_m"],
-            depth_max=float(d[-1]),
-        )
-        sp = apply_cmd_spread(c, web)
-        f3 = np.asarray(cur["force_N"])
-        fc = np.interp(d, sp.corrected.delta, sp.corrected.force)
-        f2 = np.interp(d, c.delta, c.force)
-        sel = d > 0.3 * d[-1]
-        # 6 %: F(d), not Rho (a force error of ~2x the Rho error), over 0.3-1 depth_max
-        assert np.max(np.abs(fc[sel] / f3[sel] - 1)) < 0.06, key
-        assert np.min(f3[sel] / f2[sel]) > 1.3, key
+    Rho-meter's; cached 3D curve) against the correction with the same s(d)."""
+    f3, fc, f2 = _extra_curves(key)
+    # plane strain misses by a third or more; the corrected F(d) is within 5 % over
+    # 0.25-1 depth_max (5 % more force at every depth is +1.7 % in Rho, docs/contact.md)
+    assert np.min(f3 / f2) > 1.3
+    assert np.max(np.abs(fc / f3 - 1)) < 0.05
+
+
+def test_cmd_stiffness_scaling_against_3d() -> None:
+    """E_z = E_theta / 8 (PET1 26.7 N; cached 3D curve): the 3D roll is as much stiffer than
+    plane strain as with E_z = E_theta, and the spread without a factor of E_z matches it
+    (a plate-on-foundation factor (E_z/E_theta)^(1/4) would read 21-25 % low; 5 % as for
+    the longer head)."""
+    f3, fc, f2 = _extra_curves("pet1-26.7N-Ez/8")
+    assert np.max(np.abs(fc / f3 - 1)) < 0.05
+
+
+def test_study_model_option() -> None:
+    from typer.testing import CliRunner
+
+    from woundroll.cli import app
+
+    res = CliRunner().invoke(app, ["study", "tension", "--model", "auto"])
+    assert res.exit_code == 2 and "--model" in res.output
 
 
 @pytest.mark.slow

@@ -15,7 +15,7 @@ E_z = E_theta, G_r_z = G_r_theta = 2 E_r), so past each end of the head the surf
 pulled down along the CMD about as far as the plane-strain basin reaches along the hoop.
 The head then loads an effective length
 
-    L_eff(d) = L + 2 s(d),   s(d) = (E_z / E_theta)^(1/4) (c_b lambda(d) + c_a a(d)),
+    L_eff(d) = L + 2 s(d),   s(d) = c_b lambda(d) + c_a a(d),
 
 F(d) = F_2D(d) L_eff(d) / L, where lambda(d) is the distance from the head's axis at which
 the plane-strain surface deflection has fallen to 1/e of its value under the head
@@ -23,11 +23,12 @@ the plane-strain surface deflection has fallen to 1/e of its value under the hea
 and read from the 2D solution. The basin term c_b lambda is the layers pulled down past the
 end (c_b = 1 would be the exact hoop/CMD analogy); the end term c_a a is the load the head's
 sharp ends concentrate over the contact width 2a (the bundled Rho-meter file has sharp
-ends, and so had the 3D model the constants were fitted to). The factor
-(E_z/E_theta)^(1/4) is the ratio of the decay lengths of a plate on an elastic foundation
-(lambda ~ (D/k)^(1/4), D ~ E) bent along the CMD and along the hoop; it is 1 for every
-bundled web. c_b, c_a (:data:`BASIN_FACTOR`, :data:`END_FACTOR`) are fitted to the 3D
-model on two rolls and validated on nine more (docs/contact.md).
+ends, and so had the 3D model the constants were fitted to). c_b, c_a
+(:data:`BASIN_FACTOR`, :data:`END_FACTOR`) are fitted to the 3D model on two rolls and
+validated on nine more (docs/contact.md). The spread carries no factor of the web's CMD
+stiffness: a plate on a foundation would suggest (E_z/E_theta)^(1/4), but the 3D model with
+E_z = E_theta / 8 is as much stiffer than plane strain as with E_z = E_theta, and s(d)
+without a factor matches it (docs/contact.md).
 
 Limits: s / L -> 0 (a head much longer than the basin) gives plane strain back; the
 stresses, the slip factor and the semi-contact width stay those of the 2D solution at the
@@ -48,7 +49,7 @@ from woundroll.errors import InputError
 
 FloatArray = NDArray[np.float64]
 
-#: c_b and c_a of s(d) = (E_z/E_theta)^(1/4) (c_b lambda(d) + c_a a(d)): the two values
+#: c_b and c_a of s(d) = c_b lambda(d) + c_a a(d): the two values
 #: with which PET1 26.7 N and PET2 53.4 N read the 3D model's Rho (FD); validated on the
 #: other nine rolls (docs/contact.md, "Fast path: plane strain + CMD spreading").
 BASIN_FACTOR = 0.85
@@ -94,7 +95,7 @@ class CmdSpread:
     decay_length : ndarray [m]
         lambda(d) at every depth of the solution.
     spread : ndarray [m]
-        s(d) = (E_z/E_theta)^(1/4) (c_b lambda(d) + c_a a(d)): how far the loaded length
+        s(d) = c_b lambda(d) + c_a a(d): how far the loaded length
         reaches past each end of the head.
     basin_factor, end_factor : float
         c_b and c_a used.
@@ -117,7 +118,7 @@ class CmdSpread:
     def to_dict(self) -> dict[str, Any]:
         return {
             "name": MODEL_NAME,
-            "formula": "F = F_2D (L + 2 s) / L, s = (E_z/E_theta)^(1/4) (c_b lambda(d) + c_a a(d))",
+            "formula": "F = F_2D (L + 2 s) / L, s = c_b lambda(d) + c_a a(d)",
             "basin_factor_c_b": self.basin_factor,
             "end_factor_c_a": self.end_factor,
             "decay_length_m": self.decay_length.tolist(),
@@ -129,7 +130,6 @@ class CmdSpread:
 
 def apply_cmd_spread(
     contact: ContactResult,
-    web: Any,
     *,
     basin_factor: float = BASIN_FACTOR,
     end_factor: float = END_FACTOR,
@@ -141,8 +141,6 @@ def apply_cmd_spread(
     contact : ContactResult
         A 2D solution of :func:`woundroll.contact.indent` (it carries the surface
         deflection at every depth).
-    web : Web
-        Its E_z / E_theta scales the spread (module docstring).
     basin_factor, end_factor : float
         c_b and c_a of the spread (defaults :data:`BASIN_FACTOR`, :data:`END_FACTOR`,
         fitted to the 3D model).
@@ -163,8 +161,7 @@ def apply_cmd_spread(
     s = np.asarray(contact.contact_s, dtype=float)
     lam = np.array([deflection_decay_length(s, row) for row in np.asarray(hist)])
     a = np.asarray(contact.half_width, dtype=float)
-    scale = (float(web.E_z) / float(web.E_theta)) ** 0.25
-    spread = scale * (basin_factor * lam + end_factor * a)
+    spread = basin_factor * lam + end_factor * a
     L = float(contact.head_length)
     force = np.asarray(contact.force) * (1.0 + 2.0 * spread / L)
     alpha, beta, r2, max_res = fit_spring(np.asarray(contact.delta), force)

@@ -404,7 +404,7 @@ def roll_stiffness(
         if spread:
             from woundroll.contact.cmd_spread import MODEL_NAME, apply_cmd_spread
 
-            correction = apply_cmd_spread(contact, web)
+            correction = apply_cmd_spread(contact)
             contact = correction.corrected
         name = "3d" if use_3d else (MODEL_NAME if spread else "2d")
         spring = fit_roll_spring(contact.delta, contact.force, instrument, reach=FIT_REACH)
