@@ -105,3 +105,36 @@ def test_nip_deflection_on_a_soft_web_is_reported_not_identifiable():
     # 3 posterior SDs: the SDs of a frozen-Jacobian fit are optimistic, docs/diagnosis.md)
     _, h, _ = fit.thickness_profile()
     assert np.max(np.abs(h / roll.web.thickness - 1)) < 0.003
+
+
+def test_posterior_sds_scaled_by_the_residuals():
+    # a fast fit on 7 sectors with a synthetic P_s -> reading map (through the cache): the
+    # readings are the reduced model's own at 105 % tension plus a CMD step the smooth
+    # bands cannot follow (model error). The raw posterior SDs trust the weights; the
+    # calibrated ones are scaled by sqrt(chi2 / (n - tr H)), the Birge ratio, here > 1
+    m = small_model(k=3)
+    case = load_case("pet2-53.4N", ["web.width='24 in'"])
+    x = np.linspace(1, 23, 12) * 0.0254
+    m7 = ProfileModel(m.roll, m.curve, m.base_position, m.base_thickness, 3, 7, False)
+    theta = np.zeros(4)
+    theta[0] = np.log(1.05)
+    clean = m7.readings(theta, x)
+    step = np.where(x > 12 * 0.0254, 0.6, -0.6)
+    rng = np.random.default_rng(2)
+    xs = np.repeat(x, 3)
+    noise = 0.1 * rng.standard_normal(xs.size)
+    r = readings_from_arrays(xs, np.repeat(clean + step, 3) + noise)
+    cache = {"curve": m.curve}
+    fit = fit_causes(case, r, n_bands=3, n_sectors=7, verify=False, cache=cache)
+    raw = fit_causes(case, r, n_bands=3, n_sectors=7, verify=False, cache=cache, calibrate_sd=False)
+    assert raw.forward_runs == fit.forward_runs - 5  # start and Jacobian from the cache
+    assert raw.sd_scale == 1.0
+    assert fit.sd_scale == pytest.approx(np.sqrt(fit.residual_chi2 / fit.residual_dof))
+    assert fit.sd_scale > 3.0  # residuals of ~0.5 Rho against standard errors of 0.06
+    np.testing.assert_allclose(fit.sd, raw.sd * fit.sd_scale, rtol=1e-12)
+    assert any("posterior SDs are scaled" in n for n in fit.notes)
+    # the same readings without the step: the residuals match the scatter, no inflation
+    # beyond the chi-square's own spread (dof ~ 8: sqrt(chi2/dof) within 0.5-1.5)
+    r2 = readings_from_arrays(xs, np.repeat(clean, 3) + noise)
+    ok = fit_causes(case, r2, n_bands=3, n_sectors=7, verify=False, cache=cache)
+    assert ok.sd_scale < 1.6

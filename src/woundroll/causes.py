@@ -178,6 +178,9 @@ class CauseFit:
     notes: tuple[str, ...] = ()
     verification: dict[str, Any] = field(default_factory=dict)
     forward_runs: int = 0
+    sd_scale: float = 1.0
+    residual_chi2: float = math.nan
+    residual_dof: float = math.nan
 
     @property
     def names(self) -> list[str]:
@@ -238,6 +241,9 @@ class CauseFit:
             "causes": self.causes,
             "verification": self.verification,
             "forward_runs": self.forward_runs,
+            "posterior_sd_scale": self.sd_scale,
+            "residual_chi2": self.residual_chi2,
+            "residual_dof": self.residual_dof,
             "notes": list(self.notes),
         }
 
@@ -278,8 +284,19 @@ def fit_causes(
     steps: int = 3,
     verify: bool = True,
     progress: Callable[[str, float], None] | None = None,
+    calibrate_sd: bool = True,
+    cache: dict[str, Any] | None = None,
+    full_level: bool = False,
 ) -> CauseFit:
     """Fit thickness bands, tension level and nip deflection to a CMD hardness profile.
+
+    ``calibrate_sd``: scale the posterior covariance by the residuals' reduced chi-square
+    when it exceeds 1 (module docstring, "Posterior SDs"). ``cache``: a dict shared by
+    repeated fits of the same roll at the same positions (noise studies): the forward curve
+    and the Jacobian at the starting point are computed once. ``full_level``: one run of the
+    full profile model (:func:`woundroll.pipeline.run`, coupled winding and a contact solve
+    per sector) at the fitted thickness and tension corrects the tension level for the
+    reduced model's level error (:func:`_full_level`; 20-50 s).
 
     Raises
     ------
@@ -326,8 +343,14 @@ def fit_causes(
     K = n_bands if n_bands is not None else int(min(8, max(2, readings.n_positions // 2)))
     # the P_s -> reading map: the case's forward curve over the readings' range (widened)
     r_lo, r_hi = float(readings.mean.min()), float(readings.mean.max())
-    curve = forward_curve(roll, [0.8 * r_lo, 1.2 * r_hi])
-    runs = len(curve.points)
+    if cache is not None and "curve" in cache:
+        curve = cache["curve"]
+        runs = 0
+    else:
+        curve = forward_curve(roll, [0.8 * r_lo, 1.2 * r_hi])
+        runs = len(curve.points)
+        if cache is not None:
+            cache["curve"] = curve
     model = ProfileModel(roll, curve, pos, h0, K, n_sectors, nip_defl)
     npar = model.n_params()
     prior = np.full(npar, prior_band)
@@ -358,20 +381,26 @@ def fit_causes(
         runs += 1
         return model.readings(th, x)
 
-    f0 = f(theta)
+    key = ("jacobian", tuple(np.round(x, 9)), K, n_sectors, nip_defl)
+    if cache is not None and key in cache:
+        f0, J = cache[key]
+    else:
+        f0 = f(theta)
+        # forward-difference Jacobian (steps: 1 % in ln s, 0.1 in d, 0.2 % caliper per band)
+        steps_fd = np.full(npar, 0.002)
+        steps_fd[0] = 0.01
+        if nip_defl:
+            steps_fd[1] = 0.1
+        J = np.empty((x.size, npar))
+        for k in range(npar):
+            if progress is not None:
+                progress("jacobian", k / npar)
+            t = theta.copy()
+            t[k] += steps_fd[k]
+            J[:, k] = (f(t) - f0) / steps_fd[k]
+        if cache is not None:
+            cache[key] = (f0, J)
     initial = f0.copy()
-    # forward-difference Jacobian (steps: 1 % in ln s, 0.1 in d, 0.2 % caliper per band)
-    steps_fd = np.full(npar, 0.002)
-    steps_fd[0] = 0.01
-    if nip_defl:
-        steps_fd[1] = 0.1
-    J = np.empty((x.size, npar))
-    for k in range(npar):
-        if progress is not None:
-            progress("jacobian", k / npar)
-        t = theta.copy()
-        t[k] += steps_fd[k]
-        J[:, k] = (f(t) - f0) / steps_fd[k]
     Wd = 1.0 / se**2
     # priors, and the bands summing to zero: a uniform shift of every c_k leaves the
     # mean-removed thickness (nearly) unchanged and would otherwise be decided by the prior
@@ -396,6 +425,28 @@ def fit_causes(
         if progress is not None:
             progress("fit", 1.0)
     _, theta, fk = best
+    # posterior SDs: (J^T W J + P^-1)^-1 trusts the weights and the reduced model; when the
+    # residuals are larger than the weights say (model error of the reduced model, a cause
+    # outside the basis), scale by the reduced chi-square (Birge ratio) over the effective
+    # degrees of freedom n - tr(H), H the regularised fit's hat matrix
+    chi2_res = float(np.sum(Wd * (y - fk) ** 2))
+    dof = float(y.size - np.trace(J @ cov @ J.T @ np.diag(Wd)))
+    sd_scale = 1.0
+    if calibrate_sd:
+        if dof >= 1.0:
+            sd_scale = max(1.0, math.sqrt(chi2_res / dof))
+        else:
+            notes.append(
+                f"{y.size} positions for {npar} parameters leave no degrees of freedom to "
+                "check the posterior SDs against the residuals: they may be optimistic"
+            )
+    cov = cov * sd_scale**2
+    if sd_scale > 1.0:
+        notes.append(
+            f"the residuals are {sd_scale:.2g} times larger than the readings' scatter "
+            f"(chi-square {chi2_res:.3g} on {dof:.3g} effective degrees of freedom): the "
+            "posterior SDs are scaled up by that factor"
+        )
     sd = np.sqrt(np.diag(cov))
     corr = cov / np.outer(sd, sd)
     identifiable = [bool(s < 0.7 * p) for s, p in zip(sd, prior, strict=True)]
@@ -415,9 +466,24 @@ def fit_causes(
             if cz["cause"] != "tension level" and "not" not in cz["sentence"]:
                 cz["sentence"] += " (within the noise: not significant)"
                 cz["identifiable"] = False
+    level: dict[str, Any] = {}
+    if full_level:
+        level = _full_level(case, model, theta, fk, J[:, 0], x)
+        theta = theta.copy()
+        theta[0] += level["ln_s_correction"]
+        fk = fk + J[:, 0] * level["ln_s_correction"]
+        runs += 1
+        notes.append(
+            f"tension level corrected by the full profile model: its readings at the fitted "
+            f"causes were {level['mean_offset']:+.2g} {readings.scale} from the reduced "
+            f"model's on average; ln(T0/T_case) moved by {level['ln_s_correction']:+.3f} "
+            "(one secant step; its SD does not include this model error)"
+        )
     verification: dict[str, Any] = {}
+    if level:
+        verification["full_level"] = level
     if verify:
-        verification = _verify(model, theta)
+        verification.update(_verify(model, theta))
         runs += 3
         err = verification.get("max_abs_error")
         if err is not None and err > 2 * float(np.mean(se)):
@@ -439,7 +505,58 @@ def fit_causes(
         notes=tuple(notes),
         verification=verification,
         forward_runs=runs,
+        sd_scale=sd_scale,
+        residual_chi2=chi2_res,
+        residual_dof=dof,
     )
+
+
+def _full_level(
+    case: Case,
+    model: ProfileModel,
+    theta: FloatArray,
+    fitted: FloatArray,
+    d_ln_s: FloatArray,
+    x: FloatArray,
+) -> dict[str, Any]:
+    """The full profile model at the fitted thickness and tension level: the mean offset of
+    its readings from the reduced model's, and the ln s step that removes it (a secant on
+    the reduced model's sensitivity of the mean reading to ln s)."""
+    import tempfile
+
+    from woundroll.pipeline import run
+
+    s_fit, _, c = model.split(theta)
+    h = model.thickness(c)
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "fitted_thickness.csv"
+        np.savetxt(
+            path,
+            np.column_stack([model.base_position * 1e3, h * 1e6]),
+            delimiter=",",
+            header="position [mm],thickness [um]",
+            comments="",
+        )
+        winding = case.winding.model_copy(
+            update={
+                "thickness_profile": str(path),
+                "tension": ("pressure", math.exp(s_fit) * model.roll.tension),
+            }
+        )
+        profile = case.profile.model_copy(update={"sectors": model.n_sectors})
+        fitted_case = case.model_copy(update={"winding": winding, "profile": profile})
+        fitted_case.__dict__.pop("thickness_profile", None)  # cached from the original case
+        prof = run(fitted_case).profile
+    full = np.interp(x, prof.z, prof.rho)
+    offset = float(np.mean(full - fitted))
+    slope = float(np.mean(d_ln_s))
+    step = -offset / slope if slope > 0 else 0.0
+    return {
+        "rho_full": full.tolist(),
+        "rho_reduced": fitted.tolist(),
+        "mean_offset": offset,
+        "ln_s_correction": step,
+    }
 
 
 def _verify(model: ProfileModel, theta: FloatArray) -> dict[str, Any]:
