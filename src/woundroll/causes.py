@@ -53,6 +53,8 @@ if TYPE_CHECKING:
 
 FloatArray = NDArray[np.float64]
 INCH = 0.0254
+#: Tension-level change (in ln s) beyond which the Jacobian is recomputed at the fit.
+RELINEARISE = 0.05
 
 __all__ = ["CauseFit", "ProfileModel", "fit_causes"]
 
@@ -286,17 +288,17 @@ def fit_causes(
     progress: Callable[[str, float], None] | None = None,
     calibrate_sd: bool = True,
     cache: dict[str, Any] | None = None,
-    full_level: bool = False,
+    full_level: int = 0,
 ) -> CauseFit:
     """Fit thickness bands, tension level and nip deflection to a CMD hardness profile.
 
     ``calibrate_sd``: scale the posterior covariance by the residuals' reduced chi-square
     when it exceeds 1 (module docstring, "Posterior SDs"). ``cache``: a dict shared by
     repeated fits of the same roll at the same positions (noise studies): the forward curve
-    and the Jacobian at the starting point are computed once. ``full_level``: one run of the
-    full profile model (:func:`woundroll.pipeline.run`, coupled winding and a contact solve
-    per sector) at the fitted thickness and tension corrects the tension level for the
-    reduced model's level error (:func:`_full_level`; 20-50 s).
+    and the Jacobian at the starting point are computed once. ``full_level``: runs (1-3)
+    of the full profile model (:func:`woundroll.pipeline.run`, coupled winding and a contact
+    solve per sector, 20-50 s each) at the fitted thickness that correct the tension level
+    for the reduced model's level error (:func:`_full_level`).
 
     Raises
     ------
@@ -381,23 +383,28 @@ def fit_causes(
         runs += 1
         return model.readings(th, x)
 
+    # forward-difference Jacobian (steps: 1 % in ln s, 0.1 in d, 0.2 % caliper per band)
+    steps_fd = np.full(npar, 0.002)
+    steps_fd[0] = 0.01
+    if nip_defl:
+        steps_fd[1] = 0.1
+
+    def jacobian(th: FloatArray, f_th: FloatArray) -> FloatArray:
+        out = np.empty((x.size, npar))
+        for k in range(npar):
+            if progress is not None:
+                progress("jacobian", k / npar)
+            t = th.copy()
+            t[k] += steps_fd[k]
+            out[:, k] = (f(t) - f_th) / steps_fd[k]
+        return out
+
     key = ("jacobian", tuple(np.round(x, 9)), K, n_sectors, nip_defl)
     if cache is not None and key in cache:
         f0, J = cache[key]
     else:
         f0 = f(theta)
-        # forward-difference Jacobian (steps: 1 % in ln s, 0.1 in d, 0.2 % caliper per band)
-        steps_fd = np.full(npar, 0.002)
-        steps_fd[0] = 0.01
-        if nip_defl:
-            steps_fd[1] = 0.1
-        J = np.empty((x.size, npar))
-        for k in range(npar):
-            if progress is not None:
-                progress("jacobian", k / npar)
-            t = theta.copy()
-            t[k] += steps_fd[k]
-            J[:, k] = (f(t) - f0) / steps_fd[k]
+        J = jacobian(theta, f0)
         if cache is not None:
             cache[key] = (f0, J)
     initial = f0.copy()
@@ -409,22 +416,48 @@ def fit_causes(
     ones[1 + int(nip_defl) :] = 1.0
     P_inv += np.outer(ones, ones) / (0.1 * prior_band) ** 2
     A = J.T @ (Wd[:, None] * J) + P_inv
-    cov = np.linalg.inv(A)
     fk = f0
     best = (float(np.sum(Wd * (y - f0) ** 2) + theta @ P_inv @ theta), theta, f0)
-    for _ in range(steps):
-        # frozen-Jacobian Gauss-Newton on the regularised objective
-        g = J.T @ (Wd * (y - fk)) - P_inv @ theta
-        theta = theta + np.linalg.solve(A, g)
-        fk = f(theta)
-        obj = float(np.sum(Wd * (y - fk) ** 2) + theta @ P_inv @ theta)
-        if obj < best[0] * (1 - 1e-6):
-            best = (obj, theta.copy(), fk.copy())
-        else:
+    relinearised = False
+    while True:
+        for _ in range(steps):
+            # frozen-Jacobian Gauss-Newton on the regularised objective
+            th_b, f_b = best[1], best[2]
+            g = J.T @ (Wd * (y - f_b)) - P_inv @ th_b
+            theta = th_b + np.linalg.solve(A, g)
+            fk = f(theta)
+            obj = float(np.sum(Wd * (y - fk) ** 2) + theta @ P_inv @ theta)
+            if obj < best[0] * (1 - 1e-6):
+                best = (obj, theta.copy(), fk.copy())
+            else:
+                break
+            if progress is not None:
+                progress("fit", 1.0)
+        # the sensitivities change with the tension level: when the fit moved it by more
+        # than RELINEARISE (in ln s), the Jacobian is recomputed there, the steps repeated
+        # and the covariance taken at the fitted point (once)
+        if relinearised or abs(best[1][0]) <= RELINEARISE:
             break
-        if progress is not None:
-            progress("fit", 1.0)
+        relinearised = True
+        J = jacobian(best[1], best[2])
+        A = J.T @ (Wd[:, None] * J) + P_inv
+    cov = np.linalg.inv(A)
     _, theta, fk = best
+    level: dict[str, Any] = {}
+    if full_level:
+        # the reduced model's fit fk stays the fitted readings: the full model reproduces
+        # them at the corrected level
+        level = _full_level(case, model, theta, fk, J[:, 0], x, runs=int(full_level))
+        theta = theta.copy()
+        theta[0] += level["ln_s_correction"]
+        runs += level["full_runs"]
+        notes.append(
+            f"tension level corrected by the full profile model ({level['full_runs']} "
+            f"run(s)): at the reduced model's level its readings were "
+            f"{level['offsets'][0]:+.2g} {readings.scale} off on average; ln(T0/T_case) "
+            f"moved by {level['ln_s_correction']:+.3f} (the SD does not include this "
+            "model error)"
+        )
     # posterior SDs: (J^T W J + P^-1)^-1 trusts the weights and the reduced model; when the
     # residuals are larger than the weights say (model error of the reduced model, a cause
     # outside the basis), scale by the reduced chi-square (Birge ratio) over the effective
@@ -466,19 +499,6 @@ def fit_causes(
             if cz["cause"] != "tension level" and "not" not in cz["sentence"]:
                 cz["sentence"] += " (within the noise: not significant)"
                 cz["identifiable"] = False
-    level: dict[str, Any] = {}
-    if full_level:
-        level = _full_level(case, model, theta, fk, J[:, 0], x)
-        theta = theta.copy()
-        theta[0] += level["ln_s_correction"]
-        fk = fk + J[:, 0] * level["ln_s_correction"]
-        runs += 1
-        notes.append(
-            f"tension level corrected by the full profile model: its readings at the fitted "
-            f"causes were {level['mean_offset']:+.2g} {readings.scale} from the reduced "
-            f"model's on average; ln(T0/T_case) moved by {level['ln_s_correction']:+.3f} "
-            "(one secant step; its SD does not include this model error)"
-        )
     verification: dict[str, Any] = {}
     if level:
         verification["full_level"] = level
@@ -518,17 +538,21 @@ def _full_level(
     fitted: FloatArray,
     d_ln_s: FloatArray,
     x: FloatArray,
+    *,
+    runs: int = 2,
 ) -> dict[str, Any]:
-    """The full profile model at the fitted thickness and tension level: the mean offset of
-    its readings from the reduced model's, and the ln s step that removes it (a secant on
-    the reduced model's sensitivity of the mean reading to ln s)."""
+    """The tension level at which the full profile model, with the fitted thickness,
+    reproduces the mean of the fitted readings: a first step along the reduced model's
+    sensitivity of the mean reading to ln s, then (``runs`` 2 or 3) secants on the full
+    model's own runs."""
     import tempfile
 
     from woundroll.pipeline import run
 
-    s_fit, _, c = model.split(theta)
+    ln_s, _, c = model.split(theta)
     h = model.thickness(c)
-    with tempfile.TemporaryDirectory() as tmp:
+
+    def mean_offset(ls: float, tmp: str) -> tuple[float, FloatArray]:
         path = Path(tmp) / "fitted_thickness.csv"
         np.savetxt(
             path,
@@ -540,22 +564,34 @@ def _full_level(
         winding = case.winding.model_copy(
             update={
                 "thickness_profile": str(path),
-                "tension": ("pressure", math.exp(s_fit) * model.roll.tension),
+                "tension": ("pressure", math.exp(ls) * model.roll.tension),
             }
         )
         profile = case.profile.model_copy(update={"sectors": model.n_sectors})
         fitted_case = case.model_copy(update={"winding": winding, "profile": profile})
         fitted_case.__dict__.pop("thickness_profile", None)  # cached from the original case
         prof = run(fitted_case).profile
-    full = np.interp(x, prof.z, prof.rho)
-    offset = float(np.mean(full - fitted))
+        full = np.interp(x, prof.z, prof.rho)
+        return float(np.mean(full - fitted)), full
+
     slope = float(np.mean(d_ln_s))
-    step = -offset / slope if slope > 0 else 0.0
+    levels, offsets, readings = [ln_s], [], []
+    with tempfile.TemporaryDirectory() as tmp:
+        for k in range(max(1, min(runs, 3))):
+            off, full = mean_offset(levels[-1], tmp)
+            offsets.append(off)
+            readings.append(full.tolist())
+            if k >= 1 and levels[k] != levels[k - 1] and offsets[k] != offsets[k - 1]:
+                slope = (offsets[k] - offsets[k - 1]) / (levels[k] - levels[k - 1])
+            levels.append(levels[-1] - off / slope if slope > 0 else levels[-1])
     return {
-        "rho_full": full.tolist(),
+        "full_runs": len(offsets),
+        "ln_s_levels": levels,
+        "offsets": offsets,
+        "rho_full": readings,
         "rho_reduced": fitted.tolist(),
-        "mean_offset": offset,
-        "ln_s_correction": step,
+        "full_slope": slope,
+        "ln_s_correction": levels[-1] - ln_s,
     }
 
 
