@@ -97,8 +97,9 @@ def test_design_reads_the_target_and_reports_what_it_cannot_meet():
     assert max(c.worst_slack for c in solved) == pytest.approx(
         next(c.worst_slack for c in solved if c.taper == d.taper)
     )
-    assert d.binding == "hoop"
-    assert d.relaxations and d.relaxations[0]["constraint"] == "hoop"
+    assert d.slacks[d.binding] == min(d.slacks.values()) < 0
+    assert d.relaxations and d.relaxations[0]["constraint"] == d.binding
+    assert "hoop" in {r["constraint"] for r in d.relaxations}
     assert any("1D model's physics" in n for n in d.notes)
     json.dumps(d.to_dict())
     # allowing it, the design is feasible and keeps the pressure inside the window
