@@ -58,6 +58,9 @@ def test_bad_targets(kw, field):
         (["--target", "60 Rho", "--pressure", "10 kPa"], "--pressure"),
         (["--target", "60 Rho", "--tension", "1 pli..x"], "--tension"),
         (["--target", "60 R"], "readings"),  # a Schmidt target for a Rho-meter case
+        (["--target", "60 Rho", "--taper", "table", "--knots", "1"], "--knots"),
+        (["--target", "60 Rho", "--hoop-min", "5 kPa"], "--hoop-min"),
+        (["--target", "60 Rho", "--hoop-min", "-5 m"], "--hoop-min"),
     ],
 )
 def test_cli_design_bad_input_one_line(args, field):
