@@ -23,8 +23,12 @@ model at three sectors.
 
 Fit: regularised Gauss-Newton (a Bayesian reading): residuals weighted by the readings'
 standard errors; priors ``c_k ~ N(0, prior_band^2)`` (default 1 % caliper), ``ln s ~ N(0, 1)``,
-``d ~ N(0, 1)``. Jacobian by forward differences once, then up to three frozen-Jacobian
-steps. The posterior covariance ``(J^T W J + P^-1)^-1`` gives each parameter's SD; a
+``d ~ N(0, 1)``. Jacobian by forward differences, then up to three frozen-Jacobian steps;
+when the tension level moved by more than ``RELINEARISE`` the Jacobian is recomputed at the
+fit and the steps repeated. The posterior covariance ``(J^T W J + P^-1)^-1`` at the fit,
+scaled by the residuals' reduced chi-square ``chi2 / (n - tr H)`` when it exceeds 1 (the
+Birge ratio: model error and causes outside the basis), gives each parameter's SD (its
+coverage over noise draws against the full profile model: docs/diagnosis.md); a
 parameter whose posterior SD is more than 0.7 of its prior SD is **not identifiable** from
 these readings, and two whose posterior correlation exceeds 0.9 in magnitude cannot be
 told apart: both are reported rather than guessed.
