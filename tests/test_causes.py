@@ -149,7 +149,7 @@ def test_round_trip_against_the_full_profile_model(tmp_path):
     and -0.99 +- 0.12 % (true +1.13 and -0.87 after the mean is removed), the thickness
     within 0.21 % of h on average (worst 0.41 %); the tension level reads 69.6 % of the
     case's instead of 110 % (the reduced model's level error on this soft roll), which the
-    full-model level correction (full_level=2) removes."""
+    full-model level correction (full_level=3) removes to 2 %."""
     import math
 
     case = load_case("pet2-53.4N", ["web.width='24 in'", "profile.workers=1"])
@@ -180,7 +180,7 @@ def test_round_trip_against_the_full_profile_model(tmp_path):
     rng = np.random.default_rng(0)
     xs = np.repeat(x, 3)
     r = readings_from_arrays(xs, np.repeat(truth, 3) + 0.4 * rng.standard_normal(xs.size))
-    fit = fit_causes(case, r, n_bands=6, full_level=2)
+    fit = fit_causes(case, r, n_bands=6, full_level=3)
     zz, hf, hsd = fit.thickness_profile()
     ht = m.thickness(c, zz)
     # the bands: where they are and how large, within 0.45 % of h everywhere (measured
@@ -188,9 +188,10 @@ def test_round_trip_against_the_full_profile_model(tmp_path):
     assert np.max(np.abs(hf - ht)) < 0.0045 * m.base_thickness[0]
     kinds = sorted(cz["cause"].split()[0] for cz in fit.causes[:2])
     assert kinds == ["thick", "thin"]
-    # the tension level after the full-model correction: measured 69 % -> 97.5 % -> 115.4 %
-    # (two runs, the first along the reduced model's sensitivity, then a secant that
-    # overshoots on the full model's curvature): allowed 8 % in ln s (uncorrected: 37 %)
-    assert abs(fit.theta[0] - math.log(1.1)) < 0.08
+    # the tension level after the full-model correction: measured 66 % -> 132 % -> 103 %
+    # -> 108.1 % (the first step along the reduced model's sensitivity at the fit, then
+    # secants on the full model's runs): allowed 4 % in ln s (measured 1.8 %; uncorrected
+    # the level is 41 % low)
+    assert abs(fit.theta[0] - math.log(1.1)) < 0.04
     assert fit.sd_scale >= 1.0
-    assert fit.verification["full_level"]["full_runs"] == 2
+    assert fit.verification["full_level"]["full_runs"] == 3
