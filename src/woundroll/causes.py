@@ -23,8 +23,12 @@ model at three sectors.
 
 Fit: regularised Gauss-Newton (a Bayesian reading): residuals weighted by the readings'
 standard errors; priors ``c_k ~ N(0, prior_band^2)`` (default 1 % caliper), ``ln s ~ N(0, 1)``,
-``d ~ N(0, 1)``. Jacobian by forward differences once, then up to three frozen-Jacobian
-steps. The posterior covariance ``(J^T W J + P^-1)^-1`` gives each parameter's SD; a
+``d ~ N(0, 1)``. Jacobian by forward differences, then up to three frozen-Jacobian steps;
+when the tension level moved by more than ``RELINEARISE`` the Jacobian is recomputed at the
+fit and the steps repeated. The posterior covariance ``(J^T W J + P^-1)^-1`` at the fit,
+scaled by the residuals' reduced chi-square ``chi2 / (n - tr H)`` when it exceeds 1 (the
+Birge ratio: model error and causes outside the basis), gives each parameter's SD (its
+coverage over noise draws against the full profile model: docs/diagnosis.md); a
 parameter whose posterior SD is more than 0.7 of its prior SD is **not identifiable** from
 these readings, and two whose posterior correlation exceeds 0.9 in magnitude cannot be
 told apart: both are reported rather than guessed.
@@ -53,6 +57,8 @@ if TYPE_CHECKING:
 
 FloatArray = NDArray[np.float64]
 INCH = 0.0254
+#: Tension-level change (in ln s) beyond which the Jacobian is recomputed at the fit.
+RELINEARISE = 0.05
 
 __all__ = ["CauseFit", "ProfileModel", "fit_causes"]
 
@@ -178,6 +184,9 @@ class CauseFit:
     notes: tuple[str, ...] = ()
     verification: dict[str, Any] = field(default_factory=dict)
     forward_runs: int = 0
+    sd_scale: float = 1.0
+    residual_chi2: float = math.nan
+    residual_dof: float = math.nan
 
     @property
     def names(self) -> list[str]:
@@ -238,6 +247,9 @@ class CauseFit:
             "causes": self.causes,
             "verification": self.verification,
             "forward_runs": self.forward_runs,
+            "posterior_sd_scale": self.sd_scale,
+            "residual_chi2": self.residual_chi2,
+            "residual_dof": self.residual_dof,
             "notes": list(self.notes),
         }
 
@@ -278,8 +290,19 @@ def fit_causes(
     steps: int = 3,
     verify: bool = True,
     progress: Callable[[str, float], None] | None = None,
+    calibrate_sd: bool = True,
+    cache: dict[str, Any] | None = None,
+    full_level: int = 0,
 ) -> CauseFit:
     """Fit thickness bands, tension level and nip deflection to a CMD hardness profile.
+
+    ``calibrate_sd``: scale the posterior covariance by the residuals' reduced chi-square
+    when it exceeds 1 (module docstring, "Posterior SDs"). ``cache``: a dict shared by
+    repeated fits of the same roll at the same positions (noise studies): the forward curve
+    and the Jacobian at the starting point are computed once. ``full_level``: runs (1-3)
+    of the full profile model (:func:`woundroll.pipeline.run`, coupled winding and a contact
+    solve per sector, 20-50 s each) at the fitted thickness that correct the tension level
+    for the reduced model's level error (:func:`_full_level`).
 
     Raises
     ------
@@ -326,8 +349,14 @@ def fit_causes(
     K = n_bands if n_bands is not None else int(min(8, max(2, readings.n_positions // 2)))
     # the P_s -> reading map: the case's forward curve over the readings' range (widened)
     r_lo, r_hi = float(readings.mean.min()), float(readings.mean.max())
-    curve = forward_curve(roll, [0.8 * r_lo, 1.2 * r_hi])
-    runs = len(curve.points)
+    if cache is not None and "curve" in cache:
+        curve = cache["curve"]
+        runs = 0
+    else:
+        curve = forward_curve(roll, [0.8 * r_lo, 1.2 * r_hi])
+        runs = len(curve.points)
+        if cache is not None:
+            cache["curve"] = curve
     model = ProfileModel(roll, curve, pos, h0, K, n_sectors, nip_defl)
     npar = model.n_params()
     prior = np.full(npar, prior_band)
@@ -358,20 +387,31 @@ def fit_causes(
         runs += 1
         return model.readings(th, x)
 
-    f0 = f(theta)
-    initial = f0.copy()
     # forward-difference Jacobian (steps: 1 % in ln s, 0.1 in d, 0.2 % caliper per band)
     steps_fd = np.full(npar, 0.002)
     steps_fd[0] = 0.01
     if nip_defl:
         steps_fd[1] = 0.1
-    J = np.empty((x.size, npar))
-    for k in range(npar):
-        if progress is not None:
-            progress("jacobian", k / npar)
-        t = theta.copy()
-        t[k] += steps_fd[k]
-        J[:, k] = (f(t) - f0) / steps_fd[k]
+
+    def jacobian(th: FloatArray, f_th: FloatArray) -> FloatArray:
+        out = np.empty((x.size, npar))
+        for k in range(npar):
+            if progress is not None:
+                progress("jacobian", k / npar)
+            t = th.copy()
+            t[k] += steps_fd[k]
+            out[:, k] = (f(t) - f_th) / steps_fd[k]
+        return out
+
+    key = ("jacobian", tuple(np.round(x, 9)), K, n_sectors, nip_defl)
+    if cache is not None and key in cache:
+        f0, J = cache[key]
+    else:
+        f0 = f(theta)
+        J = jacobian(theta, f0)
+        if cache is not None:
+            cache[key] = (f0, J)
+    initial = f0.copy()
     Wd = 1.0 / se**2
     # priors, and the bands summing to zero: a uniform shift of every c_k leaves the
     # mean-removed thickness (nearly) unchanged and would otherwise be decided by the prior
@@ -380,22 +420,70 @@ def fit_causes(
     ones[1 + int(nip_defl) :] = 1.0
     P_inv += np.outer(ones, ones) / (0.1 * prior_band) ** 2
     A = J.T @ (Wd[:, None] * J) + P_inv
-    cov = np.linalg.inv(A)
     fk = f0
     best = (float(np.sum(Wd * (y - f0) ** 2) + theta @ P_inv @ theta), theta, f0)
-    for _ in range(steps):
-        # frozen-Jacobian Gauss-Newton on the regularised objective
-        g = J.T @ (Wd * (y - fk)) - P_inv @ theta
-        theta = theta + np.linalg.solve(A, g)
-        fk = f(theta)
-        obj = float(np.sum(Wd * (y - fk) ** 2) + theta @ P_inv @ theta)
-        if obj < best[0] * (1 - 1e-6):
-            best = (obj, theta.copy(), fk.copy())
-        else:
+    relinearised = False
+    while True:
+        for _ in range(steps):
+            # frozen-Jacobian Gauss-Newton on the regularised objective
+            th_b, f_b = best[1], best[2]
+            g = J.T @ (Wd * (y - f_b)) - P_inv @ th_b
+            theta = th_b + np.linalg.solve(A, g)
+            fk = f(theta)
+            obj = float(np.sum(Wd * (y - fk) ** 2) + theta @ P_inv @ theta)
+            if obj < best[0] * (1 - 1e-6):
+                best = (obj, theta.copy(), fk.copy())
+            else:
+                break
+            if progress is not None:
+                progress("fit", 1.0)
+        # the sensitivities change with the tension level: when the fit moved it by more
+        # than RELINEARISE (in ln s), the Jacobian is recomputed there, the steps repeated
+        # and the covariance taken at the fitted point (once)
+        if relinearised or abs(best[1][0]) <= RELINEARISE:
             break
-        if progress is not None:
-            progress("fit", 1.0)
+        relinearised = True
+        J = jacobian(best[1], best[2])
+        A = J.T @ (Wd[:, None] * J) + P_inv
+    cov = np.linalg.inv(A)
     _, theta, fk = best
+    level: dict[str, Any] = {}
+    if full_level:
+        # the reduced model's fit fk stays the fitted readings: the full model reproduces
+        # them at the corrected level
+        level = _full_level(case, model, theta, fk, J[:, 0], x, runs=int(full_level))
+        theta = theta.copy()
+        theta[0] += level["ln_s_correction"]
+        runs += level["full_runs"]
+        notes.append(
+            f"tension level corrected by the full profile model ({level['full_runs']} "
+            f"run(s)): at the reduced model's level its readings were "
+            f"{level['offsets'][0]:+.2g} {readings.scale} off on average; ln(T0/T_case) "
+            f"moved by {level['ln_s_correction']:+.3f} (the SD does not include this "
+            "model error)"
+        )
+    # posterior SDs: (J^T W J + P^-1)^-1 trusts the weights and the reduced model; when the
+    # residuals are larger than the weights say (model error of the reduced model, a cause
+    # outside the basis), scale by the reduced chi-square (Birge ratio) over the effective
+    # degrees of freedom n - tr(H), H the regularised fit's hat matrix
+    chi2_res = float(np.sum(Wd * (y - fk) ** 2))
+    dof = float(y.size - np.trace(J @ cov @ J.T @ np.diag(Wd)))
+    sd_scale = 1.0
+    if calibrate_sd:
+        if dof >= 1.0:
+            sd_scale = max(1.0, math.sqrt(chi2_res / dof))
+        else:
+            notes.append(
+                f"{y.size} positions for {npar} parameters leave no degrees of freedom to "
+                "check the posterior SDs against the residuals: they may be optimistic"
+            )
+    cov = cov * sd_scale**2
+    if sd_scale > 1.0:
+        notes.append(
+            f"the residuals are {sd_scale:.2g} times larger than the readings' scatter "
+            f"(chi-square {chi2_res:.3g} on {dof:.3g} effective degrees of freedom): the "
+            "posterior SDs are scaled up by that factor"
+        )
     sd = np.sqrt(np.diag(cov))
     corr = cov / np.outer(sd, sd)
     identifiable = [bool(s < 0.7 * p) for s, p in zip(sd, prior, strict=True)]
@@ -416,8 +504,10 @@ def fit_causes(
                 cz["sentence"] += " (within the noise: not significant)"
                 cz["identifiable"] = False
     verification: dict[str, Any] = {}
+    if level:
+        verification["full_level"] = level
     if verify:
-        verification = _verify(model, theta)
+        verification.update(_verify(model, theta))
         runs += 3
         err = verification.get("max_abs_error")
         if err is not None and err > 2 * float(np.mean(se)):
@@ -439,7 +529,74 @@ def fit_causes(
         notes=tuple(notes),
         verification=verification,
         forward_runs=runs,
+        sd_scale=sd_scale,
+        residual_chi2=chi2_res,
+        residual_dof=dof,
     )
+
+
+def _full_level(
+    case: Case,
+    model: ProfileModel,
+    theta: FloatArray,
+    fitted: FloatArray,
+    d_ln_s: FloatArray,
+    x: FloatArray,
+    *,
+    runs: int = 2,
+) -> dict[str, Any]:
+    """The tension level at which the full profile model, with the fitted thickness,
+    reproduces the mean of the fitted readings: a first step along the reduced model's
+    sensitivity of the mean reading to ln s, then (``runs`` 2 or 3) secants on the full
+    model's own runs."""
+    import tempfile
+
+    from woundroll.pipeline import run
+
+    ln_s, _, c = model.split(theta)
+    h = model.thickness(c)
+
+    def mean_offset(ls: float, tmp: str) -> tuple[float, FloatArray]:
+        path = Path(tmp) / "fitted_thickness.csv"
+        np.savetxt(
+            path,
+            np.column_stack([model.base_position * 1e3, h * 1e6]),
+            delimiter=",",
+            header="position [mm],thickness [um]",
+            comments="",
+        )
+        winding = case.winding.model_copy(
+            update={
+                "thickness_profile": str(path),
+                "tension": ("pressure", math.exp(ls) * model.roll.tension),
+            }
+        )
+        profile = case.profile.model_copy(update={"sectors": model.n_sectors})
+        fitted_case = case.model_copy(update={"winding": winding, "profile": profile})
+        fitted_case.__dict__.pop("thickness_profile", None)  # cached from the original case
+        prof = run(fitted_case).profile
+        full = np.interp(x, prof.z, prof.rho)
+        return float(np.mean(full - fitted)), full
+
+    slope = float(np.mean(d_ln_s))
+    levels, offsets, readings = [ln_s], [], []
+    with tempfile.TemporaryDirectory() as tmp:
+        for k in range(max(1, min(runs, 3))):
+            off, full = mean_offset(levels[-1], tmp)
+            offsets.append(off)
+            readings.append(full.tolist())
+            if k >= 1 and levels[k] != levels[k - 1] and offsets[k] != offsets[k - 1]:
+                slope = (offsets[k] - offsets[k - 1]) / (levels[k] - levels[k - 1])
+            levels.append(levels[-1] - off / slope if slope > 0 else levels[-1])
+    return {
+        "full_runs": len(offsets),
+        "ln_s_levels": levels,
+        "offsets": offsets,
+        "rho_full": readings,
+        "rho_reduced": fitted.tolist(),
+        "full_slope": slope,
+        "ln_s_correction": levels[-1] - ln_s,
+    }
 
 
 def _verify(model: ProfileModel, theta: FloatArray) -> dict[str, Any]:
