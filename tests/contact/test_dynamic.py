@@ -189,7 +189,10 @@ def test_case_with_contact_dynamic_reports_hardness_dynamic(tmp_path):
             ["contact.dynamic=true", "tester.roll_spring.alpha=1e8", "tester.roll_spring.beta=1e5"],
             "contact.dynamic",
         ),
-        (["contact.dynamic=true", "tester.instrument='schmidt-n'"], "contact.dynamic"),
+        (
+            ["contact.dynamic=true", "contact.model='2d'", "tester.instrument='schmidt-n'"],
+            "contact.dynamic",
+        ),
     ],
 )
 def test_case_errors_name_the_field(overrides, field):
