@@ -129,8 +129,8 @@ def test_sphere_impact_on_a_half_space_is_hertz_impact() -> None:
 def test_massless_roll_matches_the_fd_model_on_the_same_3d_curve() -> None:
     """The 1.5D models' limit: without roll inertia the 3D FE impact is the striker on the
     quasi-static 3D F(d) of the same mesh; the FD model on that curve (tabulated, m_r = 0)
-    must agree, and the maximum depth is the energy model's {19}. Measured: Rho 133.23 vs
-    133.30, impulse -0.35 %, depth +0.1 %, contact time +1 %. Tolerances: 0.5 % (the
+    must agree, and the maximum depth is the energy model's {19}. Measured: Rho 127.46 vs
+    127.58, impulse -0.35 %, depth +0.15 %, contact time +0.9 %. Tolerances: 0.5 % (the
     dynamic hypoelastic path against 24 quasi-static increments; gamma = 0.6's first-order
     loss), 1.5 % on the contact time (the separation between steps, dt = 1 % of it)."""
     r, s = pet_profile()
@@ -154,7 +154,8 @@ def test_energy_balance(runs: dict) -> None:
     """Every joule accounted for: striker kinetic + spring, roll kinetic, work of the
     internal forces, and the loss (gamma = 0.6's numerical damping and the discrete impact
     of nodes entering contact): >= 0 at every step (to the modified-Newton tolerance),
-    a few % of the input, about halving with the time step (first order)."""
+    a few % of the input, about halving with the time step (first order). Measured: 3.21
+    and 1.73 mJ of 81.5 mJ at 50 and 100 steps; the roll keeps 24 mJ."""
     inst = get_instrument("rho-meter")
     for d in runs.values():
         total = d.energy_striker + d.energy_roll_kinetic + d.energy_roll_internal
@@ -183,7 +184,8 @@ def test_modified_newton_equals_a_factorisation_per_step(runs: dict) -> None:
 @pytest.mark.slow
 def test_time_step_convergence(runs: dict) -> None:
     """Rho and impulse converge with the time step: successive differences shrink and the
-    last (100 -> 200 steps per contact) is below 1 % in Rho, 0.5 % in impulse."""
+    last (100 -> 200 steps per contact) is below 1 % in Rho, 0.5 % in impulse. Measured:
+    Rho 108.57, 109.80, 110.27 (last step 0.43 %); impulse 0.2514, 0.2526, 0.2529 N s."""
     seq = [runs[50], runs[100], _pet1(200)]
     rho = [d.rho for d in seq]
     imp = [d.impulse for d in seq]
@@ -224,7 +226,7 @@ def test_case_with_3d_contact_runs_the_3d_dynamic_impact(tmp_path) -> None:
             "contact.model='3d'",
             "contact.options3d.n_fine=3",
             "contact.options3d.n_steps=8",
-            "contact.dynamic_options.steps_per_contact=50",
+            "contact.dynamic_options.steps_per_contact=25",
             *coarse,
         ],
     )
@@ -234,7 +236,7 @@ def test_case_with_3d_contact_runs_the_3d_dynamic_impact(tmp_path) -> None:
     assert dyn["model"].startswith("3D")
     assert dyn["stats"]["factorisations"] >= 1
     n = len(dyn["time_s"])
-    assert n > 40
+    assert n > 20
     for key in ("deceleration_m_per_s2", "position_m", "velocity_m_per_s", "contact_force_N"):
         assert len(dyn[key]) == n
     assert dyn["rho"] == pytest.approx(d["rho_fd"], rel=0.25)
