@@ -640,10 +640,14 @@ def _check_options(case: Case) -> None:
                 "winding.thickness_profile or contact.dynamic",
                 "contact.dynamic",
             )
-        if case.tester_setup is not None and case.tester_setup.instrument.head_shape != "cylinder":
+        if (
+            case.contact.model == "2d"
+            and case.tester_setup is not None
+            and case.tester_setup.instrument.head_shape != "cylinder"
+        ):
             raise InputError(
-                "the impact in time runs on the 2D (plane-strain) FE roll, which takes a "
-                "cylindrical head; the 3D dynamic impact is not implemented",
+                "the impact in time on the 2D (plane-strain) FE roll takes a cylindrical "
+                "head; use contact.model = '3d' (or 'auto') for this head",
                 "contact.dynamic",
             )
     _read_file(case, "thickness_profile", "winding.thickness_profile")

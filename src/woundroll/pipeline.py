@@ -401,28 +401,26 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     dynamic = None
     if spec.dynamic:
         from woundroll.contact.dynamic import impact_dynamic
+        from woundroll.contact.solver3d import Contact3DResult
 
         report("dynamic", 0.0)
-        dynamic = impact_dynamic(
-            web,
-            core,
-            winding.radius,
-            winding.sigma_r,
-            setup.instrument,
-            contact_time=hardness.fd.contact_time,
-            depth_scale=float(stiff.contact.delta[-1]),
-            options=spec.dynamic_settings(),
-        )
+        dyn_args = (web, core, winding.radius, winding.sigma_r, setup.instrument)
+        dyn_kw = {
+            "contact_time": hardness.fd.contact_time,
+            "depth_scale": float(stiff.contact.delta[-1]),
+        }
+        if isinstance(stiff.contact, Contact3DResult):  # the same model as the spring's
+            from woundroll.contact.dynamic3d import Dynamic3DOptions, impact_dynamic3d
+
+            opts3 = Dynamic3DOptions.from_2d(spec.dynamic_settings(), spec.contact3d_options())
+            dynamic = impact_dynamic3d(*dyn_args, **dyn_kw, options=opts3)
+        else:
+            dynamic = impact_dynamic(*dyn_args, **dyn_kw, options=spec.dynamic_settings())
         report("dynamic", 1.0)
         if plane:
             unloading_notes.append(
                 "dynamic: the FE impact runs on the plane-strain roll, so the 1.5D models use "
                 "the plane-strain spring too (contact.model '2d', no CMD-spreading correction)"
-            )
-        if spec.model == "3d":
-            unloading_notes.append(
-                "dynamic: the impact in time runs on the 2D FE roll (the 3D dynamic model is "
-                "not implemented); the 1.5D models used the 3D contact spring"
             )
     return RunResult(
         case=case,

@@ -339,6 +339,10 @@ class DynamicImpactResult:
     density : float [kg/m^3]
     solve_time_s : float
     options : DynamicOptions
+    model : str
+        Which FE roll (2D plane strain, or the 3D quarter of :mod:`woundroll.contact.dynamic3d`).
+    stats : dict
+        Work counters of the 3D model (factorisations, solves, modified-Newton passes).
     """
 
     rho: float
@@ -379,6 +383,8 @@ class DynamicImpactResult:
     solve_time_s: float = 0.0
     options: DynamicOptions = field(default_factory=DynamicOptions, repr=False)
     contact_position: float = 0.0
+    model: str = "2D plane-strain FE roll, implicit Newmark, frictionless contact"
+    stats: dict = field(default_factory=dict, repr=False)
 
     @property
     def depth(self) -> FloatArray:
@@ -392,7 +398,7 @@ class DynamicImpactResult:
             return [float(x) for x in a]
 
         return {
-            "model": "2D plane-strain FE roll, implicit Newmark, frictionless contact",
+            "model": self.model,
             "rho": self.rho,
             "impulse_Ns": self.impulse,
             "contact_time_s": self.contact_time,
@@ -422,6 +428,7 @@ class DynamicImpactResult:
             "mass_matrix": self.options.mass,
             "rayleigh": [self.options.rayleigh_mass, self.options.rayleigh_stiffness],
             "solve_time_s": self.solve_time_s,
+            **({"stats": self.stats} if self.stats else {}),
             "time_s": lst(self.time),
             "position_m": lst(self.position),
             "depth_m": lst(self.depth),
@@ -453,7 +460,7 @@ class DynamicImpactResult:
             self.deceleration / unit,
             color="C0",
             lw=2.0,
-            label=f"2D FE, dynamic: {self.rho:.1f} Rho",
+            label=f"{self.model[:2]} FE, dynamic: {self.rho:.1f} Rho",
         )
         if fd is not None:
             ax.plot(
@@ -669,17 +676,24 @@ def impact_dynamic(
     k_step = 0
     m_vec = roll.mass_times
 
+    factor_cache: list[Any] = []  # (moduli, K band, Cholesky) for E_r frozen: factor once
+
     def solve_step(mod: tuple[FloatArray, ...]) -> tuple[Any, ...]:
-        Kb = roll.k_band(mod)
-        A = (1.0 + c1 * a1) * Kb
-        if roll.M_band is None:
-            A[0] += (c0 + c1 * a0) * roll.m_lumped
+        if factor_cache and factor_cache[0] is mod:
+            Kb, cb = factor_cache[1], factor_cache[2]
         else:
-            A = A + (c0 + c1 * a0) * roll.M_band
-        try:
-            cb = la.cholesky_banded(A, lower=True, check_finite=False)
-        except la.LinAlgError:
-            raise ConvergenceError("effective stiffness is not positive definite") from None
+            Kb = roll.k_band(mod)
+            A = (1.0 + c1 * a1) * Kb
+            if roll.M_band is None:
+                A[0] += (c0 + c1 * a0) * roll.m_lumped
+            else:
+                A = A + (c0 + c1 * a0) * roll.M_band
+            try:
+                cb = la.cholesky_banded(A, lower=True, check_finite=False)
+            except la.LinAlgError:
+                raise ConvergenceError("effective stiffness is not positive definite") from None
+            if mod is frozen:
+                factor_cache[:] = [mod, Kb, cb]
         a_pred = v / (beta * dt) + (0.5 / beta - 1.0) * acc
         v_pred = v + dt * (1.0 - gamma) * acc - dt * gamma * a_pred
         rhs = -f_int + m_vec(a_pred)

@@ -40,6 +40,10 @@ from woundroll.studies.tension import MANUAL_IMPULSE_NS
 #: Radius of the rigid "table" under the calibration block in the FE model [m].
 BLOCK_CORE_RADIUS = 1.0
 
+#: The block's extent along the head's axis in the 3D model [m] (not published; 4 head
+#: lengths, so that the free edges are far from the 25.4 mm head: an assumption).
+BLOCK_WIDTH_3D = 0.1016
+
 #: The paper's 3D ABAQUS reading on the calibration block and the device manual's [Rho].
 BLOCK_ABAQUS_RHO = 76.1
 BLOCK_MANUAL_RHO = 77.0
@@ -49,14 +53,27 @@ def _peak_time(time: Any, decel: Any, start: float) -> float:
     return float(time[int(np.argmax(decel))] - start)
 
 
-def _measure_roll(name: str, overrides: tuple[str, ...]) -> dict[str, Any]:
-    """One Table 2 roll through the pipeline with ``contact.dynamic = true``."""
+def _measure_roll(name: str, overrides: tuple[str, ...], model: str = "2d") -> dict[str, Any]:
+    """One Table 2 roll through the pipeline with ``contact.dynamic = true`` on the 2D or
+    the 3D FE roll; in 2D also the impact with E_r frozen (no update, Figure 8) on the
+    same FE roll, against the FD model on the frozen roll's spring."""
+    from dataclasses import replace
+
     from woundroll.case import load_case
-    from woundroll.contact.dynamic import matching_active_mass
+    from woundroll.contact.dynamic import impact_dynamic, matching_active_mass
     from woundroll.instruments import RollSpring
     from woundroll.pipeline import run
 
-    case = load_case(name, ["contact.dynamic=true", "contact.no_update=false", *overrides])
+    no_update = model == "2d"
+    case = load_case(
+        name,
+        [
+            "contact.dynamic=true",
+            f"contact.no_update={str(no_update).lower()}",
+            f"contact.model='{model}'",
+            *overrides,
+        ],
+    )
     res = run(case)
     assert res.hardness is not None and res.contact is not None and res.dynamic is not None
     web = case.web.build()
@@ -64,15 +81,45 @@ def _measure_roll(name: str, overrides: tuple[str, ...]) -> dict[str, Any]:
     inst = res.hardness.instrument
     spring = RollSpring.quadratic(res.contact.alpha, res.contact.beta)
     m_fe = matching_active_mass(inst, spring, dy.rho)
+    frozen: dict[str, Any] = dict.fromkeys(_NO_UPDATE_KEYS, math.nan)
+    if no_update and res.no_update is not None:
+        nu = res.no_update
+        d0 = impact_dynamic(
+            web,
+            case.core.build(),
+            res.winding.radius,
+            res.winding.sigma_r,
+            inst,
+            contact_time=nu.hardness.fd.contact_time,
+            depth_scale=float(nu.stiffness.contact.delta[-1]),
+            options=replace(case.contact.dynamic_settings(), update_modulus=False),
+        )
+        frozen = {
+            "rho_dynamic_no_update": d0.rho,
+            "rho_fd_no_update": nu.hardness.fd.rho,
+            "impulse_dynamic_no_update_Ns": d0.impulse,
+            "restitution_dynamic_no_update": d0.restitution,
+        }
     return {
-        "case": name,
+        "case": name if model == "2d" else f"{name} (3D)",
+        "model": model,
         "material": case.web.preset or "",
         "tension_N": case.winding.schedule(web).web_stress * web.width * web.thickness,
         **_comparison(dy, fd, en),
+        **frozen,
         "active_mass_column_kg": res.hardness.effective_mass,
         "active_mass_fe_kg": m_fe,
         **_histories(dy, fd),
     }
+
+
+#: The no-update columns (2D rows; NaN where not run).
+_NO_UPDATE_KEYS = (
+    "rho_dynamic_no_update",
+    "rho_fd_no_update",
+    "impulse_dynamic_no_update_Ns",
+    "restitution_dynamic_no_update",
+)
 
 
 def _comparison(dy: Any, fd: Any, en: Any) -> dict[str, Any]:
@@ -114,9 +161,11 @@ def _histories(dy: Any, fd: Any) -> dict[str, Any]:
     }
 
 
-def block_roll(instrument: str = "rho-meter") -> tuple[Any, Any, Any, Any]:
+def block_roll(instrument: str = "rho-meter", width: float = 0.0254) -> tuple[Any, Any, Any, Any]:
     """The calibration block as an FE roll: ``(web, core, radius, sigma_r)`` (module
-    docstring): isotropic linear elastic, Table 1 constants, on a rigid 1 m core."""
+    docstring): isotropic linear elastic, Table 1 constants, on a rigid 1 m core. ``width``
+    matters only in 3D (the block's extent along the head's axis; Table 1 does not give it:
+    :data:`BLOCK_WIDTH_3D` there, an assumption)."""
     from woundroll.instruments.calibration import CalibrationBlock
     from woundroll.materials import Core, Web
     from woundroll.materials.radial_modulus import Constant
@@ -125,7 +174,7 @@ def block_roll(instrument: str = "rho-meter") -> tuple[Any, Any, Any, Any]:
     E, nu = b.youngs_modulus, b.poisson_ratio
     web = Web(
         thickness=1e-4,  # sets the FE surface ring (0.1 mm), no layers in a block
-        width=0.0254,
+        width=width,
         E_theta=E,
         radial_modulus=Constant(E),
         E_z=E,
@@ -140,11 +189,13 @@ def block_roll(instrument: str = "rho-meter") -> tuple[Any, Any, Any, Any]:
     return web, core, radius, np.zeros(2)
 
 
-def _measure_block(_: str, overrides: tuple[str, ...]) -> dict[str, Any]:
-    """The calibration block: FE dynamic, and the FD/energy models on the FE's
-    quasi-static curve and on the calibrated Hertz curve (docs/instruments.md, section 6)."""
+def _measure_block(_: str, overrides: tuple[str, ...], model: str = "2d") -> dict[str, Any]:
+    """The calibration block: FE dynamic (2D, or 3D with the block :data:`BLOCK_WIDTH_3D`
+    wide), and the FD/energy models on the FE's quasi-static curve and on the calibrated
+    Hertz curve (docs/instruments.md, section 6)."""
     from woundroll.contact import roll_stiffness
     from woundroll.contact.dynamic import impact_dynamic
+    from woundroll.contact.dynamic3d import impact_dynamic3d
     from woundroll.instruments import (
         RollSpring,
         TabulatedLaw,
@@ -155,13 +206,14 @@ def _measure_block(_: str, overrides: tuple[str, ...]) -> dict[str, Any]:
     from woundroll.instruments.calibration import CalibrationBlock, HertzLineContact
 
     inst = get_instrument("rho-meter")
-    web, core, r, s = block_roll()
-    st = roll_stiffness(web, core, r, s, inst)
+    web, core, r, s = block_roll(width=0.0254 if model == "2d" else BLOCK_WIDTH_3D)
+    st = roll_stiffness(web, core, r, s, inst, model=model)
     c = st.contact
     curve = TabulatedLaw(c.delta, c.force)
     fd = impact_fd(inst, RollSpring(curve, 0.0))
     en = impact_energy(inst, curve)
-    dy = impact_dynamic(
+    dyn = impact_dynamic if model == "2d" else impact_dynamic3d
+    dy = dyn(
         web,
         core,
         r,
@@ -175,15 +227,21 @@ def _measure_block(_: str, overrides: tuple[str, ...]) -> dict[str, Any]:
     )
     fd_h = impact_fd(inst, RollSpring(hertz.law(dy.energy_in), 0.0))
     return {
-        "case": "calibration block",
+        "case": "calibration block" if model == "2d" else "calibration block (3D)",
+        "model": model,
         "material": "block",
         "tension_N": math.nan,
         **_comparison(dy, fd, en),
+        **dict.fromkeys(_NO_UPDATE_KEYS, math.nan),
         "rho_fd_hertz": fd_h.rho,
         "active_mass_column_kg": 0.0,
         "active_mass_fe_kg": math.nan,
         **_histories(dy, fd),
     }
+
+
+def _num(v: float, fmt: str) -> str:
+    return "-" if not math.isfinite(v) else fmt.format(v)
 
 
 _COLUMNS = (
@@ -196,6 +254,9 @@ _COLUMNS = (
     ("peak_time_dynamic_s", "peak FE [ms]", lambda v: f"{v * 1e3:.2f}"),
     ("peak_time_fd_s", "peak FD [ms]", lambda v: f"{v * 1e3:.2f}"),
     ("restitution_dynamic", "e FE", lambda v: f"{v:.2f}"),
+    ("rho_dynamic_no_update", "Rho FE dyn no upd", lambda v: _num(v, "{:.1f}")),
+    ("rho_fd_no_update", "Rho FD no upd", lambda v: _num(v, "{:.1f}")),
+    ("restitution_dynamic_no_update", "e FE no upd", lambda v: _num(v, "{:.2f}")),
     ("active_mass_column_kg", "m_r {18} [g]", lambda v: f"{v * 1e3:.1f}"),
     (
         "active_mass_fe_kg",
@@ -242,8 +303,10 @@ class DynamicStudy:
 
     def notes(self) -> list[str]:
         notes = [
-            "FE dyn: 2D plane-strain FE roll hit in time (contact.dynamic); FD: {4}-{13} with "
-            "the tapered-column mass {18} (plastic collision); energy: {19}-{22}.",
+            "FE dyn: the FE roll hit in time (contact.dynamic): 2D plane strain, or the 3D "
+            "quarter model for rows marked (3D) (the 1.5D models then use the 3D spring); "
+            "FD: {4}-{13} with the tapered-column mass {18} (plastic collision); energy: "
+            "{19}-{22}. No upd: E_r frozen at its pre-impact value (Figure 8), 2D rows.",
             "m_r FE: the active mass with which the FD model reads the FE's Rho "
             "([tester] active_mass hands it to the FD model); '-': none does.",
             f"Device manual impulse {MANUAL_IMPULSE_NS} N s; calibration block: manual "
@@ -338,6 +401,8 @@ def dynamic_study(
     block: bool = True,
     overrides: tuple[str, ...] = (),
     workers: int = 1,
+    cases3d: Iterable[str] = (),
+    block3d: bool = False,
 ) -> DynamicStudy:
     """Run the dynamic FE impact beside the 1.5D models on ``cases`` (and the block).
 
@@ -351,19 +416,28 @@ def dynamic_study(
         ``dotted.key=value`` applied to every case (e.g.
         ``"contact.dynamic_options.steps_per_contact=200"``).
     workers : int
+    cases3d, block3d
+        Rolls (and the block) also run on the 3D FE roll (a 3D quasi-static solve and a 3D
+        dynamic impact each: minutes per row, docs/dynamic.md).
     """
     names = list(cases)
-    if not names and not block:
+    names3d = list(cases3d)
+    if not names and not block and not names3d and not block3d:
         raise InputError("no cases given", "study.cases")
-    jobs: list[tuple[Any, ...]] = [(n, tuple(overrides)) for n in names]
-    fns = [_measure_roll] * len(jobs)
+    ov = tuple(overrides)
+    jobs: list[tuple[Any, ...]] = [("_measure_roll", n, ov, "2d") for n in names]
+    labels = list(names)
     if block:
-        jobs.append(("block", tuple(overrides)))
-        fns.append(_measure_block)
-    labels = [*names, "calibration block"]
+        jobs.append(("_measure_block", "block", ov, "2d"))
+        labels.append("calibration block")
+    jobs += [("_measure_roll", n, ov, "3d") for n in names3d]
+    labels += [f"{n} (3D)" for n in names3d]
+    if block3d:
+        jobs.append(("_measure_block", "block", ov, "3d"))
+        labels.append("calibration block (3D)")
     out = _map(
         _dispatch,
-        [(fn.__name__, *job) for fn, job in zip(fns, jobs, strict=True)],
+        jobs,
         workers=workers,
         progress=progress,
         label=lambda i: f"dynamic: {labels[i]}",
@@ -371,11 +445,18 @@ def dynamic_study(
     return DynamicStudy(out)
 
 
-def _dispatch(fn_name: str, name: str, overrides: tuple[str, ...]) -> dict[str, Any]:
+def _dispatch(
+    fn_name: str, name: str, overrides: tuple[str, ...], model: str = "2d"
+) -> dict[str, Any]:
     fn = {"_measure_roll": _measure_roll, "_measure_block": _measure_block}[fn_name]
-    return fn(name, overrides)
+    return fn(name, overrides, model)
+
+
+#: The rows the registry's study also runs in 3D (cost: docs/dynamic.md).
+CASES_3D = ("pet1-26.7N",)
 
 
 def run(progress: Progress | None = None, *, workers: int = 1) -> DynamicStudy:
-    """The registry's entry: :func:`dynamic_study` on the Table 2 rolls and the block."""
-    return dynamic_study(progress=progress, workers=workers)
+    """The registry's entry: :func:`dynamic_study` on the Table 2 rolls and the block in
+    2D, and :data:`CASES_3D` and the block in 3D."""
+    return dynamic_study(progress=progress, workers=workers, cases3d=CASES_3D, block3d=True)
