@@ -141,6 +141,17 @@ def diagnose_cmd(
     bands: Annotated[
         int | None, typer.Option(help="Thickness bands fitted with --causes (default n/2, <= 8).")
     ] = None,
+    full_level: Annotated[
+        int,
+        typer.Option(
+            "--full-level",
+            min=0,
+            max=3,
+            help="Full profile-model runs that correct the --causes tension level (the "
+            "reduced model's level was 41 % low on a soft PET2 roll; 3 runs: within 2 %). "
+            "0 skips them.",
+        ),
+    ] = 3,
 ) -> None:
     """Readings -> the effective wound-on tension and near-surface pressure at each position."""
     from woundroll.case import load_case
@@ -174,7 +185,7 @@ def diagnose_cmd(
         if causes:
             from woundroll.causes import fit_causes
 
-            fit = fit_causes(c, d.readings, n_bands=bands)
+            fit = fit_causes(c, d.readings, n_bands=bands, full_level=full_level)
             fd = fit.to_dict()
             payload["diagnosis"]["profile"] = fd["profile"]
             payload["diagnosis"]["causes"] = fd["causes"]
