@@ -216,3 +216,23 @@ def test_two_layer_roll_runs_with_both_flags(outer):
     assert res.exit_code == 0, res.output
     data = json.loads(res.stdout)
     assert data["flags"]["reading_outside_range"] and data["flags"]["spring_extrapolated"]
+
+
+@pytest.mark.parametrize(
+    ("args", "name"),
+    [
+        (["study", "tension", "--workers", "0"], "'--workers'"),
+        (["run"], "'case'"),
+        (["run", "pet1-26.7N", "--bogus"], "--bogus"),
+        (["sweep"], "'case'"),
+        (["nope"], "'nope'"),
+    ],
+)
+def test_usage_errors_are_one_line(args, name):
+    # an option out of range, a missing argument, an unknown option or command: one line
+    # naming it with where to look, exit 2 (not click's usage block)
+    res = runner.invoke(app, args)
+    lines = [line for line in res.output.splitlines() if line.strip()]
+    assert res.exit_code == 2, res.output
+    assert len(lines) == 1 and lines[0].startswith("error: ") and name in lines[0], res.output
+    assert "--help" in lines[0]

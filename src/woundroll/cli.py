@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 from rich.console import Console
@@ -22,7 +22,48 @@ from woundroll.errors import ConvergenceError, InputError
 if TYPE_CHECKING:
     from woundroll.pipeline import RunResult
 
+
+class _Commands(typer.core.TyperGroup):
+    """The ``woundroll`` command group; a usage error (an option's value out of range, an
+    unknown option, a missing argument) is one line naming the option, exit 2, like every
+    other input error, instead of click's usage block."""
+
+    def main(  # type: ignore[override]
+        self,
+        args: Any = None,
+        prog_name: str | None = None,
+        complete_var: str | None = None,
+        standalone_mode: bool = True,
+        **extra: Any,
+    ) -> Any:
+        try:  # typer >= 0.20 parses with its own copy of click
+            from typer._click import exceptions as click
+        except ImportError:  # pragma: no cover - older typer: click itself
+            from click import exceptions as click  # type: ignore[no-redef]
+
+        if not standalone_mode:
+            return super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
+        try:
+            rv = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
+        except click.NoArgsIsHelpError as exc:  # bare `woundroll CMD`: its help
+            exc.show()
+            sys.exit(exc.exit_code)
+        except click.UsageError as exc:
+            where = exc.ctx.command_path if exc.ctx is not None else "woundroll"
+            msg = f"error: {exc.format_message()} (see '{where} --help')"
+            err.print(escape(msg), highlight=False, soft_wrap=True)
+            sys.exit(exc.exit_code)
+        except click.ClickException as exc:
+            exc.show()
+            sys.exit(exc.exit_code)
+        except typer.Abort:
+            err.print("Aborted!", highlight=False)
+            sys.exit(1)
+        sys.exit(rv if isinstance(rv, int) else 0)
+
+
 app = typer.Typer(
+    cls=_Commands,
     add_completion=False,
     # help texts are plain text: "[kPa]", "[readings]" are units and case sections, not markup
     rich_markup_mode=None,
