@@ -137,3 +137,52 @@ def test_every_table3_sector_keeps_rho(monkeypatch: pytest.MonkeyPatch) -> None:
         worst = max(worst, abs(rho / ref - 1.0))
     assert len(got["profiles"]) == 61
     assert worst <= TOL, worst
+
+
+def test_stop_ends_the_loading_with_the_same_increments() -> None:
+    # indent(stop=...) ends the loading after the increment where stop says so; the
+    # increments before it are the same computation (to round-off)
+    import numpy as np
+
+    from woundroll.contact import indent
+    from woundroll.instruments import get_instrument
+
+    web, core, r, s = table3_roll(None)
+    ins = get_instrument("rho-meter")
+    kw = {"head_radius": ins.head_radius, "head_length": 0.0254, "depth_max": 1e-3}
+    full = indent(web, core, r, s, **kw)
+    part = indent(web, core, r, s, **kw, stop=lambda d, f: d.size > 10)
+    assert part.delta.size == 11
+    assert np.array_equal(part.delta, full.delta[:11])
+    assert part.force == pytest.approx(full.force[:11], rel=1e-12)
+    assert part.factorisations < full.factorisations
+
+
+def test_roll_stiffness_stops_past_the_striker_reach() -> None:
+    # a hard roll (the 1D-wound Table 3 roll) is no longer solved to 1 mm: the
+    # loading stops at 1.5 x the fit window, and the spring is that of the whole curve
+    # (the fit uses only depths inside the window; 1e-9: PCHIP's slopes near the window's
+    # end use the neighbouring points, the same in both)
+    from woundroll.contact import fit_roll_spring, indent, roll_stiffness
+    from woundroll.contact.spring import FIT_REACH, STOP_MARGIN, head_length_of
+    from woundroll.instruments import get_instrument
+
+    web, core, r, s = table3_roll(None)
+    ins = get_instrument("rho-meter")
+    rs = roll_stiffness(web, core, r, s, ins, start_depth=1e-3, model="2d")
+    d_end = float(rs.contact.delta[-1])
+    assert rs.contact.delta.size < 25  # stopped before the 24th increment (1 mm)
+    assert d_end >= STOP_MARGIN * FIT_REACH * rs.spring.max_depth
+    full = indent(
+        web,
+        core,
+        r,
+        s,
+        head_radius=ins.head_radius,
+        head_length=head_length_of(ins),
+        depth_max=1e-3,
+    )
+    ref = fit_roll_spring(full.delta, full.force, ins, reach=FIT_REACH)
+    assert rs.alpha == pytest.approx(ref.alpha, rel=1e-9)
+    assert rs.beta == pytest.approx(ref.beta, rel=1e-9, abs=1e-9 * ref.alpha * 1e-3)
+    assert rs.contact.factorisations < full.factorisations

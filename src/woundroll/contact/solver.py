@@ -776,6 +776,7 @@ def indent(
     friction: float = 0.3,
     update_modulus: bool = True,
     options: ContactOptions | None = None,
+    stop: Callable[[FloatArray, FloatArray], bool] | None = None,
 ) -> ContactResult:
     """Press a rigid cylindrical head into the wound roll and return F(d), a(d) and the fields.
 
@@ -807,6 +808,11 @@ def indent(
         value (the paper's "no update").
     options : ContactOptions, optional
         Mesh and step settings.
+    stop : callable, optional
+        ``stop(delta, force)`` [m], [N], called after each increment with the curve so far
+        (origin included): True ends the loading there (the result then ends at that
+        depth). :func:`woundroll.contact.roll_stiffness` uses it to stop well past the
+        depths the striker can reach.
 
     Returns
     -------
@@ -901,6 +907,7 @@ def indent(
     lu_frozen = _factorize(roll, frozen) if frozen is not None else None
     factorisations = int(lu_frozen is not None)
     slip_passes = 0
+    n_done = n
     for k in range(1, n + 1):
         centre = np.array([r_out + head_radius - delta[k], 0.0])
 
@@ -993,7 +1000,14 @@ def indent(
         sig_hist[k] = sig
         p_hist[k] = lam / trib
         u_hist[k] = -u[2 * roll.surface]
+        if stop is not None and k < n and stop(delta[: k + 1], force[: k + 1] * head_length):
+            n_done = k
+            break
     assert step is not None
+    if n_done < n:  # stopped early (``stop``): the curve ends at the last depth solved
+        m = n_done + 1
+        delta, force, half, p_peak = delta[:m], force[:m], half[:m], p_peak[:m]
+        sig_hist, p_hist, u_hist = sig_hist[:m], p_hist[:m], u_hist[:m]
     sigma_r_total = roll.sigma_pre + sig[:, 0]
     sf = slip_factor(sig[:, 2], sigma_r_total, friction)
     alpha, beta, r2, max_res = fit_spring(delta, force * head_length)
