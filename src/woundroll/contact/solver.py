@@ -106,6 +106,15 @@ class ContactOptions:
     step_tol : float
         Tolerance of the predictor [-]: the relative difference of the predicted and the
         achieved mid-step E_r, weighted by each element's strain-energy increment.
+    secant : bool
+        With ``predictor`` (default True): an increment's E_r is the law's secant modulus
+        over the element's radial stress change in the step, ``dP / deps(dP)`` with
+        ``deps = integral dP / E_r(P)`` (exact for a uniaxial step of any size; for a law
+        linear in pressure, Pfeiffer {2} with the floor and cap, in closed form) instead of the
+        tangent at the mid-step stress. With K1 = 0 (Table 3) E_r grows exponentially in
+        the strain from the floor, and the mid-step tangent then needs 100-200 steps for a
+        reading within 0.5 % (docs/contact.md, step control). Laws not linear in pressure
+        keep the mid-step tangent.
     half_model : bool
         Mesh the half 0 <= theta <= pi with symmetry conditions (u_theta = 0 on theta = 0,
         pi): exact for this symmetric problem, and its banded stiffness is solved by banded
@@ -136,7 +145,8 @@ class ContactOptions:
     max_modulus_ratio: float | None = None
     midpoint: bool = True
     predictor: bool = True
-    step_tol: float = 0.02
+    step_tol: float = 0.002
+    secant: bool = True
     half_model: bool = True
     step_exponent: float = 1.5
     slip: str = "none"
@@ -164,7 +174,14 @@ class ContactOptions:
             and 0 < self.step_tol <= 1
         ):
             raise InputError(f"must lie in (0, 1], got {self.step_tol!r}", "options.step_tol")
-        for name in ("reduced_shear", "assumed_hoop", "midpoint", "predictor", "half_model"):
+        for name in (
+            "reduced_shear",
+            "assumed_hoop",
+            "midpoint",
+            "predictor",
+            "secant",
+            "half_model",
+        ):
             if not isinstance(getattr(self, name), bool | np.bool_):
                 raise InputError(
                     f"must be true or false, got {getattr(self, name)!r}", f"options.{name}"
@@ -391,14 +408,57 @@ class _Roll:
         #: it spends slipped (1: slipped since an earlier increment, 0: sticking)
         self.slip_weight: FloatArray | None = None
         self.slip_fraction = float(getattr(opts, "slip_shear_fraction", 1.0))
+        #: (E0, slope) of a law linear in pressure, for the secant modulus (None: the
+        #: mid-step tangent)
+        lin = getattr(getattr(web, "radial_modulus", None), "linear_in_pressure", lambda: None)()
+        use = bool(getattr(opts, "secant", False))
+        self.linear_law: tuple[float, float] | None = (
+            (float(lin[0]), float(lin[1])) if use and lin is not None else None
+        )
 
     def radial_modulus(self, sigma_r_total: FloatArray) -> FloatArray:
         """E_r [Pa] of the elements at total radial stress ``sigma_r_total`` (law {2},
         floored and capped as the options say)."""
         return np.clip(self.web.E_r(sigma_r_total), self.E_floor, self.E_cap)
 
+    def secant_modulus(self, start: FloatArray, end: FloatArray) -> FloatArray:
+        """Secant E_r [Pa] of the elements between total radial stresses ``start`` and
+        ``end``: ``(P1 - P0) / (eps(P1) - eps(P0))`` with ``eps(P) = integral_0^P dP / E_r``
+        for E_r = clip(E0 + b P, floor, cap) (pressure clipped at 0 as the law does), so that a
+        uniaxial step at it lands on the law {2} exactly whatever its size.
+        Needs :attr:`linear_law`."""
+        assert self.linear_law is not None
+        e0, b = self.linear_law
+        p0, p1 = -start, -end
+        dp = p1 - p0
+        eps = self._strain_of_pressure(p1, e0, b) - self._strain_of_pressure(p0, e0, b)
+        small = np.abs(dp) <= 1e-9 * (np.abs(p0) + np.abs(p1) + 1.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            sec = np.where(small, 1.0, dp / np.where(small, 1.0, eps))
+        return np.where(small, self.radial_modulus(-0.5 * (p0 + p1)), sec)
+
+    def _strain_of_pressure(self, p: FloatArray, e0: float, b: float) -> FloatArray:
+        """``integral_0^P dP / E_r(P)`` for E_r = clip(E0 + b max(P, 0), floor, cap)."""
+        f, cap = self.E_floor, self.E_cap
+        E_zero = min(max(e0, f), cap)
+        neg = np.minimum(p, 0.0) / E_zero  # tension side: E_r(0)
+        q = np.maximum(p, 0.0)
+        if b <= 0 or e0 >= cap:
+            return neg + q / E_zero
+        p_f = max((f - e0) / b, 0.0)  # end of the floored range
+        p_c = (cap - e0) / b if math.isfinite(cap) else math.inf  # start of the capped one
+        floored = np.minimum(q, p_f) / f if p_f > 0 else np.zeros_like(q)
+        E_f = e0 + b * p_f
+        law = np.log((e0 + b * np.clip(q, p_f, p_c)) / E_f) / b
+        capped = np.maximum(q - p_c, 0.0) / cap if math.isfinite(p_c) else 0.0
+        return neg + floored + law + capped
+
     def moduli(self, sigma_r_total: FloatArray) -> tuple[FloatArray, ...]:
-        C11, C12, C22, G = plane_strain_moduli(self.web, self.radial_modulus(sigma_r_total))
+        return self.moduli_at(self.radial_modulus(sigma_r_total))
+
+    def moduli_at(self, E_r: FloatArray) -> tuple[FloatArray, ...]:
+        """Plane-strain moduli of the elements at per-element radial modulus ``E_r``."""
+        C11, C12, C22, G = plane_strain_moduli(self.web, E_r)
         if self.slip_weight is not None and np.any(self.slip_weight > 0):
             # slip emulation (Figure 19): a slipped element keeps a fraction of G_r_theta
             G = G * self.shear_factor()
@@ -615,15 +675,31 @@ def _predicted_increment(
     enough in most steps, so a step costs one factorisation instead of the two of the
     explicit midpoint scheme (:func:`_hypoelastic_increment`).
 
+    With ``roll.linear_law`` (the default for Pfeiffer {2} and constant laws) the
+    modulus of a pass is instead the law's secant over the step, from the start-of-step
+    stress to the end ``2 target - sigma_r`` (:meth:`_Roll.secant_modulus`), compared with
+    the secant over the achieved increment: a converged pass then integrates the law
+    exactly for a uniaxial step of any size, which the mid-step tangent does not where E_r
+    grows from its floor (K1 = 0). The caller predicts the end-of-step stress by the
+    parabola through the last three states.
+
     Returns the step and the number of factorisations it took.
     """
     target = sigma_r if predicted is None else predicted
+    pre = roll.sigma_pre
     for n in range(1, 5):
-        mod = roll.moduli(roll.sigma_pre + target)
+        if roll.linear_law is not None:
+            # the secant over the step: from the start to the end 2 target - start
+            E_used = roll.secant_modulus(pre + sigma_r, pre + 2.0 * target - sigma_r)
+        else:
+            E_used = roll.radial_modulus(pre + target)
+        mod = roll.moduli_at(E_used)
         step = solve(mod, _factorize(roll, mod))
         mid = sigma_r + 0.5 * step.dsig[:, 0]
-        E_mid = roll.radial_modulus(roll.sigma_pre + mid)
-        E_used = roll.radial_modulus(roll.sigma_pre + target)
+        if roll.linear_law is not None:
+            E_mid = roll.secant_modulus(pre + sigma_r, pre + sigma_r + step.dsig[:, 0])
+        else:
+            E_mid = roll.radial_modulus(pre + mid)
         w = np.abs(np.sum(step.dsig * roll.strain_increment(step.du), axis=1)) * roll.area
         total = float(np.sum(w))
         err = float(np.sum(w * np.abs(E_used / E_mid - 1.0))) / total if total > 0 else 0.0
@@ -700,6 +776,7 @@ def indent(
     friction: float = 0.3,
     update_modulus: bool = True,
     options: ContactOptions | None = None,
+    stop: Callable[[FloatArray, FloatArray], bool] | None = None,
 ) -> ContactResult:
     """Press a rigid cylindrical head into the wound roll and return F(d), a(d) and the fields.
 
@@ -731,6 +808,11 @@ def indent(
         value (the paper's "no update").
     options : ContactOptions, optional
         Mesh and step settings.
+    stop : callable, optional
+        ``stop(delta, force)`` [m], [N], called after each increment with the curve so far
+        (origin included): True ends the loading there (the result then ends at that
+        depth). :func:`woundroll.contact.roll_stiffness` uses it to stop well past the
+        depths the striker can reach.
 
     Returns
     -------
@@ -825,6 +907,7 @@ def indent(
     lu_frozen = _factorize(roll, frozen) if frozen is not None else None
     factorisations = int(lu_frozen is not None)
     slip_passes = 0
+    n_done = n
     for k in range(1, n + 1):
         centre = np.array([r_out + head_radius - delta[k], 0.0])
 
@@ -850,7 +933,17 @@ def indent(
                 return solve(frozen, lu_frozen), 0  # one factorisation for all increments
             if opts.midpoint and opts.predictor:
                 predicted = None
-                if last is not None:
+                if last is not None and roll.linear_law is not None and k >= 3:
+                    # the end-of-step stress by the parabola through the last three
+                    # states (the stress under the head stiffens exponentially in depth)
+                    x0, x1, x2, x = delta[k - 3], delta[k - 2], delta[k - 1], delta[k]
+                    l0 = (x - x1) * (x - x2) / ((x0 - x1) * (x0 - x2))
+                    l1 = (x - x0) * (x - x2) / ((x1 - x0) * (x1 - x2))
+                    l2 = (x - x0) * (x - x1) / ((x2 - x0) * (x2 - x1))
+                    h = sig_hist[:, :, 0]
+                    end = l0 * h[k - 3] + l1 * h[k - 2] + l2 * h[k - 1]
+                    predicted = 0.5 * (sig[:, 0] + end)
+                elif last is not None:
                     ratio = (delta[k] - delta[k - 1]) / (delta[k - 1] - delta[k - 2])
                     predicted = sig[:, 0] + 0.5 * ratio * last.dsig[:, 0]
                 return _predicted_increment(roll, sig[:, 0], predicted, opts.step_tol, solve)
@@ -907,7 +1000,14 @@ def indent(
         sig_hist[k] = sig
         p_hist[k] = lam / trib
         u_hist[k] = -u[2 * roll.surface]
+        if stop is not None and k < n and stop(delta[: k + 1], force[: k + 1] * head_length):
+            n_done = k
+            break
     assert step is not None
+    if n_done < n:  # stopped early (``stop``): the curve ends at the last depth solved
+        m = n_done + 1
+        delta, force, half, p_peak = delta[:m], force[:m], half[:m], p_peak[:m]
+        sig_hist, p_hist, u_hist = sig_hist[:m], p_hist[:m], u_hist[:m]
     sigma_r_total = roll.sigma_pre + sig[:, 0]
     sf = slip_factor(sig[:, 2], sigma_r_total, friction)
     alpha, beta, r2, max_res = fit_spring(delta, force * head_length)
