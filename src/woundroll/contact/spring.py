@@ -212,9 +212,9 @@ def fit_roll_spring(
         # fractions of its length, so that the fit -- and the reading -- is a continuous
         # function of d_max: selecting the computed points inside the window made the
         # fit jump whenever a point left it (0.3 Rho on PET1 40 N, docs/contact.md)
-        from scipy.interpolate import PchipInterpolator
+        from woundroll._pchip import pchip  # SciPy's PCHIP without importing scipy.interpolate
 
-        curve = PchipInterpolator(np.concatenate([[0.0], d]), np.concatenate([[0.0], f]))
+        curve = pchip(np.concatenate([[0.0], d]), np.concatenate([[0.0], f]))
         frac = (np.arange(1, WINDOW_SAMPLES + 1) / WINDOW_SAMPLES) ** 1.5
         d_end = float(d.max())
 
