@@ -339,9 +339,10 @@ def check_built(web: Any, core: Any, r_out: float, schedule: Any, options: Any) 
 #: Contact-model times measured on the development machine (2 cores, loaded), per solution:
 #: PET 100 um (890 layers) 1.4 s, 50 um (1,500 layers) 1.5 s, 23 um (4,565 layers) 100 s (its
 #: mesh follows the web thickness near the surface); the bundled PET3 profile (76 um, 61
-#: sectors, 2 workers) 2.5 min in all.
+#: sectors, 2 workers) 16 s whole process on a quiet machine (2026-11-23, docs/performance.md;
+#: it was 2.5 min before the issue-14 work).
 THIN_WEB_CONTACT = 30e-6
-PROFILE_REFERENCE_SECONDS = 150.0
+PROFILE_REFERENCE_SECONDS = 16.0
 
 
 def contact_time_warning(case: Any, web: Any) -> str | None:
