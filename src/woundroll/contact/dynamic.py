@@ -537,6 +537,63 @@ def _mesh_for(
     )
 
 
+@dataclass(frozen=True)
+class _Separation:
+    """The striker's history closed at separation (shared by the 2D and 3D FE impacts)."""
+
+    t: FloatArray
+    x: FloatArray
+    v: FloatArray
+    a: FloatArray
+    f: FloatArray
+    t_end: float
+    x_sep: float
+    v_sep: float
+    impulse: float
+    v_rebound: float
+    back: float
+    e_striker: float
+
+
+def _separation(
+    times: list[float],
+    xs: list[float],
+    vs: list[float],
+    acc: list[float],
+    forces: list[float],
+    dt: float,
+    k_s: float,
+    m_s: float,
+    xg: float,
+) -> _Separation:
+    """Close the striker's history where the contact force crosses zero between the last
+    two steps (linear in the step), then the impulse (trapezoid), the striker's rebound
+    speed at the contact position and how far back it swings, by its spring {1}, and its
+    mechanical energy at separation (spring energy counted from the contact position)."""
+    T, X, V, A, F = (np.asarray(h, dtype=float) for h in (times, xs, vs, acc, forces))
+    f1, f2 = F[-2], F[-1]
+    w = f1 / (f1 - f2) if f1 > 0 and f1 != f2 else 1.0
+    t_end = float(T[-2] + w * dt)
+    x_sep = float(X[-2] + w * (X[-1] - X[-2]))
+    v_sep = float(V[-2] + w * (V[-1] - V[-2]))
+    T[-1], X[-1], V[-1], F[-1] = t_end, x_sep, v_sep, 0.0
+    A[-1] = k_s * x_sep / m_s
+    return _Separation(
+        t=T,
+        x=X,
+        v=V,
+        a=A,
+        f=F,
+        t_end=t_end,
+        x_sep=x_sep,
+        v_sep=v_sep,
+        impulse=float(np.sum(0.5 * (F[1:] + F[:-1]) * np.diff(T))),
+        v_rebound=math.sqrt(max(v_sep * v_sep + (k_s / m_s) * (x_sep * x_sep - xg * xg), 0.0)),
+        back=math.sqrt(x_sep * x_sep + (m_s / k_s) * v_sep * v_sep),
+        e_striker=0.5 * m_s * v_sep * v_sep + 0.5 * k_s * (x_sep * x_sep - xg * xg),
+    )
+
+
 def impact_dynamic(
     web: Web,
     core: Core,
@@ -842,24 +899,11 @@ def impact_dynamic(
             end_s = k_step
             break
     assert peak_state is not None
-    T = np.asarray(times)
-    X_ = np.asarray(xs_h)
-    V = np.asarray(vs_h)
-    A_ = np.asarray(acc_h)
-    F = np.asarray(f_h)
-    # separation between the last two steps: force crosses zero
-    f1, f2 = F[-2], F[-1]
-    w = f1 / (f1 - f2) if f1 > 0 and f1 != f2 else 1.0
-    t_end = T[-2] + w * dt
-    x_sep = X_[-2] + w * (X_[-1] - X_[-2])
-    v_sep = V[-2] + w * (V[-1] - V[-2])
-    T[-1], X_[-1], V[-1], F[-1] = t_end, x_sep, v_sep, 0.0
-    A_[-1] = k_s * x_sep / m_s
-    impulse = float(np.sum(0.5 * (F[1:] + F[:-1]) * np.diff(T)))
-    v_reb = math.sqrt(max(v_sep * v_sep + (k_s / m_s) * (x_sep * x_sep - xg * xg), 0.0))
-    back = math.sqrt(x_sep * x_sep + (m_s / k_s) * v_sep * v_sep)
+    sep = _separation(times, xs_h, vs_h, acc_h, f_h, dt, k_s, m_s, xg)
+    T, X_, V, A_, F = sep.t, sep.x, sep.v, sep.a, sep.f
+    t_end = sep.t_end
+    impulse, v_reb, back, e_striker_end = sep.impulse, sep.v_rebound, sep.back, sep.e_striker
     ES, EK, EI = np.asarray(es_h), np.asarray(ek_h), np.asarray(ei_h)
-    e_striker_end = 0.5 * m_s * v_sep * v_sep + 0.5 * k_s * (x_sep * x_sep - xg * xg)
     e_roll = float(EK[-1] + EI[-1])
     e_damp_tot = scale * e_damp
     k_pk, p_axis, p_contact = peak_state

@@ -57,7 +57,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from woundroll.contact.dynamic import DynamicImpactResult, DynamicOptions, _lcp
+from woundroll.contact.dynamic import DynamicImpactResult, DynamicOptions, _lcp, _separation
 from woundroll.contact.fem3d import lumped_mass, orthotropic_moduli, stresses
 from woundroll.contact.heads import Head
 from woundroll.contact.solver3d import Contact3DOptions, Roll3D, build_roll3d
@@ -534,23 +534,11 @@ def impact_dynamic3d(
         if touched and force <= 0.0 and xv < 0.0:
             break
     assert peak_state is not None
-    T = np.asarray(times)
-    X_ = np.asarray(xs_h)
-    V = np.asarray(vs_h)
-    A_ = np.asarray(acc_h)
-    F = np.asarray(f_h)
-    f1, f2 = F[-2], F[-1]
-    wgt = f1 / (f1 - f2) if f1 > 0 and f1 != f2 else 1.0
-    t_end = T[-2] + wgt * dt
-    x_sep = X_[-2] + wgt * (X_[-1] - X_[-2])
-    v_sep = V[-2] + wgt * (V[-1] - V[-2])
-    T[-1], X_[-1], V[-1], F[-1] = t_end, x_sep, v_sep, 0.0
-    A_[-1] = k_s * x_sep / m_s
-    impulse = float(np.sum(0.5 * (F[1:] + F[:-1]) * np.diff(T)))
-    v_reb = math.sqrt(max(v_sep * v_sep + (k_s / m_s) * (x_sep * x_sep - xg * xg), 0.0))
-    back = math.sqrt(x_sep * x_sep + (m_s / k_s) * v_sep * v_sep)
+    sep = _separation(times, xs_h, vs_h, acc_h, f_h, dt, k_s, m_s, xg)
+    T, X_, V, A_, F = sep.t, sep.x, sep.v, sep.a, sep.f
+    t_end = sep.t_end
+    impulse, v_reb, back, e_striker_end = sep.impulse, sep.v_rebound, sep.back, sep.e_striker
     ES, EK, EI = np.asarray(es_h), np.asarray(ek_h), np.asarray(ei_h)
-    e_striker_end = 0.5 * m_s * v_sep * v_sep + 0.5 * k_s * (x_sep * x_sep - xg * xg)
     e_roll = float(EK[-1] + EI[-1])
     e_damp_tot = sym * e_damp
     k_pk, p_axis, p_line = peak_state
