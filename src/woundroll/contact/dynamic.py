@@ -554,6 +554,58 @@ class _Separation:
     back: float
     e_striker: float
 
+    def striker_fields(
+        self,
+        instrument: Instrument,
+        *,
+        peak: float,
+        peak_step: int,
+        dt: float,
+        t_contact: float,
+        v_contact: float,
+        contact_position: float,
+        energy_in: float,
+        energy_roll: float,
+        energy_damped: float,
+        elastic: bool,
+        energies: tuple[FloatArray, FloatArray, FloatArray],
+    ) -> dict[str, Any]:
+        """The :class:`DynamicImpactResult` fields of the striker's side: the reading, the
+        impulse and contact time, the rebound readouts (Schmidt R, Parotester L), the
+        energy budget and the histories (2D and 3D FE impacts alike)."""
+        from woundroll.instruments.readout import parotester_l, schmidt_r
+
+        xg, v_c = contact_position, v_contact
+        es, ek, ei = energies
+        return {
+            "rho": peak / instrument.rho_unit,
+            "peak_deceleration": peak,
+            "peak_time": peak_step * dt,
+            "peak_force": float(np.max(self.f)),
+            "max_depth": float(np.max(self.x) - xg),
+            "impulse": self.impulse,
+            "contact_time": self.t_end - t_contact,
+            "contact_start": t_contact,
+            "impact_speed": v_c,
+            "rebound_speed": self.v_rebound,
+            "restitution": self.v_rebound / v_c,
+            "rebound_r": float(schmidt_r(self.back, instrument.release_position, xg)),
+            "rebound_l": float(parotester_l(v_c, self.v_rebound)),
+            "energy_in": energy_in,
+            "energy_roll_left": energy_roll,
+            "energy_damped": energy_damped,
+            "energy_contact_loss": energy_in - self.e_striker - energy_roll - energy_damped,
+            "elastic_rebound": elastic,
+            "time": self.t,
+            "position": self.x,
+            "velocity": self.v,
+            "deceleration": self.a,
+            "contact_force": self.f,
+            "energy_striker": es,
+            "energy_roll_kinetic": ek,
+            "energy_roll_internal": ei,
+        }
+
 
 def _separation(
     times: list[float],
@@ -637,7 +689,6 @@ def impact_dynamic(
         durations, or the contact set does not settle.
     """
     from woundroll.contact.spring import head_length_of
-    from woundroll.instruments.readout import parotester_l, schmidt_r
 
     t_start = time.perf_counter()
     opts = options if options is not None else DynamicOptions()
@@ -900,9 +951,6 @@ def impact_dynamic(
             break
     assert peak_state is not None
     sep = _separation(times, xs_h, vs_h, acc_h, f_h, dt, k_s, m_s, xg)
-    T, X_, V, A_, F = sep.t, sep.x, sep.v, sep.a, sep.f
-    t_end = sep.t_end
-    impulse, v_reb, back, e_striker_end = sep.impulse, sep.v_rebound, sep.back, sep.e_striker
     ES, EK, EI = np.asarray(es_h), np.asarray(ek_h), np.asarray(ei_h)
     e_roll = float(EK[-1] + EI[-1])
     e_damp_tot = scale * e_damp
@@ -910,34 +958,22 @@ def impact_dynamic(
     col = roll.axis_elements
     depth_axis = r_out - roll.r_centre[col]
     order = np.argsort(depth_axis)
-    half = s_surf <= 10 * max(float(np.max(X_) - xg), 1e-6) + 5 * R_h
+    half = s_surf <= 10 * max(float(np.max(sep.x) - xg), 1e-6) + 5 * R_h
     return DynamicImpactResult(
-        rho=peak / instrument.rho_unit,
-        peak_deceleration=peak,
-        peak_time=k_pk * dt,
-        peak_force=float(np.max(F)),
-        max_depth=float(np.max(X_) - xg),
-        impulse=impulse,
-        contact_time=t_end - t_c,
-        contact_start=t_c,
-        impact_speed=v_c,
-        rebound_speed=v_reb,
-        restitution=v_reb / v_c,
-        rebound_r=float(schmidt_r(back, instrument.release_position, xg)),
-        rebound_l=float(parotester_l(v_c, v_reb)),
-        energy_in=e_in,
-        energy_roll_left=e_roll,
-        energy_damped=e_damp_tot,
-        energy_contact_loss=e_in - e_striker_end - e_roll - e_damp_tot,
-        elastic_rebound=web.radial_unloading is None,
-        time=T,
-        position=X_,
-        velocity=V,
-        deceleration=A_,
-        contact_force=F,
-        energy_striker=ES,
-        energy_roll_kinetic=EK,
-        energy_roll_internal=EI,
+        **sep.striker_fields(
+            instrument,
+            peak=peak,
+            peak_step=k_pk,
+            dt=dt,
+            t_contact=t_c,
+            v_contact=v_c,
+            contact_position=xg,
+            energy_in=e_in,
+            energy_roll=e_roll,
+            energy_damped=e_damp_tot,
+            elastic=web.radial_unloading is None,
+            energies=(ES, EK, EI),
+        ),
         axis_depth=depth_axis[order],
         axis_pressure=p_axis[order],
         axis_pressure_pre=-roll.sigma_pre[col][order],

@@ -289,7 +289,6 @@ def impact_dynamic3d(
         The striker does not leave within ``max_contact_times`` estimated contact times,
         the contact set or the modified-Newton passes do not settle.
     """
-    from woundroll.instruments.readout import parotester_l, schmidt_r
 
     t_start = time.perf_counter()
     opts = options if options is not None else Dynamic3DOptions()
@@ -535,44 +534,29 @@ def impact_dynamic3d(
             break
     assert peak_state is not None
     sep = _separation(times, xs_h, vs_h, acc_h, f_h, dt, k_s, m_s, xg)
-    T, X_, V, A_, F = sep.t, sep.x, sep.v, sep.a, sep.f
-    t_end = sep.t_end
-    impulse, v_reb, back, e_striker_end = sep.impulse, sep.v_rebound, sep.back, sep.e_striker
     ES, EK, EI = np.asarray(es_h), np.asarray(ek_h), np.asarray(ei_h)
     e_roll = float(EK[-1] + EI[-1])
     e_damp_tot = sym * e_damp
     k_pk, p_axis, p_line = peak_state
     depth_axis = r_out - roll.r_centre[axis_el]
     s_line = r_out * mesh.theta
-    half = s_line <= 10 * max(float(np.max(X_) - xg), 1e-6) + 5 * hd.radius
+    half = s_line <= 10 * max(float(np.max(sep.x) - xg), 1e-6) + 5 * hd.radius
     wall = time.perf_counter() - t_start
     return DynamicImpactResult(
-        rho=peak / instrument.rho_unit,
-        peak_deceleration=peak,
-        peak_time=k_pk * dt,
-        peak_force=float(np.max(F)),
-        max_depth=float(np.max(X_) - xg),
-        impulse=impulse,
-        contact_time=t_end - t_c,
-        contact_start=t_c,
-        impact_speed=v_c,
-        rebound_speed=v_reb,
-        restitution=v_reb / v_c,
-        rebound_r=float(schmidt_r(back, instrument.release_position, xg)),
-        rebound_l=float(parotester_l(v_c, v_reb)),
-        energy_in=e_in,
-        energy_roll_left=e_roll,
-        energy_damped=e_damp_tot,
-        energy_contact_loss=e_in - e_striker_end - e_roll - e_damp_tot,
-        elastic_rebound=un is None,
-        time=T,
-        position=X_,
-        velocity=V,
-        deceleration=A_,
-        contact_force=F,
-        energy_striker=ES,
-        energy_roll_kinetic=EK,
-        energy_roll_internal=EI,
+        **sep.striker_fields(
+            instrument,
+            peak=peak,
+            peak_step=k_pk,
+            dt=dt,
+            t_contact=t_c,
+            v_contact=v_c,
+            contact_position=xg,
+            energy_in=e_in,
+            energy_roll=e_roll,
+            energy_damped=e_damp_tot,
+            elastic=un is None,
+            energies=(ES, EK, EI),
+        ),
         axis_depth=depth_axis,
         axis_pressure=p_axis,
         axis_pressure_pre=-roll.sigma_pre[axis_el],
