@@ -360,29 +360,42 @@ class Assembler:
         n_dof = free.size
         self.free_index = np.full(n_dof, -1, dtype=np.int64)
         self.free_index[free] = np.arange(int(free.sum()))
-        n = self.n_free = int(free.sum())
+        self.n_free = int(free.sum())
+        d = self.free_index[basis.dofs]  # (ne, 8)
+        self._diag_vals = np.array([])
+        self._diag_idx = np.array([], dtype=np.int64)
+        if diagonal is not None:
+            fd = np.flatnonzero((np.asarray(diagonal) != 0) & free)
+            self._diag_idx = self.free_index[fd]
+            self._diag_vals = np.asarray(diagonal)[fd]
+        self._diag_low = self._diag_vals  # spring entries are diagonal: all lower
+        #: half-bandwidth of K in the free numbering
+        both = (d[:, :, None] >= 0) & (d[:, None, :] >= 0)
+        span = np.abs(d[:, :, None] - d[:, None, :])
+        self.bandwidth = int(np.max(span[both])) if np.any(both) else 0
+        self._map: Any = None  # the general scatter map (:meth:`_scatter`), on first use
+        self._band_index_reversed: NDArray[np.int64] | None = None
+        self._csc = None
+        self._pad: Any = None
+
+    def _scatter(self) -> Any:
+        """The scatter map of :meth:`values` / :meth:`banded` / :meth:`csc`, built once
+        (the band of the static solve needs only :meth:`band`'s)."""
+        if self._map is not None:
+            return self._map
+        basis = self.basis
         d = self.free_index[basis.dofs]  # (ne, 8)
         rows = np.broadcast_to(d[:, :, None], (d.shape[0], 8, 8)).ravel()
         cols = np.broadcast_to(d[:, None, :], (d.shape[0], 8, 8)).ravel()
         keep = (rows >= 0) & (cols >= 0)
         self._keep = np.flatnonzero(keep)
-        rows, cols = rows[keep], cols[keep]
-        self._diag_vals = np.array([])
-        diag_idx = np.array([], dtype=np.int64)
-        if diagonal is not None:
-            fd = np.flatnonzero((np.asarray(diagonal) != 0) & free)
-            diag_idx = self.free_index[fd]
-            self._diag_vals = np.asarray(diagonal)[fd]
-        rows = np.concatenate([rows, diag_idx])
-        cols = np.concatenate([cols, diag_idx])
+        rows = np.concatenate([rows[keep], self._diag_idx])
+        cols = np.concatenate([cols[keep], self._diag_idx])
         self._rows, self._cols = rows, cols
-        #: half-bandwidth of K in the free numbering
-        self.bandwidth = int(np.max(np.abs(rows - cols))) if rows.size else 0
+        n = self.n_free
         lower = rows >= cols
         self._lower = np.flatnonzero(lower)
         self._band_index = (rows[lower] - cols[lower]) * n + cols[lower]
-        self._band_index_reversed: NDArray[np.int64] | None = None
-        self._csc = None
         # geometric matrices gathered per kept entry (all, and the lower triangle only)
         n_el_entries = self._keep.size
         self._elem = self._keep // 64
@@ -390,12 +403,14 @@ class Assembler:
         low_el = self._lower[self._lower < n_el_entries]
         self._elem_low = self._elem[low_el]
         self._A_low = self._A[:, low_el]
-        self._diag_low = self._diag_vals  # spring entries are diagonal: all lower
+        self._map = True
+        return self._map
 
     def values(
         self, C11: FloatArray, C12: FloatArray, C22: FloatArray, G: FloatArray
     ) -> FloatArray:
         """All element (and spring) contributions, in the order of the scatter map."""
+        self._scatter()
         e, A = self._elem, self._A
         ke = C11[e] * A[0] + C12[e] * A[1] + C22[e] * A[2] + G[e] * A[3]
         return np.concatenate([ke, self._diag_vals])
@@ -404,9 +419,70 @@ class Assembler:
         self, C11: FloatArray, C12: FloatArray, C22: FloatArray, G: FloatArray
     ) -> FloatArray:
         """The lower-triangle part of :meth:`values` (what :meth:`banded` needs), half the work."""
+        self._scatter()
         e, A = self._elem_low, self._A_low
         ke = C11[e] * A[0] + C12[e] * A[1] + C22[e] * A[2] + G[e] * A[3]
         return np.concatenate([ke, self._diag_low])
+
+    def band(
+        self,
+        C11: FloatArray,
+        C12: FloatArray,
+        C22: FloatArray,
+        G: FloatArray,
+        *,
+        reverse: bool = False,
+        springs: bool = True,
+    ) -> FloatArray:
+        """Lower banded storage of K (as :meth:`banded` of :meth:`values_lower`, the same
+        numbers) formed element by element: each element's 36 lower-triangle entries are
+        one broadcast multiply-add of the moduli over the element rows (no gather of the
+        moduli per entry), then summed into the band by one ``bincount``. ``springs``:
+        include the core's springs."""
+        if self._pad is None:
+            self._pad = self._pad_pattern()
+        A, index, spring_index = self._pad
+        vals = C11[:, None] * A[0]
+        vals += C12[:, None] * A[1]
+        vals += C22[:, None] * A[2]
+        vals += G[:, None] * A[3]
+        n, bw = self.n_free, self.bandwidth
+        size = (bw + 1) * n
+        idx = index[1] if reverse else index[0]
+        if springs and self._diag_low.size:
+            sidx = spring_index[1] if reverse else spring_index[0]
+            idx = np.concatenate([idx, sidx])
+            vals = np.concatenate([vals.ravel(), self._diag_low])
+        ab = np.bincount(idx, weights=vals.ravel(), minlength=size + 1)
+        return ab[:size].reshape(bw + 1, n)
+
+    def _pad_pattern(self) -> tuple[FloatArray, tuple[Any, Any], tuple[Any, Any]]:
+        """The element matrices' lower triangles (4, n_el, 36) and their positions in the
+        band (forward and reversed order; constrained entries go to a dummy slot)."""
+        a, b = np.tril_indices(8)
+        A = self.basis.A[:, :, a, b]  # (4, ne, 36); symmetric: (a, b) and (b, a) alike
+        d = self.free_index[self.basis.dofs]  # (ne, 8)
+        ga, gb = d[:, a], d[:, b]
+        hi, lo = np.maximum(ga, gb), np.minimum(ga, gb)
+        ok = (ga >= 0) & (gb >= 0)
+        n, bw = self.n_free, self.bandwidth
+        dummy = (bw + 1) * n
+        fwd = np.where(ok, (hi - lo) * n + lo, dummy).ravel()
+        rev = np.where(ok, (hi - lo) * n + (n - 1 - hi), dummy).ravel()
+        r = self._diag_idx
+        springs = (r, n - 1 - r)  # diagonal: band row 0
+        return np.ascontiguousarray(A), (fwd, rev), springs
+
+    def matvec(
+        self, C11: FloatArray, C12: FloatArray, C22: FloatArray, G: FloatArray, x: FloatArray
+    ) -> FloatArray:
+        """``K x`` on the free DOFs for per-element moduli (any sign: used with moduli
+        differences), without the core's springs: the lower band (:meth:`band`) multiplied
+        by BLAS ``dsbmv``."""
+        from scipy.linalg.blas import dsbmv
+
+        ab = self.band(C11, C12, C22, G, springs=False)
+        return dsbmv(self.bandwidth, 1.0, ab, x, lower=1)
 
     def banded(
         self, vals: FloatArray, *, lower_only: bool = False, reverse: bool = False
@@ -420,6 +496,7 @@ class Assembler:
         (The lower form: OpenBLAS's threaded upper-form factorisation was found 10-100x
         slower on a loaded 2-core machine.)
         """
+        self._scatter()
         n, bw = self.n_free, self.bandwidth
         w = vals if lower_only else vals[self._lower]
         index = self._band_index
@@ -433,6 +510,7 @@ class Assembler:
 
     def csc(self, vals: FloatArray) -> Any:
         """Global stiffness on the free DOFs as a CSC matrix."""
+        self._scatter()
         if self._csc is None:
             keys, inv = np.unique(self._cols * self.n_free + self._rows, return_inverse=True)
             indices = (keys % self.n_free).astype(np.int32)

@@ -147,6 +147,7 @@ class ContactOptions:
     predictor: bool = True
     step_tol: float = 0.002
     secant: bool = True
+    newton: bool = True
     half_model: bool = True
     step_exponent: float = 1.5
     slip: str = "none"
@@ -180,6 +181,7 @@ class ContactOptions:
             "midpoint",
             "predictor",
             "secant",
+            "newton",
             "half_model",
         ):
             if not isinstance(getattr(self, name), bool | np.bool_):
@@ -453,6 +455,56 @@ class _Roll:
         capped = np.maximum(q - p_c, 0.0) / cap if math.isfinite(p_c) else 0.0
         return neg + floored + law + capped
 
+    def _pressure_of_strain(self, x: FloatArray, e0: float, b: float) -> FloatArray:
+        """The inverse of :meth:`_strain_of_pressure`: the pressure P [Pa] whose
+        ``integral_0^P dP / E_r(P)`` is ``x`` (closed form on each piece of the law)."""
+        f, cap = self.E_floor, self.E_cap
+        E_zero = min(max(e0, f), cap)
+        if b <= 0 or e0 >= cap:
+            return x * E_zero
+        p_f = max((f - e0) / b, 0.0)
+        x_f = p_f / f if p_f > 0 else 0.0
+        E_f = e0 + b * p_f
+        p_c = (cap - e0) / b if math.isfinite(cap) else math.inf
+        x_c = x_f + math.log(cap / E_f) / b if math.isfinite(cap) else math.inf
+        xl = np.clip(x, x_f, x_c)
+        law = (E_f * np.exp(np.minimum(b * (xl - x_f), 700.0)) - e0) / b
+        out = np.where(x < 0, x * E_zero, np.where(x < x_f, x * f, law))
+        if math.isfinite(x_c):
+            out = np.where(x > x_c, p_c + (x - x_c) * cap, out)
+        return out
+
+    def consistent_modulus(
+        self, start: FloatArray, deps: FloatArray, guess: FloatArray
+    ) -> FloatArray:
+        """The secant E_r [Pa] consistent with the centre strain increments ``deps``
+        (n_el, 3) from the total radial stress ``start``: the E with which the increment's
+        radial stress ``dsig_r = C11(E) deps_r + C12(E) deps_theta`` lands on the law {2}
+        (``eps(P1) - eps(P0) = -dsig_r / E``). Written as the uniaxial problem of the
+        effective strain ``e = dsig_r / E``, solved in closed form by
+        :meth:`_pressure_of_strain`, iterated on the plane-strain ratios C11 / E and
+        C12 / E (which depend on E through the radial Poisson terms only; exactly 1 and 0
+        when they vanish, as for Table 2's data). Needs :attr:`linear_law`."""
+        assert self.linear_law is not None
+        e0, b = self.linear_law
+        p0 = -start
+        x0 = self._strain_of_pressure(p0, e0, b)
+        E = guess
+        coupled = self.web.nu_theta_r != 0 or self.web.nu_z_r != 0
+        for _ in range(3 if coupled else 1):
+            C11, C12, _, _ = plane_strain_moduli(self.web, E)
+            e = (C11 * deps[:, 0] + C12 * deps[:, 1]) / E
+            p1 = self._pressure_of_strain(x0 - e, e0, b)
+            small = np.abs(e) <= 1e-14
+            with np.errstate(divide="ignore", invalid="ignore"):
+                E_new = np.where(small, 1.0, -(p1 - p0) / np.where(small, 1.0, e))
+            E_new = np.where(small, self.radial_modulus(start), E_new)
+            E_new = np.clip(E_new, self.E_floor, self.E_cap)
+            if not coupled or np.max(np.abs(E_new / E - 1.0)) <= 1e-10:
+                return E_new
+            E = E_new
+        return E
+
     def moduli(self, sigma_r_total: FloatArray) -> tuple[FloatArray, ...]:
         return self.moduli_at(self.radial_modulus(sigma_r_total))
 
@@ -524,21 +576,28 @@ class _Factor:
         return self._lu.solve(b)
 
     def flexibility(
-        self, rows: NDArray[np.int64], B: FloatArray
+        self, rows: NDArray[np.int64], B: FloatArray, n: int
     ) -> tuple[FloatArray, Callable[[FloatArray], FloatArray]]:
-        """``G = B^T K^-1 B`` for a right-hand side ``B`` (n_free, m) that is zero outside
-        ``rows``, and a function giving ``K^-1 B c`` for coefficients ``c`` (m,)."""
+        """``G = B^T K^-1 B`` for a right-hand side whose leading rows are ``B`` (top, m),
+        zero below them and outside ``rows`` (n the number of unknowns), and a function
+        giving ``K^-1 B c`` for coefficients ``c`` (m,)."""
+        top = B.shape[0]
+
+        def full(c: FloatArray) -> FloatArray:
+            b = np.zeros(n) if c.ndim == 1 else np.zeros((n, c.shape[1]))
+            b[:top] = B @ c
+            return b
+
         if self._cb is None:
-            X = self.solve(B)
+            X = self.solve(full(np.eye(B.shape[1])))
             return B[rows].T @ X[rows], lambda c: X @ c
-        n = self._cb.shape[1]
-        start = n - 1 - int(rows.max())  # first reversed row B touches
-        Br = np.asfortranarray(B[::-1][start:])
-        ab = np.asfortranarray(self._cb[:, start:])
+        # the leading rows are the trailing ones of the reversed order
+        Br = np.asfortranarray(B[::-1])
+        ab = np.asfortranarray(self._cb[:, n - top :])
         Y, info = _dtbtrs(ab, Br, uplo="L", trans="N", diag="N")
         if info != 0:
             raise ConvergenceError(f"banded triangular solve failed (LAPACK info {info})")
-        return Y.T @ Y, lambda c: self.solve(B @ c)
+        return Y.T @ Y, lambda c: self.solve(full(c))
 
 
 def _dtbtrs(*args: Any, **kw: Any) -> tuple[FloatArray, int]:
@@ -551,11 +610,12 @@ def _factorize(roll: _Roll, moduli: tuple[FloatArray, ...]) -> _Factor:
     """Assemble K for per-element ``(C11, C12, C22, G)`` [Pa] and factorise it."""
     asm = roll.assembler
     if not roll.mesh.periodic:
-        ab = asm.banded(asm.values_lower(*moduli), lower_only=True, reverse=True)
-        try:
-            cb = la.cholesky_banded(ab, lower=True, check_finite=False)
-        except la.LinAlgError:
-            raise ConvergenceError("stiffness matrix is not positive definite") from None
+        ab = asm.band(*moduli, reverse=True)
+        from scipy.linalg.lapack import dpbtrf
+
+        cb, info = dpbtrf(ab, lower=1, overwrite_ab=1)
+        if info != 0:
+            raise ConvergenceError("stiffness matrix is not positive definite")
         return _Factor(banded=cb)
     import scipy.sparse.linalg as spla
 
@@ -576,16 +636,22 @@ def _step(
     centre: FloatArray,
     head_radius: float,
     tol_gap: float,
+    extra: FloatArray | None = None,
 ) -> _Step:
     """One depth increment at fixed moduli (``lu`` their factorised stiffness): candidate
-    flexibility and exact LCP."""
+    flexibility and exact LCP. ``extra`` (free DOFs, optional): a further load on the
+    roll, the modified-Newton correction of :func:`_newton_increment` (``moduli`` are then
+    those of ``lu``, and the returned ``dsig`` is recomputed by the caller)."""
     fi = roll.assembler.free_index
+    x_extra = lu.solve(extra) if extra is not None else None
     surf = roll.surface
     pos = roll.xy[surf] + roll.cartesian(u, surf)
     g_pred, normal = _gap(pos, centre, head_radius)
     cand = (g_pred < 0) | (lam_old > 0)
     # the old contact forces are released and re-applied along the current normals
     release = -f_contact[roll.free]
+    released = np.flatnonzero(release)
+    n_free = roll.assembler.n_free
     for _ in range(8):
         band = np.flatnonzero(cand)
         idx = np.unique(
@@ -594,20 +660,27 @@ def _step(
         nodes = surf[idx]
         n_r, n_t = roll.polar(normal[idx], nodes)
         m = idx.size
-        rhs = np.zeros((roll.assembler.n_free, m + 1))
         rows_r, rows_t = fi[2 * nodes], fi[2 * nodes + 1]
         # a node on the symmetry line has no tangential DOF (free index -1; its normal is
         # radial there)
         t_ok = rows_t >= 0
+        # the release forces sit on nodes in contact before, all among the candidates
+        rows = np.unique(np.concatenate([rows_r, rows_t[t_ok], released]))
+        # the right-hand sides touch the leading rows only (the contact axis's nodes come
+        # first in the mesh's numbering)
+        rhs = np.zeros((int(rows.max()) + 1, m + 1))
         rhs[rows_r, np.arange(m)] = n_r
         rhs[rows_t[t_ok], np.arange(m)[t_ok]] = n_t[t_ok]
-        rhs[:, m] = release
-        # the release forces sit on nodes in contact before, all among the candidates
-        rows = np.unique(np.concatenate([rows_r, rows_t[t_ok], np.flatnonzero(release)]))
-        G, solve_for = lu.flexibility(rows, rhs)
+        rhs[:, m] = release[: rhs.shape[0]]
+        G, solve_for = lu.flexibility(rows, rhs, n_free)
         W, q = G[:m, :m], g_pred[idx] + G[:m, m]
+        if x_extra is not None:  # the extra load's displacement along the normals
+            q = q + n_r * x_extra[rows_r]
+            q[t_ok] += n_t[t_ok] * x_extra[rows_t[t_ok]]
         lam_c = _solve_lcp(W, q)
         du_free = solve_for(np.append(lam_c, 1.0))
+        if x_extra is not None:
+            du_free = du_free + x_extra
         du = np.zeros(u.size)
         du[roll.free] = du_free
         gap, _ = _gap(pos + roll.cartesian(du, surf), centre, head_radius)
@@ -709,6 +782,135 @@ def _predicted_increment(
     return step, n
 
 
+#: Modified-Newton iterations of one increment before the stiffness is factorised again at
+#: the current moduli (:func:`_newton_increment`).
+NEWTON_ITERATIONS = 6
+#: ... or sooner, when one pass reduced the mismatch by less than this factor,
+NEWTON_SLOW = 0.5
+#: ... or an element's modulus moved further than this (relative) from the factorised one.
+NEWTON_REACH = 0.5
+
+
+def _reach(E: FloatArray, E_0: FloatArray, w: FloatArray | None) -> float:
+    """How far the moduli ``E`` are from the factorised ``E_0``: the largest relative
+    difference (``w`` None) or its mean weighted by ``w``."""
+    d = np.abs(E / E_0 - 1.0)
+    if w is None:
+        return float(np.max(d))
+    return float(np.sum(w * d) / max(float(np.sum(w)), 1e-300))
+
+
+REUSE_REACH = -1.0
+ANDERSON = 3
+_DEBUG: list | None = None
+REUSE_WEIGHTS = None
+
+
+def _newton_increment(
+    roll: _Roll,
+    sigma_r: FloatArray,
+    predicted: FloatArray | None,
+    tol: float,
+    solve: Callable[..., _Step],
+    factor: list[Any],
+) -> tuple[_Step, int]:
+    """One load increment with the law's secant modulus; the passes on one factorisation.
+
+    The same fixed point as :func:`_predicted_increment` (a pass solves the increment at
+    moduli E_used, its own radial stress change gives the secant E_mid, and the next pass
+    uses E_mid until the two agree within ``tol``, weighted by the elements' strain-energy
+    increments), but a pass does not factorise the stiffness at its moduli: it takes one
+    modified-Newton step on the stiffness K0 factorised for the first pass,
+    ``K0 du = contact + (K0 - K(E_used)) du_prev`` (the contact by the exact LCP each
+    time), which costs two triangular solves instead of an assembly and a factorisation
+    (5x less). The increment is accepted when the moduli agree and the displacement of
+    two passes agrees within ``tol`` as well. Where the moduli have moved far from K0's
+    (more than :data:`NEWTON_REACH` relative in an element), or a pass did not reduce the
+    mismatch by :data:`NEWTON_SLOW`, or after :data:`NEWTON_ITERATIONS` passes, K0 is
+    factorised again at the current moduli (the former scheme's next pass).
+    ``factor``: ``[moduli, factor]`` of the stiffness in use, kept for the caller.
+
+    Returns the step and the number of factorisations it took.
+    """
+    pre = roll.sigma_pre
+    start = pre + sigma_r
+    target = sigma_r if predicted is None else predicted
+    E_used = roll.secant_modulus(start, pre + 2.0 * target - sigma_r)
+    mod_used = roll.moduli_at(E_used)
+    n_fact = 0
+    if factor[0] is not None and _reach(E_used, factor[0], REUSE_WEIGHTS) <= REUSE_REACH:
+        E_0, mod0, lu0 = factor[:3]  # the previous increment's stiffness
+        extra = (
+            roll.assembler.matvec(
+                *(a - b for a, b in zip(mod0, mod_used, strict=True)), factor[3][roll.free]
+            )
+            if factor[3] is not None
+            else None
+        )
+        step = solve(mod0, lu0, extra=extra)
+        exact = False  # one modified-Newton step from the previous increment's shape
+    else:
+        E_0, mod0 = E_used, mod_used
+        lu0 = _factorize(roll, mod0)
+        n_fact = 1
+        step = solve(mod0, lu0)
+        exact = True
+    du_prev: FloatArray | None = None
+    err_prev = math.inf
+    since = 0
+    hist_x: list[FloatArray] = []  # Anderson mixing of log E_used -> log E_mid
+    hist_f: list[FloatArray] = []
+    for _ in range(8 * NEWTON_ITERATIONS):
+        dsig = roll.stress_increment(mod_used, step.du)
+        E_mid = roll.secant_modulus(start, start + dsig[:, 0])
+        w = np.abs(np.sum(dsig * roll.strain_increment(step.du), axis=1)) * roll.area
+        total = float(np.sum(w))
+        err = float(np.sum(w * np.abs(E_used / E_mid - 1.0))) / total if total > 0 else 0.0
+        if du_prev is not None:
+            scale = max(float(np.max(np.abs(step.du))), 1e-300)
+            err = max(err, float(np.max(np.abs(step.du - du_prev))) / scale)
+        if _DEBUG is not None:
+            _DEBUG.append((err, since, n_fact, _reach(E_used, E_mid, None)))
+        if err <= tol and (exact or du_prev is not None):
+            step.dsig = dsig
+            factor[:] = [E_0, mod0, lu0, step.du]
+            return step, n_fact
+        since += 1
+        x = np.log(E_used)
+        f = np.log(E_mid) - x
+        hist_x.append(x)
+        hist_f.append(f)
+        E_used = np.exp(x + f)
+        if ANDERSON > 0 and len(hist_x) >= 2:
+            del hist_x[: -ANDERSON - 1], hist_f[: -ANDERSON - 1]
+            sw = np.sqrt(w / total) if total > 0 else np.ones_like(w)
+            dF = np.diff(np.stack(hist_f, axis=1), axis=1)
+            dX = np.diff(np.stack(hist_x, axis=1), axis=1)
+            gamma = np.linalg.lstsq(dF * sw[:, None], f * sw, rcond=None)[0]
+            x_new = x + f - (dX + dF) @ gamma
+            E_used = np.exp(np.clip(x_new, x - 3.0, x + 3.0))
+        E_used = np.clip(E_used, roll.E_floor, roll.E_cap)
+        mod_used = roll.moduli_at(E_used)
+        if since >= NEWTON_ITERATIONS or err > err_prev or _reach(E_used, E_0, None) > NEWTON_REACH:
+            mod0, lu0, E_0 = mod_used, _factorize(roll, mod_used), E_used
+            n_fact += 1
+            since = 0
+            err_prev = math.inf
+            du_prev = None
+            step = solve(mod0, lu0)
+            exact = True
+            continue
+        err_prev = err
+        du_prev = step.du
+        dm = tuple(a - b for a, b in zip(mod0, mod_used, strict=True))
+        extra = roll.assembler.matvec(*dm, step.du[roll.free])
+        step = solve(mod0, lu0, extra=extra)
+        exact = False
+    raise ConvergenceError(
+        f"the increment's moduli did not settle in {8 * NEWTON_ITERATIONS} passes; use more n_steps"
+    )
+
+
 def _slip_weight(
     roll: _Roll, sig: FloatArray, dsig: FloatArray, friction: float, before: FloatArray
 ) -> FloatArray:
@@ -777,6 +979,7 @@ def indent(
     update_modulus: bool = True,
     options: ContactOptions | None = None,
     stop: Callable[[FloatArray, FloatArray], bool] | None = None,
+    extend_to: float | None = None,
 ) -> ContactResult:
     """Press a rigid cylindrical head into the wound roll and return F(d), a(d) and the fields.
 
@@ -813,6 +1016,12 @@ def indent(
         (origin included): True ends the loading there (the result then ends at that
         depth). :func:`woundroll.contact.roll_stiffness` uses it to stop well past the
         depths the striker can reach.
+    extend_to : float, optional
+        With ``stop``: the loading goes on past ``depth_max`` by the same step law
+        (``d_k = depth_max (k / n_steps)^step_exponent``) until ``stop`` says so or the
+        depth reaches ``extend_to`` [m] (the increments up to ``depth_max`` are the same
+        as without it). :func:`woundroll.contact.roll_stiffness` uses it instead of
+        solving again from the start when the striker turns out to go deeper.
 
     Returns
     -------
@@ -833,6 +1042,9 @@ def indent(
     head_radius = _check_scalar(head_radius, "head_radius")
     head_length = _check_scalar(head_length, "head_length")
     depth_max = _check_scalar(depth_max, "depth_max")
+    deepest = depth_max
+    if extend_to is not None and stop is not None:
+        deepest = max(_check_scalar(extend_to, "extend_to"), depth_max)
     friction = to_si(friction, "dimensionless", "friction")
     if friction < 0:
         raise InputError(f"must be zero or positive, got {friction:g}", "friction")
@@ -841,17 +1053,18 @@ def indent(
     if not isinstance(opts, ContactOptions):
         raise InputError("must be a ContactOptions", "options")
     r_in, r_out = core.outer_radius, float(r[-1])
-    if depth_max >= 0.5 * head_radius:
-        raise InputError(
-            f"must be below half the head radius ({0.5 * head_radius:g} m), got {depth_max:g} m",
-            "depth_max",
-        )
-    if depth_max >= 0.25 * (r_out - r_in):
-        raise InputError(
-            f"must be below a quarter of the wound thickness "
-            f"({0.25 * (r_out - r_in):g} m), got {depth_max:g} m",
-            "depth_max",
-        )
+    for value, name in ((depth_max, "depth_max"), (deepest, "extend_to")):
+        if value >= 0.5 * head_radius:
+            raise InputError(
+                f"must be below half the head radius ({0.5 * head_radius:g} m), got {value:g} m",
+                name,
+            )
+        if value >= 0.25 * (r_out - r_in):
+            raise InputError(
+                f"must be below a quarter of the wound thickness "
+                f"({0.25 * (r_out - r_in):g} m), got {value:g} m",
+                name,
+            )
     R_eff = 1.0 / (1.0 / head_radius + 1.0 / r_out)
     a_geo = math.sqrt(2.0 * R_eff * depth_max)
     surface_size = opts.surface_size if opts.surface_size is not None else 0.5 * web.thickness
@@ -889,8 +1102,11 @@ def indent(
     trib = 0.5 * (np.roll(s_surf, -1) - np.roll(s_surf, 1))
     if opts.half_model:
         trib[0] = 0.5 * s_surf[1]
-    n = int(opts.n_steps)
-    delta = depth_max * (np.arange(n + 1) / n) ** opts.step_exponent
+    n_per = int(opts.n_steps)
+    n = n_per
+    if deepest > depth_max:  # room to go on past depth_max (extend_to)
+        n = int(math.ceil(n_per * (deepest / depth_max) ** (1.0 / opts.step_exponent)))
+    delta = np.minimum(depth_max * (np.arange(n + 1) / n_per) ** opts.step_exponent, deepest)
     force = np.zeros(n + 1)
     half = np.zeros(n + 1)
     p_peak = np.zeros(n + 1)
@@ -908,6 +1124,7 @@ def indent(
     factorisations = int(lu_frozen is not None)
     slip_passes = 0
     n_done = n
+    factor: list[Any] = [None] * 4  # the modified-Newton increments' stiffness in use
     for k in range(1, n + 1):
         centre = np.array([r_out + head_radius - delta[k], 0.0])
 
@@ -918,8 +1135,9 @@ def indent(
             f_contact: FloatArray = f_contact,
             lam: FloatArray = lam,
             centre: FloatArray = centre,
+            extra: FloatArray | None = None,
         ) -> _Step:
-            return _step(roll, mod, lu, u, f_contact, lam, centre, head_radius, tol_gap)
+            return _step(roll, mod, lu, u, f_contact, lam, centre, head_radius, tol_gap, extra)
 
         def increment(
             frozen: tuple[FloatArray, ...] | None,
@@ -946,6 +1164,10 @@ def indent(
                 elif last is not None:
                     ratio = (delta[k] - delta[k - 1]) / (delta[k - 1] - delta[k - 2])
                     predicted = sig[:, 0] + 0.5 * ratio * last.dsig[:, 0]
+                if roll.linear_law is not None and opts.newton:
+                    return _newton_increment(
+                        roll, sig[:, 0], predicted, opts.step_tol, solve, factor
+                    )
                 return _predicted_increment(roll, sig[:, 0], predicted, opts.step_tol, solve)
             step = _hypoelastic_increment(roll, sig[:, 0], opts.midpoint, solve)
             return step, 2 if opts.midpoint else 1
