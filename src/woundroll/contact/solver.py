@@ -455,56 +455,6 @@ class _Roll:
         capped = np.maximum(q - p_c, 0.0) / cap if math.isfinite(p_c) else 0.0
         return neg + floored + law + capped
 
-    def _pressure_of_strain(self, x: FloatArray, e0: float, b: float) -> FloatArray:
-        """The inverse of :meth:`_strain_of_pressure`: the pressure P [Pa] whose
-        ``integral_0^P dP / E_r(P)`` is ``x`` (closed form on each piece of the law)."""
-        f, cap = self.E_floor, self.E_cap
-        E_zero = min(max(e0, f), cap)
-        if b <= 0 or e0 >= cap:
-            return x * E_zero
-        p_f = max((f - e0) / b, 0.0)
-        x_f = p_f / f if p_f > 0 else 0.0
-        E_f = e0 + b * p_f
-        p_c = (cap - e0) / b if math.isfinite(cap) else math.inf
-        x_c = x_f + math.log(cap / E_f) / b if math.isfinite(cap) else math.inf
-        xl = np.clip(x, x_f, x_c)
-        law = (E_f * np.exp(np.minimum(b * (xl - x_f), 700.0)) - e0) / b
-        out = np.where(x < 0, x * E_zero, np.where(x < x_f, x * f, law))
-        if math.isfinite(x_c):
-            out = np.where(x > x_c, p_c + (x - x_c) * cap, out)
-        return out
-
-    def consistent_modulus(
-        self, start: FloatArray, deps: FloatArray, guess: FloatArray
-    ) -> FloatArray:
-        """The secant E_r [Pa] consistent with the centre strain increments ``deps``
-        (n_el, 3) from the total radial stress ``start``: the E with which the increment's
-        radial stress ``dsig_r = C11(E) deps_r + C12(E) deps_theta`` lands on the law {2}
-        (``eps(P1) - eps(P0) = -dsig_r / E``). Written as the uniaxial problem of the
-        effective strain ``e = dsig_r / E``, solved in closed form by
-        :meth:`_pressure_of_strain`, iterated on the plane-strain ratios C11 / E and
-        C12 / E (which depend on E through the radial Poisson terms only; exactly 1 and 0
-        when they vanish, as for Table 2's data). Needs :attr:`linear_law`."""
-        assert self.linear_law is not None
-        e0, b = self.linear_law
-        p0 = -start
-        x0 = self._strain_of_pressure(p0, e0, b)
-        E = guess
-        coupled = self.web.nu_theta_r != 0 or self.web.nu_z_r != 0
-        for _ in range(3 if coupled else 1):
-            C11, C12, _, _ = plane_strain_moduli(self.web, E)
-            e = (C11 * deps[:, 0] + C12 * deps[:, 1]) / E
-            p1 = self._pressure_of_strain(x0 - e, e0, b)
-            small = np.abs(e) <= 1e-14
-            with np.errstate(divide="ignore", invalid="ignore"):
-                E_new = np.where(small, 1.0, -(p1 - p0) / np.where(small, 1.0, e))
-            E_new = np.where(small, self.radial_modulus(start), E_new)
-            E_new = np.clip(E_new, self.E_floor, self.E_cap)
-            if not coupled or np.max(np.abs(E_new / E - 1.0)) <= 1e-10:
-                return E_new
-            E = E_new
-        return E
-
     def moduli(self, sigma_r_total: FloatArray) -> tuple[FloatArray, ...]:
         return self.moduli_at(self.radial_modulus(sigma_r_total))
 
@@ -782,28 +732,14 @@ def _predicted_increment(
     return step, n
 
 
-#: Modified-Newton iterations of one increment before the stiffness is factorised again at
-#: the current moduli (:func:`_newton_increment`).
+#: Passes of one increment on one factorised stiffness before it is factorised again at the
+#: current moduli (:func:`_newton_increment`) ...
 NEWTON_ITERATIONS = 6
-#: ... or sooner, when one pass reduced the mismatch by less than this factor,
-NEWTON_SLOW = 0.5
-#: ... or an element's modulus moved further than this (relative) from the factorised one.
+#: ... or sooner, where an element's modulus has moved further than this (relative) from
+#: the factorised one (the modified-Newton pass then no longer contracts surely).
 NEWTON_REACH = 0.5
-
-
-def _reach(E: FloatArray, E_0: FloatArray, w: FloatArray | None) -> float:
-    """How far the moduli ``E`` are from the factorised ``E_0``: the largest relative
-    difference (``w`` None) or its mean weighted by ``w``."""
-    d = np.abs(E / E_0 - 1.0)
-    if w is None:
-        return float(np.max(d))
-    return float(np.sum(w * d) / max(float(np.sum(w)), 1e-300))
-
-
-REUSE_REACH = -1.0
+#: Depth of the Anderson mixing of the passes' moduli (0: plain fixed-point passes).
 ANDERSON = 3
-_DEBUG: list | None = None
-REUSE_WEIGHTS = None
 
 
 def _newton_increment(
@@ -812,23 +748,30 @@ def _newton_increment(
     predicted: FloatArray | None,
     tol: float,
     solve: Callable[..., _Step],
-    factor: list[Any],
 ) -> tuple[_Step, int]:
-    """One load increment with the law's secant modulus; the passes on one factorisation.
+    """One load increment with the law's secant modulus, its passes on one factorisation.
 
-    The same fixed point as :func:`_predicted_increment` (a pass solves the increment at
-    moduli E_used, its own radial stress change gives the secant E_mid, and the next pass
-    uses E_mid until the two agree within ``tol``, weighted by the elements' strain-energy
-    increments), but a pass does not factorise the stiffness at its moduli: it takes one
-    modified-Newton step on the stiffness K0 factorised for the first pass,
-    ``K0 du = contact + (K0 - K(E_used)) du_prev`` (the contact by the exact LCP each
-    time), which costs two triangular solves instead of an assembly and a factorisation
-    (5x less). The increment is accepted when the moduli agree and the displacement of
-    two passes agrees within ``tol`` as well. Where the moduli have moved far from K0's
-    (more than :data:`NEWTON_REACH` relative in an element), or a pass did not reduce the
-    mismatch by :data:`NEWTON_SLOW`, or after :data:`NEWTON_ITERATIONS` passes, K0 is
-    factorised again at the current moduli (the former scheme's next pass).
-    ``factor``: ``[moduli, factor]`` of the stiffness in use, kept for the caller.
+    The fixed point is that of :func:`_predicted_increment`: a pass solves the increment at
+    moduli E_used, its radial stress change gives the law's secant E_mid over the step
+    (:meth:`_Roll.secant_modulus`), and the increment is accepted when the two agree within
+    ``tol`` (relative, weighted by the elements' strain-energy increments). Three things
+    make a pass cheaper than that function's re-solve at the new moduli:
+
+    * **Modified Newton.** A pass after the first does not factorise K(E_used): it takes
+      one step on the stiffness K0 already factorised,
+      ``K0 du = contact + (K0 - K(E_used)) du_prev`` (the contact by the exact LCP each
+      time; :meth:`Assembler.matvec` forms the out-of-balance load), two triangular solves
+      instead of an assembly and a factorisation. An increment is then accepted only once
+      two passes' displacements also agree within ``tol`` (the pass converged to the
+      solution at E_used). K0 is factorised again at the current moduli after
+      :data:`NEWTON_ITERATIONS` passes, when the mismatch grew, or when an element's
+      modulus moved by more than :data:`NEWTON_REACH` from K0's (a pass contracts only
+      while K(E_used) < 2 K0).
+    * **Anderson mixing** of the moduli in log E (depth :data:`ANDERSON`, least squares
+      weighted by the strain-energy increments): where E_r grows from its floor (K1 = 0,
+      Table 3) the plain passes converged linearly at a rate 0.5-0.7 in the first
+      increments; mixing needs about half the passes there.
+    * the first pass at the predicted secant (the caller's parabolic predictor), as before.
 
     Returns the step and the number of factorisations it took.
     """
@@ -836,30 +779,17 @@ def _newton_increment(
     start = pre + sigma_r
     target = sigma_r if predicted is None else predicted
     E_used = roll.secant_modulus(start, pre + 2.0 * target - sigma_r)
-    mod_used = roll.moduli_at(E_used)
-    n_fact = 0
-    if factor[0] is not None and _reach(E_used, factor[0], REUSE_WEIGHTS) <= REUSE_REACH:
-        E_0, mod0, lu0 = factor[:3]  # the previous increment's stiffness
-        extra = (
-            roll.assembler.matvec(
-                *(a - b for a, b in zip(mod0, mod_used, strict=True)), factor[3][roll.free]
-            )
-            if factor[3] is not None
-            else None
-        )
-        step = solve(mod0, lu0, extra=extra)
-        exact = False  # one modified-Newton step from the previous increment's shape
-    else:
-        E_0, mod0 = E_used, mod_used
-        lu0 = _factorize(roll, mod0)
-        n_fact = 1
-        step = solve(mod0, lu0)
-        exact = True
+    E_0 = E_used
+    mod0 = mod_used = roll.moduli_at(E_used)
+    lu0 = _factorize(roll, mod0)
+    n_fact = 1
+    step = solve(mod0, lu0)
+    exact = True  # the last solve was at the moduli it was factorised at
     du_prev: FloatArray | None = None
     err_prev = math.inf
-    since = 0
-    hist_x: list[FloatArray] = []  # Anderson mixing of log E_used -> log E_mid
-    hist_f: list[FloatArray] = []
+    since = 0  # passes on the current factor
+    hist_x: list[FloatArray] = []  # log E_used of the passes
+    hist_f: list[FloatArray] = []  # log E_mid - log E_used
     for _ in range(8 * NEWTON_ITERATIONS):
         dsig = roll.stress_increment(mod_used, step.du)
         E_mid = roll.secant_modulus(start, start + dsig[:, 0])
@@ -869,45 +799,42 @@ def _newton_increment(
         if du_prev is not None:
             scale = max(float(np.max(np.abs(step.du))), 1e-300)
             err = max(err, float(np.max(np.abs(step.du - du_prev))) / scale)
-        if _DEBUG is not None:
-            _DEBUG.append((err, since, n_fact, _reach(E_used, E_mid, None)))
         if err <= tol and (exact or du_prev is not None):
             step.dsig = dsig
-            factor[:] = [E_0, mod0, lu0, step.du]
             return step, n_fact
         since += 1
         x = np.log(E_used)
         f = np.log(E_mid) - x
         hist_x.append(x)
         hist_f.append(f)
-        E_used = np.exp(x + f)
+        x_new = x + f
         if ANDERSON > 0 and len(hist_x) >= 2:
             del hist_x[: -ANDERSON - 1], hist_f[: -ANDERSON - 1]
             sw = np.sqrt(w / total) if total > 0 else np.ones_like(w)
             dF = np.diff(np.stack(hist_f, axis=1), axis=1)
             dX = np.diff(np.stack(hist_x, axis=1), axis=1)
             gamma = np.linalg.lstsq(dF * sw[:, None], f * sw, rcond=None)[0]
-            x_new = x + f - (dX + dF) @ gamma
-            E_used = np.exp(np.clip(x_new, x - 3.0, x + 3.0))
-        E_used = np.clip(E_used, roll.E_floor, roll.E_cap)
+            x_new = np.clip(x + f - (dX + dF) @ gamma, x - 3.0, x + 3.0)
+        E_used = np.clip(np.exp(x_new), roll.E_floor, roll.E_cap)
         mod_used = roll.moduli_at(E_used)
-        if since >= NEWTON_ITERATIONS or err > err_prev or _reach(E_used, E_0, None) > NEWTON_REACH:
-            mod0, lu0, E_0 = mod_used, _factorize(roll, mod_used), E_used
+        if (
+            since >= NEWTON_ITERATIONS
+            or err > err_prev
+            or float(np.max(np.abs(E_used / E_0 - 1.0))) > NEWTON_REACH
+        ):
+            E_0, mod0 = E_used, mod_used
+            lu0 = _factorize(roll, mod0)
             n_fact += 1
-            since = 0
-            err_prev = math.inf
-            du_prev = None
+            since, err_prev, du_prev = 0, math.inf, None
             step = solve(mod0, lu0)
             exact = True
             continue
-        err_prev = err
-        du_prev = step.du
+        err_prev, du_prev = err, step.du
         dm = tuple(a - b for a, b in zip(mod0, mod_used, strict=True))
-        extra = roll.assembler.matvec(*dm, step.du[roll.free])
-        step = solve(mod0, lu0, extra=extra)
+        step = solve(mod0, lu0, extra=roll.assembler.matvec(*dm, step.du[roll.free]))
         exact = False
     raise ConvergenceError(
-        f"the increment's moduli did not settle in {8 * NEWTON_ITERATIONS} passes; use more n_steps"
+        f"an increment's moduli did not settle in {8 * NEWTON_ITERATIONS} passes; use more n_steps"
     )
 
 
@@ -1124,7 +1051,6 @@ def indent(
     factorisations = int(lu_frozen is not None)
     slip_passes = 0
     n_done = n
-    factor: list[Any] = [None] * 4  # the modified-Newton increments' stiffness in use
     for k in range(1, n + 1):
         centre = np.array([r_out + head_radius - delta[k], 0.0])
 
@@ -1165,9 +1091,7 @@ def indent(
                     ratio = (delta[k] - delta[k - 1]) / (delta[k - 1] - delta[k - 2])
                     predicted = sig[:, 0] + 0.5 * ratio * last.dsig[:, 0]
                 if roll.linear_law is not None and opts.newton:
-                    return _newton_increment(
-                        roll, sig[:, 0], predicted, opts.step_tol, solve, factor
-                    )
+                    return _newton_increment(roll, sig[:, 0], predicted, opts.step_tol, solve)
                 return _predicted_increment(roll, sig[:, 0], predicted, opts.step_tol, solve)
             step = _hypoelastic_increment(roll, sig[:, 0], opts.midpoint, solve)
             return step, 2 if opts.midpoint else 1
