@@ -227,14 +227,36 @@ def _accumulate(
 ) -> None:
     """Add one integration point's contribution (weight ``w`` (ne,)) to the four matrices;
     ``bt`` the hoop-strain row to use (point's own or assumed)."""
-    w = w[:, None, None]
+    w = w[:, None]
     br, bs = B[:, 0, :], B[:, 2, :]
-    A[0] += w * br[:, :, None] * br[:, None, :]
-    rt = br[:, :, None] * bt[:, None, :]
-    A[1] += w * (rt + rt.transpose(0, 2, 1))
-    A[2] += w * bt[:, :, None] * bt[:, None, :]
+    wr = w * br  # the weight taken into one factor: one (ne, 8, 8) product per term
+    A[0] += wr[:, :, None] * br[:, None, :]
+    rt = wr[:, :, None] * bt[:, None, :]
+    A[1] += rt
+    A[1] += rt.transpose(0, 2, 1)
+    A[2] += (w * bt)[:, :, None] * bt[:, None, :]
     if full_shear:
-        A[3] += w * bs[:, :, None] * bs[:, None, :]
+        A[3] += (w * bs)[:, :, None] * bs[:, None, :]
+
+
+def _accumulate_points(
+    A: FloatArray, rows: list[tuple[FloatArray, FloatArray, FloatArray]], full_shear: bool
+) -> None:
+    """:func:`_accumulate` over all integration points at once (``rows``: weight (ne,),
+    B (ne, 3, 8) and hoop row (ne, 8) per point): each matrix is one batched product
+    ``sum_g (w_g b_g) b_g^T`` instead of a pass over the (ne, 8, 8) arrays per point."""
+    w = np.stack([r[0] for r in rows], axis=1)[:, :, None]  # (ne, g, 1)
+    br = np.stack([r[1][:, 0, :] for r in rows], axis=1)  # (ne, g, 8)
+    bt = np.stack([r[2] for r in rows], axis=1)
+    wr = (w * br).transpose(0, 2, 1)  # (ne, 8, g)
+    A[0] += wr @ br
+    rt = wr @ bt
+    A[1] += rt
+    A[1] += rt.transpose(0, 2, 1)
+    A[2] += (w * bt).transpose(0, 2, 1) @ bt
+    if full_shear:
+        bs = np.stack([r[1][:, 2, :] for r in rows], axis=1)
+        A[3] += (w * bs).transpose(0, 2, 1) @ bs
 
 
 def _dofs(conn: IntArray) -> IntArray:
@@ -277,13 +299,15 @@ def _curved_basis(mesh: RollMesh, reduced_shear: bool, assumed_hoop: bool) -> El
     A = np.zeros((4, ne, 8, 8))
     area = np.zeros(ne)
     pts = (0.5 - 0.5 * _G, 0.5 + 0.5 * _G)
+    rows: list[tuple[FloatArray, FloatArray, FloatArray]] = []  # per point: w, B, hoop row
     for a in pts:
         B_mid, _ = b_matrix(a, 0.5)
         for b in pts:
             B, r = b_matrix(a, b)
             w = 0.25 * r * dr * dt  # r dr dtheta, Gauss weights 1/4
-            _accumulate(A, w, B, B_mid[:, 1, :] if assumed_hoop else B[:, 1, :], not reduced_shear)
+            rows.append((w, B, B_mid[:, 1, :] if assumed_hoop else B[:, 1, :]))
             area += w
+    _accumulate_points(A, rows, not reduced_shear)
     Bc, rc = b_matrix(0.5, 0.5)
     if reduced_shear:
         bs = Bc[:, 2, :]
@@ -334,6 +358,10 @@ def _flat_basis(mesh: RollMesh, reduced_shear: bool, assumed_hoop: bool) -> Elem
         bs = Bc[:, 2, :]
         A[3] = 4.0 * det[:, None, None] * bs[:, :, None] * bs[:, None, :]
     return ElementBasis(A=A, B_centre=Bc, dofs=_dofs(conn), centre_xy=pt, area=area)
+
+
+#: Band positions of the element entries by DOF numbering (:meth:`Assembler._pad_pattern`).
+_PAD_INDEX: dict[tuple[Any, ...], tuple[IntArray, IntArray]] = {}
 
 
 class Assembler:
@@ -460,18 +488,28 @@ class Assembler:
         """The element matrices' lower triangles (4, n_el, 36) and their positions in the
         band (forward and reversed order; constrained entries go to a dummy slot)."""
         a, b = np.tril_indices(8)
-        A = self.basis.A[:, :, a, b]  # (4, ne, 36); symmetric: (a, b) and (b, a) alike
+        flat = a * 8 + b
+        ne = self.basis.A.shape[1]
+        A = self.basis.A.reshape(4, ne, 64)[:, :, flat]  # (4, ne, 36); symmetric
         d = self.free_index[self.basis.dofs]  # (ne, 8)
-        ga, gb = d[:, a], d[:, b]
-        hi, lo = np.maximum(ga, gb), np.minimum(ga, gb)
-        ok = (ga >= 0) & (gb >= 0)
         n, bw = self.n_free, self.bandwidth
-        dummy = (bw + 1) * n
-        fwd = np.where(ok, (hi - lo) * n + lo, dummy).ravel()
-        rev = np.where(ok, (hi - lo) * n + (n - 1 - hi), dummy).ravel()
+        # the positions depend on the numbering only, the same for the sectors of a
+        # profile (meshes of equal shape): kept for the next assembler
+        key = (n, bw, d.shape, hash(d.tobytes()))
+        index = _PAD_INDEX.get(key)
+        if index is None:
+            ga, gb = d[:, a], d[:, b]
+            hi, lo = np.maximum(ga, gb), np.minimum(ga, gb)
+            ok = (ga >= 0) & (gb >= 0)
+            dummy = (bw + 1) * n
+            fwd = np.where(ok, (hi - lo) * n + lo, dummy).ravel()
+            rev = np.where(ok, (hi - lo) * n + (n - 1 - hi), dummy).ravel()
+            index = (fwd, rev)
+            _PAD_INDEX.clear()  # one numbering at a time (a profile's sectors share it)
+            _PAD_INDEX[key] = index
         r = self._diag_idx
         springs = (r, n - 1 - r)  # diagonal: band row 0
-        return np.ascontiguousarray(A), (fwd, rev), springs
+        return A, index, springs
 
     def matvec(
         self, C11: FloatArray, C12: FloatArray, C22: FloatArray, G: FloatArray, x: FloatArray
