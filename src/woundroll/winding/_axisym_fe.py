@@ -94,34 +94,11 @@ def material_matrices(
     return C
 
 
-def radial_shapes(
-    r1: FloatArray, r2: FloatArray, g: FloatArray, r: FloatArray, shape: str = "power"
-) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """Radial shape functions at radii ``r`` (..., q) of elements [r1, r2] (..., 1).
-
-    Returns N, dN/dr (for u_r) and L, dL/dr (for u_z), each (..., q, 2).
-    """
-    Lr = r2 - r1
-    L = np.stack([(r2 - r) / Lr, (r - r1) / Lr], axis=-1)
-    dL = np.stack([-1.0 / Lr + 0 * r, 1.0 / Lr + 0 * r], axis=-1)
-    if shape == "linear":
-        return L, dL, L, dL
-    s1, s2, s = np.log(r1), np.log(r2), np.log(r)
-    D = s2 - s1
-    gg = np.minimum(g, _GD_MAX / D)
-    small = gg * D < 1e-6
-    gs = np.where(small, 1e-6 / D, gg)  # sinh ratio -> linear in ln r (to 1e-13)
-    den = np.sinh(gs * D)
-    a1, a2 = gs * (s2 - s), gs * (s - s1)
-    N = np.stack([np.sinh(a1) / den, np.sinh(a2) / den], axis=-1)
-    dN = np.stack([-gs * np.cosh(a1) / (r * den), gs * np.cosh(a2) / (r * den)], axis=-1)
-    return N, dN, L, dL
-
-
 def _shape_rows(r1, r2, g, r, shape: str = "power") -> tuple[FloatArray, ...]:
-    """The radial shape functions of :func:`radial_shapes` as eight separate arrays (the
-    shape of ``r``): N_1, N_2, dN_1/dr, dN_2/dr, L_1, L_2, dL_1/dr, dL_2/dr (the last two
-    of the shape of ``r1``: constant over the element). No stacking (hot path)."""
+    """Radial shape functions (module docstring) at radii ``r`` (..., q) of elements
+    [r1, r2] (..., 1), ``g`` (..., 1), as eight separate arrays (no stacking: hot path):
+    N_1, N_2, dN_1/dr, dN_2/dr for u_r and L_1, L_2 (shape of ``r``), dL_1/dr, dL_2/dr
+    (shape of ``r1``: constant over the element) for u_z."""
     Lr = r2 - r1
     L1, L2 = (r2 - r) / Lr, (r - r1) / Lr
     dL2 = 1.0 / Lr
@@ -187,7 +164,8 @@ class Stack:
         The radial integrals ``int f_i f_j w dr`` (weights r, 1, 1/r) of the rows
         ``F = (N_1, N_2, dN_1, dN_2, L_1, L_2, 1)`` are one batched product
         ``(F w) F^T``; each component pair (c, c') is then ``R_0 x Z_0 + R_1 x Z_1`` with
-        the axial factors ``Z`` of :meth:`_axial_factors` (per sector, built once)."""
+        the axial factors ``Z`` of :meth:`_axial_factors` (per sector, built once), one
+        batched product too."""
         E_t, E_z, nu_tr, nu_zr, nu_tz = self.mat
         shp = E_r.shape
         nel = E_r.size
@@ -215,33 +193,30 @@ class Stack:
         Gs = self.shear(E_r)
         Cf = C.reshape(nel, 9, 1, 1)
         Gq = Gs.reshape(nel, 1, 1)
-        R0 = np.empty((nel, 4, 2, 2, 1))  # the factors of Z_0 of the pairs 00, 01, 10, 11
-        R1 = np.empty((nel, 4, 2, 2, 1))  # and of Z_1
-        R0[:, 0, :, :, 0] = Cf[:, 0] * Rrr + Cf[:, 1] * (Rrt + Rrt.transpose(0, 2, 1))
-        R0[:, 0, :, :, 0] += Cf[:, 4] * Rtt
-        R0[:, 1, :, :, 0] = Cf[:, 2] * Arz + Cf[:, 5] * Atz
-        R0[:, 2, :, :, 0] = R0[:, 1, :, :, 0].transpose(0, 2, 1)
-        R0[:, 3, :, :, 0] = Cf[:, 8] * Bzz
-        R1[:, 0, :, :, 0] = Gq * Rnn
-        R1[:, 1, :, :, 0] = Gq * Ag
-        R1[:, 2, :, :, 0] = R1[:, 1, :, :, 0].transpose(0, 2, 1)
-        R1[:, 3, :, :, 0] = Gq * Bgg
-        Z0, Z1 = self._axial_factors()  # (ncol, 4, 1, 1, 4)
-        R0 = R0.reshape(shp[0], shp[1], 4, 4, 1)
-        R1 = R1.reshape(shp[0], shp[1], 4, 4, 1)
-        K = R0 * Z0
-        K += R1 * Z1
+        R = np.empty((nel, 4, 2, 2, 2))  # [e, pair 00 01 10 11, a, a', term]
+        R[:, 0, :, :, 0] = Cf[:, 0] * Rrr + Cf[:, 1] * (Rrt + Rrt.transpose(0, 2, 1))
+        R[:, 0, :, :, 0] += Cf[:, 4] * Rtt
+        R[:, 1, :, :, 0] = Cf[:, 2] * Arz + Cf[:, 5] * Atz
+        R[:, 2, :, :, 0] = R[:, 1, :, :, 0].transpose(0, 2, 1)
+        R[:, 3, :, :, 0] = Cf[:, 8] * Bzz
+        R[:, 0, :, :, 1] = Gq * Rnn
+        R[:, 1, :, :, 1] = Gq * Ag
+        R[:, 2, :, :, 1] = R[:, 1, :, :, 1].transpose(0, 2, 1)
+        R[:, 3, :, :, 1] = Gq * Bgg
+        # K[e, pair, aa', bb'] = sum over the two terms of R[..., aa', term] Z[term, bb']
+        K = R.reshape(shp[0], shp[1], 4, 4, 2) @ self._axial_factors()
         return K.reshape(nel, 2, 2, 2, 2, 2, 2), C, Gs
 
-    def _axial_factors(self) -> tuple[FloatArray, FloatArray]:
-        """The axial 2x2 integrals of the component pairs (00, 01, 10, 11) by sector, as the
-        factors of the two radial terms of each pair: pair 00 ``(M0, M1)``, 01
-        ``(Zx, Zx^T)``, 10 ``(Zx^T, Zx)``, 11 ``(M1, M0)``; each (ncol, 4, 1, 4)."""
+    def _axial_factors(self) -> FloatArray:
+        """The axial 2x2 integrals of the component pairs (00, 01, 10, 11) by sector, the
+        factors of the two radial terms of each pair: 00 ``(M0, M1)``, 01 ``(Zx, Zx^T)``,
+        10 ``(Zx^T, Zx)``, 11 ``(M1, M0)``; (ncol, 4, 2 terms, 4 = (b, b')), built once."""
         if "_Z" not in self.__dict__:
             zx = np.broadcast_to(self.Zx, self.M0.shape)
-            Z0 = np.stack([self.M0, zx, zx.transpose(0, 2, 1), self.M1], axis=1)
-            Z1 = np.stack([self.M1, zx.transpose(0, 2, 1), zx, self.M0], axis=1)
-            self._Z = (Z0.reshape(self.ncol, 4, 1, 4), Z1.reshape(self.ncol, 4, 1, 4))
+            zt = zx.transpose(0, 2, 1)
+            Z0 = np.stack([self.M0, zx, zt, self.M1], axis=1).reshape(self.ncol, 4, 1, 4)
+            Z1 = np.stack([self.M1, zt, zx, self.M0], axis=1).reshape(self.ncol, 4, 1, 4)
+            self._Z = np.concatenate([Z0, Z1], axis=2)
         return self._Z
 
     def _element_dofs(self, ne: int) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
@@ -410,27 +385,27 @@ class Stack:
     def centre_stress(self, rn, E_r, du_r, du_z, C, Gs) -> FloatArray:
         """Stress increments (5, ne, ncol): sigma_r, sigma_theta, sigma_z, tau_rz at the
         element centres, then sigma_r on the inner face of each element (on the core for
-        the first: the core pressure)."""
-        centre = self._stress_at(rn, E_r, du_r, du_z, C, Gs, 0.5)
-        inner = self._stress_at(rn, E_r, du_r, du_z, C, Gs, 0.0)[0]
-        return np.concatenate([centre, inner[None]])
-
-    def _stress_at(self, rn, E_r, du_r, du_z, C, Gs, frac: float) -> FloatArray:
-        """Stress increments (4, ne, ncol) at ``r1 + frac (r2 - r1)`` in every element."""
-        E_t = self.mat[0]
+        the first: the core pressure). Both radii at once (:func:`_shape_rows`)."""
         r1, r2 = rn[:-1, :, None], rn[1:, :, None]
-        rm = r1 + frac * (r2 - r1)
-        N, dN, L, dL = radial_shapes(r1, r2, np.sqrt(E_t / E_r)[..., None], rm, self.shape)
-        N, dN, L, dL = N[..., 0, :], dN[..., 0, :], L[..., 0, :], dL[..., 0, :]
-        U = np.stack([du_r[:-1], du_r[1:]], axis=-1)  # (ne, nc1, a)
-        Z = np.stack([du_z[:-1], du_z[1:]], axis=-1)
-        Um, Ud = 0.5 * (U[:, 1:] + U[:, :-1]), U[:, 1:] - U[:, :-1]  # (ne, ncol, a)
-        Zm, Zd = 0.5 * (Z[:, 1:] + Z[:, :-1]), Z[:, 1:] - Z[:, :-1]
+        rm = r1 + np.array([0.5, 0.0]) * (r2 - r1)  # (ne, ncol, 2): centre, inner face
+        g = np.sqrt(self.mat[0] / E_r)[..., None]
+        N1, N2, dN1, dN2, L1, L2, dL1, dL2 = _shape_rows(r1, r2, g, rm, self.shape)
+        ur1, ur2, uz1, uz2 = du_r[:-1], du_r[1:], du_z[:-1], du_z[1:]  # (ne, nc1), a = 1, 2
+        U1, U2 = (0.5 * (u[:, 1:] + u[:, :-1])[..., None] for u in (ur1, ur2))  # CMD mean
+        Ud1, Ud2 = (u[:, 1:] - u[:, :-1] for u in (ur1, ur2))  # CMD difference
+        Z1, Z2 = (0.5 * (u[:, 1:] + u[:, :-1]) for u in (uz1, uz2))
+        Zd1, Zd2 = (u[:, 1:] - u[:, :-1] for u in (uz1, uz2))
         dz = self.dz[None, :]
-        e_r = (dN * Um).sum(-1)
-        e_t = (N * Um).sum(-1) / rm[..., 0]
-        e_z = (L * Zd).sum(-1) / dz
-        gam = (N * Ud).sum(-1) / dz + (dL * Zm).sum(-1)
-        eps = np.stack([e_r, e_t, e_z], axis=-1)
-        sig = np.einsum("...ij,...j->...i", C, eps)
-        return np.stack([sig[..., 0], sig[..., 1], sig[..., 2], Gs * gam])
+        e_r = dN1 * U1 + dN2 * U2  # (ne, ncol, 2)
+        e_t = (N1 * U1 + N2 * U2) / rm
+        e_z = (L1 * Zd1[..., None] + L2 * Zd2[..., None]) / dz[..., None]
+        gam = (N1[..., 0] * Ud1 + N2[..., 0] * Ud2) / dz + dL1[..., 0] * Z1 + dL2[..., 0] * Z2
+        out = np.empty((5,) + E_r.shape)
+        for i in range(3):
+            Ci = C[..., i, :, None]  # (ne, ncol, 3, 1)
+            s_i = Ci[..., 0, :] * e_r + Ci[..., 1, :] * e_t + Ci[..., 2, :] * e_z
+            out[i] = s_i[..., 0]
+            if i == 0:
+                out[4] = s_i[..., 1]
+        out[3] = Gs * gam
+        return out
