@@ -20,7 +20,11 @@ time (user + sys of the whole process tree, workers included, from ``wait4``), t
 wall times from the JSON, the load average, and the same-run ratios. ``--deep`` times the
 axisymmetric winding alone in-process (CPU), the deep part in levels against the single
 frozen stack (``levels=False``) and against the whole stack every increment, with their
-differences.
+differences. ``--kernel [--before REF]``: the default (r, z) winding of Table 3 alone (400
+groups, 61 sectors), in-process CPU time of ``wind_axisymmetric`` (min of ``--repeat`` fresh
+processes), on the current tree and, interleaved, on REF, with the largest relative change
+of sigma_r (of its peak) and of the core pressure between them (same-answer speed-ups of
+``winding/_axisym_fe.py``: docs/performance.md).
 """
 
 from __future__ import annotations
@@ -191,6 +195,60 @@ def deep_part(G: int | None = None) -> None:
         )
 
 
+def kernel_child(out: str) -> None:
+    """One default winding of Table 3 (in a fresh process): CPU time and answers to ``out``."""
+    prof = bundled_profile()
+    ten = TensionSchedule(web_stress=2.3e6)
+    c0 = time.process_time()
+    w = wind_axisymmetric(WEB, CORE, R_OUT, ten, prof)
+    cpu = time.process_time() - c0
+    np.savez(out, cpu=cpu, sigma_r=w.sigma_r, core=w.core_pressure)
+
+
+def kernel(before: str | None, repeat: int) -> None:
+    """The (r, z) winding alone, current tree and ``before`` interleaved (:func:`kernel_child`
+    in fresh processes): min CPU, same-run ratio, largest changes of the answers."""
+    import os
+    import subprocess
+    import sys
+    import tempfile
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from bench_startup import source_of
+
+    env_now = dict(os.environ)
+    trees = {"now": env_now}
+    best: dict[str, float] = {}
+    res: dict[str, dict] = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        if before:
+            trees[before] = {**env_now, "PYTHONPATH": str(source_of(before, Path(tmp)))}
+        loads = [os.getloadavg()[0]]
+        for _ in range(repeat):
+            for tree, env in trees.items():
+                out = str(Path(tmp) / f"{len(res)}-{tree}.npz".replace("/", "_"))
+                cmd = [sys.executable, __file__, "--kernel-child", out]
+                subprocess.run(cmd, env=env, check=True)
+                with np.load(out) as z:
+                    res[tree] = {k: z[k] for k in z.files}
+                best[tree] = min(best.get(tree, np.inf), float(res[tree]["cpu"]))
+                loads.append(os.getloadavg()[0])
+    print(
+        f"   (r, z) winding alone, Table 3 (400 groups, 61 sectors): CPU, min of {repeat}"
+        f" (interleaved; load average {min(loads):.1f}-{max(loads):.1f})"
+    )
+    for tree, t in best.items():
+        print(f"   {tree:12s} {t:6.2f} s")
+    if before:
+        a, b = res["now"], res[before]
+        ds = np.max(np.abs(a["sigma_r"] - b["sigma_r"])) / np.max(np.abs(b["sigma_r"]))
+        dp = np.max(np.abs(a["core"] / b["core"] - 1))
+        print(
+            f"   ratio {before}/now {best[before] / best['now']:.2f}x; max |d sigma_r| / peak"
+            f" {ds:.1e}, max |d p_core / p_core| {dp:.1e}"
+        )
+
+
 def timed(fn):
     t0 = time.perf_counter()
     out = fn()
@@ -203,11 +261,19 @@ def main() -> None:
     ap.add_argument("--plots", type=Path, default=None)
     ap.add_argument("--winding", action="store_true", help="sections 1-2 only (winding alone)")
     ap.add_argument("--process", action="store_true", help="whole-process runs only")
-    ap.add_argument("--before", default=None, help="git revision to compare with (--process)")
+    ap.add_argument("--before", default=None, help="git revision to compare (--process, --kernel)")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--cases", default="pet3-2.3MPa,pet3-3.45MPa-nip")
     ap.add_argument("--deep", action="store_true", help="the deep part's schemes only")
+    ap.add_argument("--kernel", action="store_true", help="the winding alone [--before REF]")
+    ap.add_argument("--kernel-child", default=None, help=argparse.SUPPRESS)
     args = ap.parse_args()
+    if args.kernel_child:
+        kernel_child(args.kernel_child)
+        return
+    if args.kernel:
+        kernel(args.before, args.repeat)
+        return
     if args.process:
         whole_process(args.cases.split(","), args.before, args.repeat)
         return

@@ -27,15 +27,16 @@ Energy per radian ``1/2 int (eps . C eps + G_rz gamma^2) r dr dz``: the radial i
 Gauss-Legendre (``NQ`` points), the axial ones exactly. Stiffness matrices are symmetric
 positive definite and assembled straight into banded storage in the mesh's order (layer by
 layer, CMD within a layer: bandwidth ``2 n_sectors + 5``), factorised by banded Cholesky
-(LAPACK ``pbtrf``): measured 1.9x faster than SuperLU with a fill-reducing order on the Table
-3 window (docs/profile.md, section 7).
+(LAPACK ``pbtrf``, called directly on a Fortran-ordered band): measured 1.9x faster than
+SuperLU with a fill-reducing order on the Table 3 window (docs/profile.md, section 7).
 """
 
 from __future__ import annotations
 
 import numpy as np
+from numpy.linalg import LinAlgError
 from numpy.typing import NDArray
-from scipy.linalg import cho_solve_banded, cholesky_banded
+from scipy.linalg.lapack import dpbtrf, dpbtrs
 
 FloatArray = NDArray[np.float64]
 
@@ -43,6 +44,27 @@ NQ = 6
 _XQ, _WQ = np.polynomial.legendre.leggauss(NQ)
 _PATTERN_CACHE_MAX = 400_000  # entries of a cached assembly pattern (window-sized stacks)
 _GD_MAX = 60.0  # cap of g ln(r2/r1): the shapes are then pure surface exponentials
+
+
+def _cholesky_band(ab: FloatArray) -> FloatArray:
+    """Upper banded Cholesky factor (LAPACK ``dpbtrf``) of ``ab``, overwritten in place
+    (``ab`` is built Fortran-ordered by :meth:`Stack._system`, so nothing is copied); as
+    ``scipy.linalg.cholesky_banded`` without its checks and copy."""
+    c, info = dpbtrf(ab, lower=0, overwrite_ab=1)
+    if info > 0:
+        raise LinAlgError(f"{info}-th leading minor not positive definite")
+    if info < 0:
+        raise ValueError(f"illegal value in {-info}-th argument of internal pbtrf")
+    return c
+
+
+def _cho_solve_band(cb: FloatArray, rhs: FloatArray) -> FloatArray:
+    """Solve with the factor of :func:`_cholesky_band` (LAPACK ``dpbtrs``, ``rhs`` is
+    overwritten)."""
+    x, info = dpbtrs(cb, rhs, lower=0, overwrite_b=1)
+    if info != 0:
+        raise ValueError(f"illegal value in {-info}-th argument of internal pbtrs")
+    return x
 
 
 def material_matrices(
@@ -53,29 +75,37 @@ def material_matrices(
     nu_zr: float,
     nu_tz: float,
 ) -> FloatArray:
-    """Stiffness ``C`` (..., 3, 3) in (r, theta, z): inverse of the compliance above."""
-    S = np.zeros(E_r.shape + (3, 3))
-    S[..., 0, 0] = 1.0 / E_r
-    S[..., 1, 1] = 1.0 / E_t
-    S[..., 2, 2] = 1.0 / E_z
-    S[..., 0, 1] = S[..., 1, 0] = -nu_tr / E_t
-    S[..., 0, 2] = S[..., 2, 0] = -nu_zr / E_z
-    S[..., 1, 2] = S[..., 2, 1] = -nu_tz / E_t
-    return np.linalg.inv(S)
+    """Stiffness ``C`` (..., 3, 3) in (r, theta, z): inverse of the compliance above, by
+    cofactors (only ``S_rr = 1 / E_r`` varies; equal to ``np.linalg.inv`` to round-off)."""
+    a = 1.0 / np.asarray(E_r, dtype=float)
+    b, c = 1.0 / E_t, 1.0 / E_z
+    d, e, f = -nu_tr / E_t, -nu_zr / E_z, -nu_tz / E_t
+    c00 = b * c - f * f  # cofactors of the symmetric compliance [[a d e] [d b f] [e f c]]
+    c01 = e * f - d * c
+    c02 = d * f - e * b
+    det = a * c00 + d * c01 + e * c02
+    C = np.empty(a.shape + (3, 3))
+    C[..., 0, 0] = c00 / det
+    C[..., 0, 1] = C[..., 1, 0] = c01 / det
+    C[..., 0, 2] = C[..., 2, 0] = c02 / det
+    C[..., 1, 1] = (a * c - e * e) / det
+    C[..., 1, 2] = C[..., 2, 1] = (d * e - a * f) / det
+    C[..., 2, 2] = (a * b - d * d) / det
+    return C
 
 
-def radial_shapes(
-    r1: FloatArray, r2: FloatArray, g: FloatArray, r: FloatArray, shape: str = "power"
-) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """Radial shape functions at radii ``r`` (..., q) of elements [r1, r2] (..., 1).
-
-    Returns N, dN/dr (for u_r) and L, dL/dr (for u_z), each (..., q, 2).
-    """
+def _shape_rows(r1, r2, g, r, shape: str = "power") -> tuple[FloatArray, ...]:
+    """Radial shape functions (module docstring) at radii ``r`` (..., q) of elements
+    [r1, r2] (..., 1), ``g`` (..., 1), as eight separate arrays (no stacking: hot path):
+    N_1, N_2, dN_1/dr, dN_2/dr for u_r and L_1, L_2 (shape of ``r``), dL_1/dr, dL_2/dr
+    (shape of ``r1``: constant over the element) for u_z."""
     Lr = r2 - r1
-    L = np.stack([(r2 - r) / Lr, (r - r1) / Lr], axis=-1)
-    dL = np.stack([-1.0 / Lr + 0 * r, 1.0 / Lr + 0 * r], axis=-1)
+    L1, L2 = (r2 - r) / Lr, (r - r1) / Lr
+    dL2 = 1.0 / Lr
+    dL1 = -dL2
     if shape == "linear":
-        return L, dL, L, dL
+        dN1, dN2 = np.broadcast_to(dL1, r.shape), np.broadcast_to(dL2, r.shape)
+        return L1, L2, dN1, dN2, L1, L2, dL1, dL2
     s1, s2, s = np.log(r1), np.log(r2), np.log(r)
     D = s2 - s1
     gg = np.minimum(g, _GD_MAX / D)
@@ -83,9 +113,8 @@ def radial_shapes(
     gs = np.where(small, 1e-6 / D, gg)  # sinh ratio -> linear in ln r (to 1e-13)
     den = np.sinh(gs * D)
     a1, a2 = gs * (s2 - s), gs * (s - s1)
-    N = np.stack([np.sinh(a1) / den, np.sinh(a2) / den], axis=-1)
-    dN = np.stack([-gs * np.cosh(a1) / (r * den), gs * np.cosh(a2) / (r * den)], axis=-1)
-    return N, dN, L, dL
+    t = gs / (r * den)
+    return np.sinh(a1) / den, np.sinh(a2) / den, -t * np.cosh(a1), t * np.cosh(a2), L1, L2, dL1, dL2
 
 
 class Stack:
@@ -130,44 +159,65 @@ class Stack:
         primed: of the column; ``e`` the element, groups outer, sectors inner): the tensor
         product of a radial 2x2 integral and an axial 2x2 integral per component pair, laid
         out so that each pair is one contiguous product (the global dofs are indexed to
-        match in :meth:`_system`). Also returns the material matrices and G_rz."""
+        match in :meth:`_system`). Also returns the material matrices and G_rz.
+
+        The radial integrals ``int f_i f_j w dr`` (weights r, 1, 1/r) of the rows
+        ``F = (N_1, N_2, dN_1, dN_2, L_1, L_2, 1)`` are one batched product
+        ``(F w) F^T``; each component pair (c, c') is then ``R_0 x Z_0 + R_1 x Z_1`` with
+        the axial factors ``Z`` of :meth:`_axial_factors` (per sector, built once), one
+        batched product too."""
         E_t, E_z, nu_tr, nu_zr, nu_tz = self.mat
-        r1, r2 = rn[:-1, :, None], rn[1:, :, None]
-        rq = 0.5 * (r1 + r2) + 0.5 * (r2 - r1) * _XQ
-        wq = 0.5 * (r2 - r1) * _WQ
-        g = np.sqrt(E_t / E_r)[..., None]
-        N, dN, L, dL = radial_shapes(r1, r2, g, rq, self.shape)
+        shp = E_r.shape
+        nel = E_r.size
+        r1, r2 = rn[:-1].reshape(nel, 1), rn[1:].reshape(nel, 1)
+        h = 0.5 * (r2 - r1)
+        rq = 0.5 * (r1 + r2) + h * _XQ  # (nel, NQ)
+        wq = h * _WQ
+        g = np.sqrt(E_t / E_r).reshape(nel, 1)
+        N1, N2, dN1, dN2, L1, L2, dL1, dL2 = _shape_rows(r1, r2, g, rq, self.shape)
+        F = np.empty((nel, 7, NQ))
+        F[:, 0], F[:, 1], F[:, 2], F[:, 3], F[:, 4], F[:, 5] = N1, N2, dN1, dN2, L1, L2
+        F[:, 6] = 1.0
+        Fw = np.empty((nel, 13, NQ))  # rows F w_r (7), (N, dN) w_1 (4), N w_(1/r) (2)
+        wr = wq * rq
+        np.multiply(F, wr[:, None], out=Fw[:, :7])
+        np.multiply(F[:, :4], wq[:, None], out=Fw[:, 7:11])
+        np.multiply(F[:, :2], (wq / rq)[:, None], out=Fw[:, 11:])
+        P = Fw @ F.transpose(0, 2, 1)  # (nel, 13, 7)
+        Rrr, Rnn, Arz, Bzz = P[:, 2:4, 2:4], P[:, 0:2, 0:2], P[:, 2:4, 4:6], P[:, 4:6, 4:6]
+        Rrt, Atz, Rtt = P[:, 9:11, 0:2], P[:, 7:9, 4:6], P[:, 11:13, 0:2]
+        dL = np.concatenate([dL1, dL2], axis=1)  # (nel, 2): constant over the element
+        Ag = P[:, 0:2, 6:7] * dL[:, None, :]
+        Bgg = P[:, 6:7, 6:7] * (dL[:, :, None] * dL[:, None, :])
         C = material_matrices(E_r, E_t, E_z, nu_tr, nu_zr, nu_tz)
         Gs = self.shear(E_r)
-        shp = E_r.shape
-        nel = int(np.prod(shp))
-
-        # the nine weighted radial integrals int f_i g_j w dr (weights r, 1, 1/r) at once:
-        # Rrr, Rrt, Rtt, Rnn, Arz, Atz, Ag, Bzz, Bgg, each (nel, 2, 2)
-        wr, wi = (wq * rq)[..., None], (wq / rq)[..., None]
-        w1 = wq[..., None]
-        left = np.stack(
-            [dN * wr, dN * w1, N * wi, N * wr, dN * wr, N * w1, N * wr, L * wr, dL * wr], axis=-3
-        ).reshape(nel, 9, NQ, 2)
-        right = np.stack([dN, N, N, N, L, L, dL, L, dL], axis=-3).reshape(nel, 9, NQ, 2)
-        P = np.swapaxes(left, -1, -2) @ right  # (nel, 9, 2, 2)
-        Rrr, Rrt, Rtt, Rnn, Arz, Atz, Ag, Bzz, Bgg = (P[:, i] for i in range(9))
-        Cf = C.reshape(nel, 3, 3)[..., None, None]
+        Cf = C.reshape(nel, 9, 1, 1)
         Gq = Gs.reshape(nel, 1, 1)
-        Rth = Cf[:, 0, 0] * Rrr + Cf[:, 0, 1] * (Rrt + Rrt.transpose(0, 2, 1)) + Cf[:, 1, 1] * Rtt
-        Xuz = Cf[:, 0, 2] * Arz + Cf[:, 1, 2] * Atz
-        col = np.broadcast_to(np.arange(shp[-1]), shp).ravel()
-        M0, M1 = self.M0[col][:, None, None], self.M1[col][:, None, None]  # (nel,1,1,b,b')
+        R = np.empty((nel, 4, 2, 2, 2))  # [e, pair 00 01 10 11, a, a', term]
+        R[:, 0, :, :, 0] = Cf[:, 0] * Rrr + Cf[:, 1] * (Rrt + Rrt.transpose(0, 2, 1))
+        R[:, 0, :, :, 0] += Cf[:, 4] * Rtt
+        R[:, 1, :, :, 0] = Cf[:, 2] * Arz + Cf[:, 5] * Atz
+        R[:, 2, :, :, 0] = R[:, 1, :, :, 0].transpose(0, 2, 1)
+        R[:, 3, :, :, 0] = Cf[:, 8] * Bzz
+        R[:, 0, :, :, 1] = Gq * Rnn
+        R[:, 1, :, :, 1] = Gq * Ag
+        R[:, 2, :, :, 1] = R[:, 1, :, :, 1].transpose(0, 2, 1)
+        R[:, 3, :, :, 1] = Gq * Bgg
+        # K[e, pair, aa', bb'] = sum over the two terms of R[..., aa', term] Z[term, bb']
+        K = R.reshape(shp[0], shp[1], 4, 4, 2) @ self._axial_factors()
+        return K.reshape(nel, 2, 2, 2, 2, 2, 2), C, Gs
 
-        def kron(Rm: FloatArray, Zm: FloatArray) -> FloatArray:  # (e,a,a') x (e,b,b')
-            return Rm[:, :, :, None, None] * Zm
-
-        K = np.empty((nel, 2, 2, 2, 2, 2, 2))
-        K[:, 0, 0] = kron(Rth, M0) + kron(Gq * Rnn, M1)
-        K[:, 0, 1] = kron(Xuz, self.Zx) + kron(Gq * Ag, self.Zx.T)
-        K[:, 1, 0] = K[:, 0, 1].transpose(0, 2, 1, 4, 3)
-        K[:, 1, 1] = kron(Cf[:, 2, 2] * Bzz, M1) + kron(Gq * Bgg, M0)
-        return K, C, Gs
+    def _axial_factors(self) -> FloatArray:
+        """The axial 2x2 integrals of the component pairs (00, 01, 10, 11) by sector, the
+        factors of the two radial terms of each pair: 00 ``(M0, M1)``, 01 ``(Zx, Zx^T)``,
+        10 ``(Zx^T, Zx)``, 11 ``(M1, M0)``; (ncol, 4, 2 terms, 4 = (b, b')), built once."""
+        if "_Z" not in self.__dict__:
+            zx = np.broadcast_to(self.Zx, self.M0.shape)
+            zt = zx.transpose(0, 2, 1)
+            Z0 = np.stack([self.M0, zx, zt, self.M1], axis=1).reshape(self.ncol, 4, 1, 4)
+            Z1 = np.stack([self.M1, zt, zx, self.M0], axis=1).reshape(self.ncol, 4, 1, 4)
+            self._Z = np.concatenate([Z0, Z1], axis=2)
+        return self._Z
 
     def _element_dofs(self, ne: int) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
         """Global row and column dofs matching :meth:`_element_matrices`' layout."""
@@ -206,7 +256,8 @@ class Stack:
         elif not self.rigid:
             vals.append((self.E_c * self.M0).ravel())
         v_ = np.concatenate(vals)
-        ab = np.bincount(pos, weights=v_[take], minlength=(u + 1) * n).reshape(u + 1, n)
+        # Fortran order (column j of the band contiguous), as LAPACK takes it without a copy
+        ab = np.bincount(pos, weights=v_[take], minlength=(u + 1) * n).reshape(n, u + 1).T
         ab[u, fixed] = 1.0
         return ab, fixed, C, Gs
 
@@ -247,7 +298,7 @@ class Stack:
                 fixed[2 * self.u_z_fixed_node + 1] = True
         r_, c_ = np.concatenate(rows), np.concatenate(cols)
         take = np.flatnonzero((r_ <= c_) & ~(fixed[r_] | fixed[c_]))
-        pos = (u + r_[take] - c_[take]) * n + c_[take]
+        pos = c_[take] * (u + 1) + u + r_[take] - c_[take]  # ab[u + i - j, j], Fortran order
         if take.size > _PATTERN_CACHE_MAX:
             return take, pos, fixed  # a big deep part: not worth the memory
         if len(cache) >= 16:
@@ -272,7 +323,7 @@ class Stack:
         rhs = np.zeros(ab.shape[1])
         rhs[2 * ne * nc1 : 2 * (ne + 1) * nc1 : 2] = f_top
         rhs[fixed] = 0.0
-        x = cho_solve_banded((cholesky_banded(ab, check_finite=False), False), rhs)
+        x = _cho_solve_band(_cholesky_band(ab), rhs)
         x = x.reshape(ne + 1, nc1, 2)
         du_r, du_z = x[..., 0], x[..., 1]
         if ne == 0:
@@ -301,7 +352,7 @@ class Stack:
         ``S = U_t^T U_t`` (2 (ncol+1))^2 that the band and everything below it present to
         the layer above. Returns S and the band (for :meth:`recover_band`)."""
         ab, fixed, C, Gs = self._system(rn, E_r, S_below)
-        cb = cholesky_banded(ab, check_finite=False)
+        cb = _cholesky_band(ab)
         u, n = cb.shape[0] - 1, cb.shape[1]
         t = n - 2 * self.nc1
         i = np.arange(t, n)
@@ -326,7 +377,7 @@ class Stack:
         nc1 = self.nc1
         rhs = np.zeros(cb.shape[1])
         rhs[-2 * nc1 :] = S @ x_top.ravel()
-        x = cho_solve_banded((cb, False), rhs).reshape(-1, nc1, 2)
+        x = _cho_solve_band(cb, rhs).reshape(-1, nc1, 2)
         x[-1] = x_top
         du_r, du_z = x[..., 0], x[..., 1]
         return du_r, du_z, self.centre_stress(rn, E_r, du_r, du_z, C, Gs)
@@ -334,27 +385,27 @@ class Stack:
     def centre_stress(self, rn, E_r, du_r, du_z, C, Gs) -> FloatArray:
         """Stress increments (5, ne, ncol): sigma_r, sigma_theta, sigma_z, tau_rz at the
         element centres, then sigma_r on the inner face of each element (on the core for
-        the first: the core pressure)."""
-        centre = self._stress_at(rn, E_r, du_r, du_z, C, Gs, 0.5)
-        inner = self._stress_at(rn, E_r, du_r, du_z, C, Gs, 0.0)[0]
-        return np.concatenate([centre, inner[None]])
-
-    def _stress_at(self, rn, E_r, du_r, du_z, C, Gs, frac: float) -> FloatArray:
-        """Stress increments (4, ne, ncol) at ``r1 + frac (r2 - r1)`` in every element."""
-        E_t = self.mat[0]
+        the first: the core pressure). Both radii at once (:func:`_shape_rows`)."""
         r1, r2 = rn[:-1, :, None], rn[1:, :, None]
-        rm = r1 + frac * (r2 - r1)
-        N, dN, L, dL = radial_shapes(r1, r2, np.sqrt(E_t / E_r)[..., None], rm, self.shape)
-        N, dN, L, dL = N[..., 0, :], dN[..., 0, :], L[..., 0, :], dL[..., 0, :]
-        U = np.stack([du_r[:-1], du_r[1:]], axis=-1)  # (ne, nc1, a)
-        Z = np.stack([du_z[:-1], du_z[1:]], axis=-1)
-        Um, Ud = 0.5 * (U[:, 1:] + U[:, :-1]), U[:, 1:] - U[:, :-1]  # (ne, ncol, a)
-        Zm, Zd = 0.5 * (Z[:, 1:] + Z[:, :-1]), Z[:, 1:] - Z[:, :-1]
+        rm = r1 + np.array([0.5, 0.0]) * (r2 - r1)  # (ne, ncol, 2): centre, inner face
+        g = np.sqrt(self.mat[0] / E_r)[..., None]
+        N1, N2, dN1, dN2, L1, L2, dL1, dL2 = _shape_rows(r1, r2, g, rm, self.shape)
+        ur1, ur2, uz1, uz2 = du_r[:-1], du_r[1:], du_z[:-1], du_z[1:]  # (ne, nc1), a = 1, 2
+        U1, U2 = (0.5 * (u[:, 1:] + u[:, :-1])[..., None] for u in (ur1, ur2))  # CMD mean
+        Ud1, Ud2 = (u[:, 1:] - u[:, :-1] for u in (ur1, ur2))  # CMD difference
+        Z1, Z2 = (0.5 * (u[:, 1:] + u[:, :-1]) for u in (uz1, uz2))
+        Zd1, Zd2 = (u[:, 1:] - u[:, :-1] for u in (uz1, uz2))
         dz = self.dz[None, :]
-        e_r = (dN * Um).sum(-1)
-        e_t = (N * Um).sum(-1) / rm[..., 0]
-        e_z = (L * Zd).sum(-1) / dz
-        gam = (N * Ud).sum(-1) / dz + (dL * Zm).sum(-1)
-        eps = np.stack([e_r, e_t, e_z], axis=-1)
-        sig = np.einsum("...ij,...j->...i", C, eps)
-        return np.stack([sig[..., 0], sig[..., 1], sig[..., 2], Gs * gam])
+        e_r = dN1 * U1 + dN2 * U2  # (ne, ncol, 2)
+        e_t = (N1 * U1 + N2 * U2) / rm
+        e_z = (L1 * Zd1[..., None] + L2 * Zd2[..., None]) / dz[..., None]
+        gam = (N1[..., 0] * Ud1 + N2[..., 0] * Ud2) / dz + dL1[..., 0] * Z1 + dL2[..., 0] * Z2
+        out = np.empty((5,) + E_r.shape)
+        for i in range(3):
+            Ci = C[..., i, :, None]  # (ne, ncol, 3, 1)
+            s_i = Ci[..., 0, :] * e_r + Ci[..., 1, :] * e_t + Ci[..., 2, :] * e_z
+            out[i] = s_i[..., 0]
+            if i == 0:
+                out[4] = s_i[..., 1]
+        out[3] = Gs * gam
+        return out
