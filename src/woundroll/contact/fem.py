@@ -495,7 +495,7 @@ class Assembler:
         n, bw = self.n_free, self.bandwidth
         # the positions depend on the numbering only, the same for the sectors of a
         # profile (meshes of equal shape): kept for the next assembler
-        key = (n, bw, d.shape, hash(d.tobytes()))
+        key = (n, bw, d.shape, d.tobytes())
         index = _PAD_INDEX.get(key)
         if index is None:
             ga, gb = d[:, a], d[:, b]
