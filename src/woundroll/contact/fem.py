@@ -401,16 +401,16 @@ class Assembler:
         both = (d[:, :, None] >= 0) & (d[:, None, :] >= 0)
         span = np.abs(d[:, :, None] - d[:, None, :])
         self.bandwidth = int(np.max(span[both])) if np.any(both) else 0
-        self._map: Any = None  # the general scatter map (:meth:`_scatter`), on first use
+        self._scatter_ready = False  # the general scatter map (:meth:`_scatter`), on first use
         self._band_index_reversed: NDArray[np.int64] | None = None
         self._csc = None
         self._pad: Any = None
 
-    def _scatter(self) -> Any:
+    def _scatter(self) -> None:
         """The scatter map of :meth:`values` / :meth:`banded` / :meth:`csc`, built once
         (the band of the static solve needs only :meth:`band`'s)."""
-        if self._map is not None:
-            return self._map
+        if self._scatter_ready:
+            return
         basis = self.basis
         d = self.free_index[basis.dofs]  # (ne, 8)
         rows = np.broadcast_to(d[:, :, None], (d.shape[0], 8, 8)).ravel()
@@ -431,8 +431,7 @@ class Assembler:
         low_el = self._lower[self._lower < n_el_entries]
         self._elem_low = self._elem[low_el]
         self._A_low = self._A[:, low_el]
-        self._map = True
-        return self._map
+        self._scatter_ready = True
 
     def values(
         self, C11: FloatArray, C12: FloatArray, C22: FloatArray, G: FloatArray

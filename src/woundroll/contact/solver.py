@@ -489,8 +489,12 @@ class _Roll:
     def stress_increment(self, moduli: tuple[FloatArray, ...], du: FloatArray) -> FloatArray:
         """Stress increments ``(sigma_r, sigma_theta, tau_r_theta)`` [Pa] at the element
         centres for the displacement increment ``du`` at per-element ``moduli``."""
+        return self.stress_of_strain(moduli, self.strain_increment(du))
+
+    @staticmethod
+    def stress_of_strain(moduli: tuple[FloatArray, ...], e: FloatArray) -> FloatArray:
+        """Stress increments (n_el, 3) [Pa] of centre strain increments ``e`` (n_el, 3)."""
         C11, C12, C22, G = moduli
-        e = self.strain_increment(du)
         return np.stack(
             [C11 * e[:, 0] + C12 * e[:, 1], C12 * e[:, 0] + C22 * e[:, 1], G * e[:, 2]], axis=1
         )
@@ -749,7 +753,8 @@ def _newton_increment(
     tol: float,
     solve: Callable[..., _Step],
 ) -> tuple[_Step, int]:
-    """One load increment with the law's secant modulus, its passes on one factorisation.
+    """One load increment with the secant modulus of the law {2}, its passes on one
+    factorisation.
 
     The fixed point is that of :func:`_predicted_increment`: a pass solves the increment at
     moduli E_used, its radial stress change gives the law's secant E_mid over the step
@@ -791,9 +796,11 @@ def _newton_increment(
     hist_x: list[FloatArray] = []  # log E_used of the passes
     hist_f: list[FloatArray] = []  # log E_mid - log E_used
     for _ in range(8 * NEWTON_ITERATIONS):
-        dsig = roll.stress_increment(mod_used, step.du)
+        deps = roll.strain_increment(step.du)
+        # an exact pass was solved at mod_used and _step already has its stresses
+        dsig = step.dsig if exact else roll.stress_of_strain(mod_used, deps)
         E_mid = roll.secant_modulus(start, start + dsig[:, 0])
-        w = np.abs(np.sum(dsig * roll.strain_increment(step.du), axis=1)) * roll.area
+        w = np.abs(np.sum(dsig * deps, axis=1)) * roll.area
         total = float(np.sum(w))
         err = float(np.sum(w * np.abs(E_used / E_mid - 1.0))) / total if total > 0 else 0.0
         if du_prev is not None:
