@@ -302,7 +302,9 @@ def _gap(pos: FloatArray, centre: FloatArray, head_radius: float) -> tuple[Float
     return dist - head_radius, d / dist[:, None]
 
 
-def _solve_lcp(W: FloatArray, q: FloatArray) -> FloatArray:
+def _solve_lcp(
+    W: FloatArray, q: FloatArray, start: NDArray[np.bool_] | None = None
+) -> FloatArray:
     """Solve ``lam >= 0, g = q + W lam >= 0, lam . g = 0`` for symmetric positive definite W.
 
     It is the optimality condition of ``min 1/2 lam W lam + q lam, lam >= 0``, solved exactly
@@ -310,6 +312,12 @@ def _solve_lcp(W: FloatArray, q: FloatArray) -> FloatArray:
     the quadratic form itself): the passive set grows by the most violated contact, and
     where the unconstrained solution on it leaves a force negative, the step goes back to
     the boundary and that node leaves. NumPy only (no scipy.optimize at import: start-up).
+
+    ``start`` (optional mask): a guess of the nodes in contact, e.g. the last increment's.
+    Where the unconstrained solution on it is positive everywhere it is the method's first
+    passive set (its invariant holds there), which saves the one-node-at-a-time growth up
+    to it; otherwise the method starts from no contact. The solution is the same either
+    way (the LCP's solution is unique for positive definite W).
     """
     W = 0.5 * (W + W.T)
     m = q.size
@@ -325,6 +333,12 @@ def _solve_lcp(W: FloatArray, q: FloatArray) -> FloatArray:
     lam = np.zeros(m)
     passive = np.zeros(m, dtype=bool)
     tol = 1e-13 * max(float(np.max(np.abs(qs))), 1e-300)
+    if start is not None and np.any(start):
+        idx = np.flatnonzero(start)
+        z = np.linalg.solve(Ws[np.ix_(idx, idx)], -qs[idx])
+        if np.all(z > 0):
+            lam[idx] = z
+            passive[idx] = True
     for _ in range(3 * m + 10):
         w = -(qs + Ws @ lam)  # minus the gradient: > 0 where a force would lower the energy
         w[passive] = -np.inf
@@ -529,29 +543,56 @@ class _Factor:
         assert self._lu is not None
         return self._lu.solve(b)
 
-    def flexibility(
-        self, rows: NDArray[np.int64], B: FloatArray, n: int
-    ) -> tuple[FloatArray, Callable[[FloatArray], FloatArray]]:
-        """``G = B^T K^-1 B`` for a right-hand side whose leading rows are ``B`` (top, m),
-        zero below them and outside ``rows`` (n the number of unknowns), and a function
-        giving ``K^-1 B c`` for coefficients ``c`` (m,)."""
-        top = B.shape[0]
-
-        def full(c: FloatArray) -> FloatArray:
-            b = np.zeros(n) if c.ndim == 1 else np.zeros((n, c.shape[1]))
-            b[:top] = B @ c
-            return b
-
+    def forward(self, b: FloatArray) -> FloatArray:
+        """The first half of the solve of a load ``b`` spread over all the unknowns, for
+        :meth:`flexibility`'s ``pre``: banded, ``L^-1 b`` in the reversed order (forward
+        substitution); sparse LU, the whole solution."""
         if self._cb is None:
-            X = self.solve(full(np.eye(B.shape[1])))
-            return B[rows].T @ X[rows], lambda c: X @ c
+            assert self._lu is not None
+            return self._lu.solve(b)
+        y, info = _dtbtrs(self._cb, b[::-1], uplo="L", trans="N", diag="N")
+        if info != 0:
+            raise ConvergenceError(f"banded triangular solve failed (LAPACK info {info})")
+        return y
+
+    def flexibility(
+        self, rows: NDArray[np.int64], B: FloatArray, n: int, pre: FloatArray | None = None
+    ) -> tuple[FloatArray, FloatArray | None, Callable[[FloatArray], FloatArray]]:
+        """``G = B^T K^-1 B`` for a right-hand side whose leading rows are ``B`` (top, m),
+        zero below them and outside ``rows`` (n the number of unknowns); with ``pre``
+        (:meth:`forward` of a further load ``e``) also ``B^T K^-1 e``; and a function giving
+        ``K^-1 (B c + e)`` for coefficients ``c`` (m,).
+
+        Banded: with ``K = L L^T`` (reversed order) ``Y = L^-1 B`` lives on the trailing
+        rows only, ``G = Y^T Y``, ``B^T K^-1 e = Y^T (L^-1 e)`` and the displacement is one
+        backward substitution of ``Y c + L^-1 e``: one triangular solve per pass on top of
+        the factorisation, where solving the load and the contact separately took two full
+        solves."""
+        top = B.shape[0]
+        if self._cb is None:
+            b = np.zeros((n, B.shape[1]))
+            b[:top] = B
+            X = self.solve(b)
+            if pre is None:
+                return B[rows].T @ X[rows], None, lambda c: X @ c
+            return B[rows].T @ X[rows], B[rows].T @ pre[rows], lambda c: X @ c + pre
         # the leading rows are the trailing ones of the reversed order
         Br = np.asfortranarray(B[::-1])
         ab = np.asfortranarray(self._cb[:, n - top :])
         Y, info = _dtbtrs(ab, Br, uplo="L", trans="N", diag="N")
         if info != 0:
             raise ConvergenceError(f"banded triangular solve failed (LAPACK info {info})")
-        return Y.T @ Y, lambda c: self.solve(full(c))
+        cb = self._cb
+
+        def solve_for(c: FloatArray) -> FloatArray:
+            v = np.zeros(n) if pre is None else pre.copy()
+            v[n - top :] += Y @ c
+            x, info = _dtbtrs(cb, v, uplo="L", trans="T", diag="N")
+            if info != 0:
+                raise ConvergenceError(f"banded triangular solve failed (LAPACK info {info})")
+            return x[::-1]
+
+        return Y.T @ Y, (None if pre is None else Y.T @ pre[n - top :]), solve_for
 
 
 def _dtbtrs(*args: Any, **kw: Any) -> tuple[FloatArray, int]:
@@ -595,9 +636,10 @@ def _step(
     """One depth increment at fixed moduli (``lu`` their factorised stiffness): candidate
     flexibility and exact LCP. ``extra`` (free DOFs, optional): a further load on the
     roll, the modified-Newton correction of :func:`_newton_increment` (``moduli`` are then
-    those of ``lu``, and the returned ``dsig`` is recomputed by the caller)."""
+    those of ``lu``, and the returned ``dsig`` is empty: the caller computes it at its own
+    moduli)."""
     fi = roll.assembler.free_index
-    x_extra = lu.solve(extra) if extra is not None else None
+    pre = lu.forward(extra) if extra is not None else None
     surf = roll.surface
     pos = roll.xy[surf] + roll.cartesian(u, surf)
     g_pred, normal = _gap(pos, centre, head_radius)
@@ -626,15 +668,12 @@ def _step(
         rhs[rows_r, np.arange(m)] = n_r
         rhs[rows_t[t_ok], np.arange(m)[t_ok]] = n_t[t_ok]
         rhs[:, m] = release[: rhs.shape[0]]
-        G, solve_for = lu.flexibility(rows, rhs, n_free)
+        G, gq, solve_for = lu.flexibility(rows, rhs, n_free, pre)
         W, q = G[:m, :m], g_pred[idx] + G[:m, m]
-        if x_extra is not None:  # the extra load's displacement along the normals
-            q = q + n_r * x_extra[rows_r]
-            q[t_ok] += n_t[t_ok] * x_extra[rows_t[t_ok]]
-        lam_c = _solve_lcp(W, q)
+        if gq is not None:  # the extra load's displacement along the normals
+            q = q + gq[:m]
+        lam_c = _solve_lcp(W, q, start=lam_old[idx] > 0)
         du_free = solve_for(np.append(lam_c, 1.0))
-        if x_extra is not None:
-            du_free = du_free + x_extra
         du = np.zeros(u.size)
         du[roll.free] = du_free
         gap, _ = _gap(pos + roll.cartesian(du, surf), centre, head_radius)
@@ -644,9 +683,9 @@ def _step(
         if not np.any(bad):
             lam = np.zeros(surf.size)
             lam[idx] = lam_c
-            return _Step(
-                du=du, dsig=roll.stress_increment(moduli, du), lam=lam, normal=normal, gap=gap
-            )
+            # a modified-Newton pass's stresses are the caller's (at its own moduli)
+            dsig = roll.stress_increment(moduli, du) if extra is None else np.empty((0, 3))
+            return _Step(du=du, dsig=dsig, lam=lam, normal=normal, gap=gap)
         cand |= bad
     raise ConvergenceError(
         "contact set did not settle in 8 enlargements of the candidate "
