@@ -306,12 +306,12 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     r_out = case.winding.final_radius(web, core)
     schedule = case.winding.schedule(web)
     options = WindingOptions.from_dict(case.winding.options, "winding.options")
+    setup = case.tester_setup
+    if case.winding.thickness_profile is not None:
+        return _run_profile(case, web, core, r_out, schedule, options, setup, report)
     winding = wind(
         web, core, r_out, schedule, options=options, progress=lambda f: report("winding", f)
     )
-    setup = case.tester_setup
-    if case.winding.thickness_profile is not None:
-        return _run_profile(case, web, core, r_out, schedule, winding, setup, report)
     max_p = float(-np.min(winding.sigma_r))
     if setup is None:
         flags, warns = result_flags(None, None, [], case.warnings, max_p)
@@ -486,14 +486,25 @@ def _run_profile(
     core: Core,
     r_out: float,
     schedule: Any,
-    winding: WindingResult,
+    options: Any,
     setup: TesterSetup | None,
     report: Callable[[str, float], None],
 ) -> RunResult:
-    """The CMD hardness profile: axisymmetric winding -> per-sector contact -> reading."""
+    """The CMD hardness profile: axisymmetric winding -> per-sector contact -> reading.
+
+    The 1D winding at the nominal thickness (the result's reference ``winding``) runs on
+    a sector worker while this process winds the (r, z) model, on the core the serial
+    winding leaves free (inline when there are no workers)."""
     from woundroll.contact.spring import head_length_of
     from woundroll.instruments import get_instrument, tester_from_spec
-    from woundroll.profile.hardness import ContactModel, FdReadout, NipSpec, predict_profile
+    from woundroll.profile.hardness import (
+        ContactModel,
+        FdReadout,
+        NipSpec,
+        early_pool,
+        predict_profile,
+    )
+    from woundroll.winding.hakiel import wind
 
     if setup is not None and setup.roll_spring is not None:
         raise InputError(
@@ -503,6 +514,7 @@ def _run_profile(
         )
     instrument = setup.instrument if setup is not None else get_instrument("rho-meter")
     spec = case.profile
+    reference = (web, core, r_out, schedule)  # the 1D roll: the schedule with its nip load
     notes = [
         "winding: the 1D model at the nominal web thickness, for reference; "
         "profile: the axisymmetric model with the thickness profile",
@@ -531,21 +543,26 @@ def _run_profile(
     def progress(stage: str, done: int, total: int) -> None:
         report(stage, done / max(total, 1))
 
-    profile = predict_profile(
-        web,
-        core,
-        schedule,
-        case.thickness_profile,
-        outer_radius=r_out,
-        contact=contact,
-        instrument=instrument,
-        n_sectors=spec.sectors,
-        n_groups=spec.groups,
-        nip=nip,
-        depth_max=spec.depth_max,
-        workers=spec.workers,
-        progress=progress,
-    )
+    with early_pool(contact, spec.workers) as pool:
+        # the nominal 1D roll on a worker
+        job = pool.submit(wind, *reference, options=options) if pool is not None else None
+        profile = predict_profile(
+            web,
+            core,
+            schedule,
+            case.thickness_profile,
+            outer_radius=r_out,
+            contact=contact,
+            instrument=instrument,
+            n_sectors=spec.sectors,
+            n_groups=spec.groups,
+            nip=nip,
+            depth_max=spec.depth_max,
+            workers=spec.workers,
+            progress=progress,
+            pool=pool,
+        )
+        winding = job.result() if job is not None else wind(*reference, options=options)
     # the FD model per sector (the paper's "FD optional"), a few ms for the whole profile
     fd_setup = setup if setup is not None else tester_from_spec({"instrument": "rho-meter"})
     w = profile.winding

@@ -418,16 +418,18 @@ def test_fine_zone_width_converged() -> None:
 
 
 def test_load_step_refinement(pet_default: ContactResult) -> None:
-    """Doubling the depth increments changes F by less than 1 % (midpoint modulus update,
-    error falling by ~3x per doubling in a study from 6 to 96 steps)."""
+    """Three times the depth increments (48 against the default 16) changes F by less than
+    0.5 % at the default's own depths from 0.2 mm (measured 0.13 %; 0.04 % at 24 steps,
+    0.01 % at 48 against 96: second order or better). Compared at the computed points:
+    between them the coarser curve's straight chords, not the solution, differ (1.1 % at
+    0.2 mm with 16 steps)."""
     r, s = pet_profile()
     finer = indent(PET1, RIGID, r, s, depth_max=1e-3, **HEAD, options=ContactOptions(n_steps=48))
-    d = np.linspace(0.2e-3, 1e-3, 9)
-    change = (
-        np.interp(d, finer.delta, finer.force) / np.interp(d, pet_default.delta, pet_default.force)
-        - 1
-    )
-    assert np.max(np.abs(change)) < 0.01
+    at = pet_default.delta >= 0.2e-3 - 1e-12
+    d, f = pet_default.delta[at], pet_default.force[at]
+    assert d.size >= 10
+    change = np.interp(d, finer.delta, finer.force) / f - 1
+    assert np.max(np.abs(change)) < 0.005
 
 
 def test_forward_euler_converges_toward_midpoint() -> None:

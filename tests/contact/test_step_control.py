@@ -262,12 +262,16 @@ def test_newton_passes_reach_the_same_reading_with_fewer_factorisations(
         )
         return float(rho_energy(rs.alpha, rs.beta, ins)), rs.contact.factorisations
 
-    new, f_new = run()
-    old, f_old = run(newton=False)
+    # like for like at 24 increments: the re-factorised passes stop after four per
+    # increment, which at the default 16 left the slack roll 1.2 % low (its six
+    # increments to the striker's depth are large); the default is checked on its own
+    new, f_new = run(n_steps=24)
+    old, f_old = run(n_steps=24, newton=False)
     kw = {k: float(v) if "." in v else int(v) for k, v in (o.split("=") for o in REFERENCE)}
     ref, _ = run(**kw)
     assert new == pytest.approx(old, rel=0.002)
     assert new == pytest.approx(ref, rel=0.002)
+    assert run()[0] == pytest.approx(ref, rel=0.002)  # measured 0.03 % taut, 0.02 % slack
     # not fewer on every roll (26 against 24 on the slack one: a pass that grows the
     # mismatch is factorised again); on the 61 Table 3 sectors 1,859 against 2,939
     assert f_new <= 1.2 * f_old

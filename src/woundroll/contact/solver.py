@@ -131,7 +131,7 @@ class ContactOptions:
         Passes of the slip-zone iteration per increment before ConvergenceError.
     """
 
-    n_steps: int = 24
+    n_steps: int = 16
     surface_size: float | None = None
     radial_growth: float = 1.25
     tangential_size: float | None = None

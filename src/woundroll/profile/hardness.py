@@ -526,6 +526,7 @@ def predict_profile(
     depth_max: float = 1e-3,
     workers: int = 2,
     progress: ProgressFn | None = None,
+    pool: cf.Executor | None = None,
 ) -> ProfileResult:
     """Predict the CMD hardness profile of a center-wound roll.
 
@@ -557,6 +558,10 @@ def predict_profile(
         Parallel workers for the per-sector contact solutions.
     progress : callable, optional
         ``progress(stage, done, total)``.
+    pool : Executor, optional
+        Sector workers already started (:func:`early_pool` entered by the caller, which
+        can give them other work while the roll is wound); used and left open. None: the
+        profile starts (and closes) its own.
 
     Raises
     ------
@@ -566,7 +571,8 @@ def predict_profile(
     workers = _check_workers(workers)
     t0 = time.perf_counter()
     readout, contact = _readout_and_contact(web, core, contact, instrument, depth_max)
-    with early_pool(contact, workers) as pool:
+    scope = contextlib.nullcontext(pool) if pool is not None else early_pool(contact, workers)
+    with scope as pool:
         return _predict_profile(
             web,
             core,
