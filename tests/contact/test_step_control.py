@@ -278,20 +278,32 @@ def test_newton_passes_reach_the_same_reading_with_fewer_factorisations(
 
 
 def test_anderson_mixing_saves_passes_and_keeps_the_answer(monkeypatch: pytest.MonkeyPatch) -> None:
-    # plain fixed-point passes (ANDERSON = 0) reach the same reading with more
-    # factorisations on the slack roll (E_r from its floor: the slow passes are there)
+    # plain fixed-point passes (ANDERSON = 0) reach the same reading with more passes on
+    # the slack roll (E_r from its floor: the slow passes are there). Measured: 29 against
+    # 39 passes, 18 factorisations each (with NEWTON_REACH 0.5 the plain passes also took
+    # more factorisations)
     web, core, r, s = table3_roll(3e-3)
     ins = get_instrument("rho-meter")
+    passes = [0]
+    step = solver_mod._step
 
-    def run() -> tuple[float, int]:
+    def counted(*args: object, **kw: object) -> object:
+        passes[0] += 1
+        return step(*args, **kw)
+
+    monkeypatch.setattr(solver_mod, "_step", counted)
+
+    def run() -> tuple[float, int, int]:
+        passes[0] = 0
         rs = roll_stiffness(web, core, r, s, ins, start_depth=float("inf"), model="2d")
-        return float(rho_energy(rs.alpha, rs.beta, ins)), rs.contact.factorisations
+        return float(rho_energy(rs.alpha, rs.beta, ins)), rs.contact.factorisations, passes[0]
 
-    mixed, f_mixed = run()
+    mixed, f_mixed, p_mixed = run()
     monkeypatch.setattr(solver_mod, "ANDERSON", 0)
-    plain, f_plain = run()
+    plain, f_plain, p_plain = run()
     assert mixed == pytest.approx(plain, rel=0.002)
-    assert f_mixed < f_plain
+    assert p_mixed < 0.85 * p_plain
+    assert f_mixed <= f_plain
 
 
 def test_extended_loading_keeps_the_first_increments_and_goes_on() -> None:
