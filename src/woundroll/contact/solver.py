@@ -302,9 +302,7 @@ def _gap(pos: FloatArray, centre: FloatArray, head_radius: float) -> tuple[Float
     return dist - head_radius, d / dist[:, None]
 
 
-def _solve_lcp(
-    W: FloatArray, q: FloatArray, start: NDArray[np.bool_] | None = None
-) -> FloatArray:
+def _solve_lcp(W: FloatArray, q: FloatArray, start: NDArray[np.bool_] | None = None) -> FloatArray:
     """Solve ``lam >= 0, g = q + W lam >= 0, lam . g = 0`` for symmetric positive definite W.
 
     It is the optimality condition of ``min 1/2 lam W lam + q lam, lam >= 0``, solved exactly
