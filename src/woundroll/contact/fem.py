@@ -159,6 +159,47 @@ class ElementBasis:
     dofs: IntArray
     centre_xy: FloatArray
     area: FloatArray
+    points: StrainPoints | None = None
+
+
+@dataclass(frozen=True)
+class StrainPoints:
+    """The integration points the matrices ``A`` are summed from, kept in factored form:
+    ``A_rr = sum_g w_g b_r b_r^T``, ``A_rt = sum_g w_g (b_r b_t^T + b_t b_r^T)``,
+    ``A_tt = sum_g w_g b_t b_t^T`` over the normal points, ``A_s = sum_s w_s b_s b_s^T`` over
+    the shear points. ``K x`` is then ``B^T D B x`` point by point (:meth:`Assembler.matvec`),
+    about 150 multiply-adds per element instead of the 4 x 64 of the matrices.
+
+    Attributes
+    ----------
+    w, b_r, b_t : ndarray (n_el, g), (n_el, g, 8), (n_el, g, 8)
+        Normal points: weights [m^2] and the radial and hoop strain rows (hoop: the
+        assumed one where ``assumed_hoop``).
+    w_s, b_s : ndarray (n_el, s), (n_el, s, 8)
+        Shear points (one, the centre, with reduced shear).
+    """
+
+    w: FloatArray
+    b_r: FloatArray
+    b_t: FloatArray
+    w_s: FloatArray
+    b_s: FloatArray
+
+    @staticmethod
+    def of(
+        rows: list[tuple[FloatArray, FloatArray, FloatArray]],
+        shear: tuple[FloatArray, FloatArray] | None,
+    ) -> StrainPoints:
+        """From the normal points' ``(w, B, hoop row)`` and, for reduced shear, the one
+        shear point ``(w, b_s)`` (None: the shear at the normal points)."""
+        w = np.stack([r[0] for r in rows], axis=1)
+        b_r = np.stack([r[1][:, 0, :] for r in rows], axis=1)
+        b_t = np.stack([r[2] for r in rows], axis=1)
+        if shear is None:
+            w_s, b_s = w, np.stack([r[1][:, 2, :] for r in rows], axis=1)
+        else:
+            w_s, b_s = shear[0][:, None], shear[1][:, None, :]
+        return StrainPoints(w, b_r, b_t, w_s, b_s)
 
 
 def _local_b(dN_dx: FloatArray, phi: FloatArray, node_angle: FloatArray) -> FloatArray:
@@ -309,12 +350,17 @@ def _curved_basis(mesh: RollMesh, reduced_shear: bool, assumed_hoop: bool) -> El
             area += w
     _accumulate_points(A, rows, not reduced_shear)
     Bc, rc = b_matrix(0.5, 0.5)
+    shear = None
     if reduced_shear:
         bs = Bc[:, 2, :]
-        A[3] = (rc * dr * dt)[:, None, None] * bs[:, :, None] * bs[:, None, :]
+        shear = (rc * dr * dt, bs)
+        A[3] = shear[0][:, None, None] * bs[:, :, None] * bs[:, None, :]
     tc = t0 + 0.5 * dt
     centre = np.stack([rc * np.cos(tc), rc * np.sin(tc)], axis=1)
-    return ElementBasis(A=A, B_centre=Bc, dofs=_dofs(conn), centre_xy=centre, area=area)
+    points = StrainPoints.of(rows, shear)
+    return ElementBasis(
+        A=A, B_centre=Bc, dofs=_dofs(conn), centre_xy=centre, area=area, points=points
+    )
 
 
 def _flat_basis(mesh: RollMesh, reduced_shear: bool, assumed_hoop: bool) -> ElementBasis:
@@ -348,16 +394,21 @@ def _flat_basis(mesh: RollMesh, reduced_shear: bool, assumed_hoop: bool) -> Elem
     ne = conn.shape[0]
     A = np.zeros((4, ne, 8, 8))
     area = np.zeros(ne)
+    rows = []
     for xi, eta in _GAUSS:
         B, det, _ = local_b(xi, eta)
         bt = local_b(xi, 0.0)[0][:, 1, :] if assumed_hoop else B[:, 1, :]
         _accumulate(A, det, B, bt, not reduced_shear)
+        rows.append((det, B, bt))
         area += det
     Bc, det, pt = local_b(0.0, 0.0)
+    shear = None
     if reduced_shear:
         bs = Bc[:, 2, :]
-        A[3] = 4.0 * det[:, None, None] * bs[:, :, None] * bs[:, None, :]
-    return ElementBasis(A=A, B_centre=Bc, dofs=_dofs(conn), centre_xy=pt, area=area)
+        shear = (4.0 * det, bs)
+        A[3] = shear[0][:, None, None] * bs[:, :, None] * bs[:, None, :]
+    points = StrainPoints.of(rows, shear)
+    return ElementBasis(A=A, B_centre=Bc, dofs=_dofs(conn), centre_xy=pt, area=area, points=points)
 
 
 #: Band positions of the element entries by DOF numbering (:meth:`Assembler._pad_pattern`).
@@ -402,6 +453,7 @@ class Assembler:
         span = np.abs(d[:, :, None] - d[:, None, :])
         self.bandwidth = int(np.max(span[both])) if np.any(both) else 0
         self._scatter_ready = False  # the general scatter map (:meth:`_scatter`), on first use
+        self._slots: IntArray | None = None  # free index per element DOF (:meth:`matvec`)
         self._band_index_reversed: NDArray[np.int64] | None = None
         self._csc = None
         self._pad: Any = None
@@ -514,12 +566,35 @@ class Assembler:
         self, C11: FloatArray, C12: FloatArray, C22: FloatArray, G: FloatArray, x: FloatArray
     ) -> FloatArray:
         """``K x`` on the free DOFs for per-element moduli (any sign: used with moduli
-        differences), without the core's springs: the lower band (:meth:`band`) multiplied
-        by BLAS ``dsbmv``."""
-        from scipy.linalg.blas import dsbmv
+        differences), without the core's springs.
 
-        ab = self.band(C11, C12, C22, G, springs=False)
-        return dsbmv(self.bandwidth, 1.0, ab, x, lower=1)
+        With the basis's :class:`StrainPoints` (the curved element): ``B^T D B x`` at the
+        integration points, the strains of ``x`` at each point, the stresses at the
+        element's moduli, their nodal forces summed by one ``bincount`` (0.48 against
+        0.94 ms for the band and ``dsbmv`` on Table 3's sectors, the same numbers to
+        round-off). Otherwise the lower band (:meth:`band`) multiplied by BLAS ``dsbmv``."""
+        pts = self.basis.points
+        if pts is None:
+            from scipy.linalg.blas import dsbmv
+
+            ab = self.band(C11, C12, C22, G, springs=False)
+            return dsbmv(self.bandwidth, 1.0, ab, x, lower=1)
+        n = self.n_free
+        if self._slots is None:  # constrained DOFs gather a zero and scatter to a dummy
+            d = self.free_index[self.basis.dofs]
+            self._slots = np.where(d >= 0, d, n)
+        slots = self._slots
+        X = np.append(x, 0.0)[slots]  # (ne, 8)
+        e_r = np.einsum("egi,ei->eg", pts.b_r, X)
+        e_t = np.einsum("egi,ei->eg", pts.b_t, X)
+        g = np.einsum("egi,ei->eg", pts.b_s, X)
+        s_r = pts.w * (C11[:, None] * e_r + C12[:, None] * e_t)
+        s_t = pts.w * (C12[:, None] * e_r + C22[:, None] * e_t)
+        s_s = pts.w_s * (G[:, None] * g)
+        y = np.einsum("egi,eg->ei", pts.b_r, s_r)
+        y += np.einsum("egi,eg->ei", pts.b_t, s_t)
+        y += np.einsum("egi,eg->ei", pts.b_s, s_s)
+        return np.bincount(slots.ravel(), y.ravel(), minlength=n + 1)[:n]
 
     def banded(
         self, vals: FloatArray, *, lower_only: bool = False, reverse: bool = False
