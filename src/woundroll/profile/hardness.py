@@ -420,8 +420,19 @@ def map_sectors(
 
 #: Environment of the sector workers: one BLAS thread each. The workers already fill the
 #: cores; threaded BLAS on top of them oversubscribes the machine (single contact solves
-#: measured up to tenfold slower under load, docs/profile.md, section 7).
-WORKER_ENV = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+#: measured up to tenfold slower under load, docs/profile.md, section 7). And glibc's
+#: allocator keeps freed memory for reuse (fixed mmap and trim thresholds, 256 MB): the
+#: contact solve allocates a fresh 3.4 MB band per increment, and with the default
+#: (adaptive) thresholds a fresh worker's first sector paid the page faults of each one
+#: (sector 5 of Table 3: 0.59 s first, 0.32 s again; with these 0.34 / 0.31 s). Ignored
+#: by other C libraries.
+WORKER_ENV = {
+    "OPENBLAS_NUM_THREADS": "1",
+    "OMP_NUM_THREADS": "1",
+    "MKL_NUM_THREADS": "1",
+    "MALLOC_MMAP_THRESHOLD_": "268435456",
+    "MALLOC_TRIM_THRESHOLD_": "268435456",
+}
 
 
 def sector_pool(workers: int) -> cf.ProcessPoolExecutor:
