@@ -69,8 +69,9 @@ class ContactOptions:
         ``depth_max`` (1/R_eff = 1/head_radius + 1/R_out).
     fine_halfwidth : float or None
         Arc half-width of the uniform fine zone around the contact axis [m];
-        None -> ``a_geo`` (an orthotropic roll's contact is much narrower; a contact wider
-        than the fine zone is still solved exactly, on the coarser elements).
+        None -> ``a_geo / 2`` (:data:`FINE_ZONE`; an orthotropic roll's contact is much
+        narrower, at most 0.43 a_geo on the bundled rolls; a contact wider than the fine
+        zone is still solved exactly, on the coarser elements).
     tangential_growth : float
         Ratio of neighbouring tangential element sizes away from the fine zone [-].
     max_element_angle : float or None
@@ -782,6 +783,16 @@ NEWTON_ITERATIONS = 10
 #: 1,262 factorisations on the 61 Table 3 sectors for 2,876 -> 3,021 passes, 5 % less CPU,
 #: the same readings within 0.03 % (docs/contact.md, "Session 12").
 NEWTON_REACH = 1.0
+
+#: Default half-width of the uniform fine zone around the contact axis, as a fraction of
+#: ``a_geo``, the half-chord of the head's geometric intersection with the undeformed roll
+#: at ``depth_max`` (:class:`ContactOptions`, ``fine_halfwidth``). The hoop-stiff rolls'
+#: contact is far narrower than a_geo: at the deepest depth solved (the loading may extend
+#: past ``depth_max``; the mesh is sized there) at most 0.14 a_geo on the 61 Table 3
+#: sectors, 0.15 on the PET1 and 0.43 on the PET2 rolls of Table 2 (at 2.1-2.8 mm). Was 1.0
+#: until session 12, a zone of equal elements up to ten times wider than the contact
+#: (docs/contact.md, "Session 12").
+FINE_ZONE = 0.5
 #: Depth of the Anderson mixing of the passes' moduli (0: plain fixed-point passes).
 ANDERSON = 3
 
@@ -1048,7 +1059,7 @@ def indent(
         if opts.tangential_size is not None
         else max(0.25 * t_ref, a_geo / 40.0)
     )
-    fine = opts.fine_halfwidth if opts.fine_halfwidth is not None else a_geo
+    fine = opts.fine_halfwidth if opts.fine_halfwidth is not None else FINE_ZONE * a_geo
     if surface_size >= 0.5 * (r_out - r_in):
         raise InputError("is too large for the wound thickness", "options.surface_size")
     mesh = build_mesh(
