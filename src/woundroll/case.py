@@ -365,7 +365,14 @@ class ContactSpec(_Section):
             opts["time_step"] = to_si(
                 opts["time_step"], "time", "contact.dynamic_options.time_step"
             )
-        return DynamicOptions(mesh=self.contact_options(), **opts)
+        mesh = self.contact_options()
+        if "tangential_growth" not in self.options:  # the dynamic model's own far field
+            from dataclasses import replace
+
+            from woundroll.contact.dynamic import GROWTH
+
+            mesh = replace(mesh, tangential_growth=GROWTH)
+        return DynamicOptions(mesh=mesh, **opts)
 
     def contact_options(self) -> Any:
         """The :class:`~woundroll.contact.ContactOptions` of this section (validated)."""

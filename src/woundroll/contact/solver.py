@@ -76,9 +76,9 @@ class ContactOptions:
         Ratio of neighbouring tangential element sizes away from the fine zone [-].
     max_element_angle : float or None
         Largest angle one element may span [rad]; None (default): no cap beyond what
-        ``tangential_growth`` gives (about 0.29 rad at 1.1). With the default locking-free
-        element the far field needs no cap (docs/contact.md, mesh study); it is there to
-        check that, and for the ``"flat"`` element without ``assumed_hoop``.
+        ``tangential_growth`` gives (about 0.41 rad at 1.15, 0.29 at 1.1). With the default
+        locking-free element the far field needs no cap (docs/contact.md, mesh study); it
+        is there to check that, and for the ``"flat"`` element without ``assumed_hoop``.
     element : {"curved", "flat"}
         ``"curved"`` (default): exact annular-sector bilinear element with polar strains;
         ``"flat"``: the straight-edged chord quadrilateral of earlier versions
@@ -137,7 +137,7 @@ class ContactOptions:
     radial_growth: float = 1.25
     tangential_size: float | None = None
     fine_halfwidth: float | None = None
-    tangential_growth: float = 1.1
+    tangential_growth: float = 1.15
     max_element_angle: float | None = None
     element: str = "curved"
     assumed_hoop: bool = True
