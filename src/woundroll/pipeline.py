@@ -563,11 +563,13 @@ def _run_profile(
             pool=pool,
         )
         winding = job.result() if job is not None else wind(*reference, options=options)
-    # the FD model per sector (the paper's "FD optional"), a few ms for the whole profile
-    fd_setup = setup if setup is not None else tester_from_spec({"instrument": "rho-meter"})
-    w = profile.winding
-    fd = FdReadout(fd_setup, w.build_radius - w.core_radius, web.density)
-    profile = replace(profile, rho_fd=fd(profile.alpha, profile.beta))
+        # the FD model per sector (the paper's "FD optional"), shared with a worker
+        fd_setup = setup if setup is not None else tester_from_spec({"instrument": "rho-meter"})
+        w = profile.winding
+        fd = FdReadout(fd_setup, w.build_radius - w.core_radius, web.density)
+        profile = replace(
+            profile, rho_fd=fd.shared(profile.alpha, profile.beta, pool, spec.workers)
+        )
     measured = case.measured_profile
     if measured is not None:
         profile = profile.compare(measured)

@@ -397,3 +397,24 @@ def test_table3_reading_of_the_deep_levels_equals_the_exact_winding() -> None:
         a, b = map_sectors(fns, [w.sector_profile(j) for j in range(61)], workers=2)
         rho[name] = readout(a, b)
     np.testing.assert_allclose(rho["levels"], rho["exact"], rtol=5e-3)
+
+
+@pytest.mark.parametrize("workers", [1, 2, 3])
+def test_fd_readout_shared_with_the_pool_is_the_same(workers: int) -> None:
+    # the FD readings split between this process and the pool's workers: the same numbers
+    # in the same order as the serial loop (each sector's FD run is independent)
+    import concurrent.futures as cf
+
+    from woundroll.instruments import tester_from_spec
+    from woundroll.profile.hardness import FdReadout
+
+    n = 7
+    alpha = np.linspace(2e9, 4e10, n)
+    beta = np.linspace(1e4, 4e5, n)
+    fd = FdReadout(tester_from_spec({"instrument": "rho-meter"}), np.linspace(0.05, 0.1, n), 1390.0)
+    serial = fd(alpha, beta)
+    with cf.ThreadPoolExecutor(max_workers=workers) as pool:
+        shared = fd.shared(alpha, beta, pool, workers)
+    assert np.array_equal(shared, serial)
+    assert np.array_equal(fd.shared(alpha, beta, None, workers), serial)
+    assert np.unique(serial).size == n  # distinct readings: the order is checked

@@ -165,6 +165,24 @@ class FdReadout:
             out[j] = h.fd.rho
         return out
 
+    def shared(
+        self, alpha: FloatArray, beta: FloatArray, pool: cf.Executor | None, workers: int
+    ) -> FloatArray:
+        """The readings with the sectors shared between this process and ``workers - 1``
+        of the pool's workers (``pool`` None: all here). The time loop is Python, about
+        2.3 ms a sector (0.14 s for Table 3's 61): with two workers this process does half
+        and a worker the other half, in the same time."""
+        a, b = np.ravel(alpha), np.ravel(beta)
+        if pool is None or workers < 2 or a.size < 2:
+            return self(a, b)
+        parts = np.array_split(np.arange(a.size), min(workers, a.size))
+        jobs = [
+            pool.submit(replace(self, pile_height=self.pile_height[p]), a[p], b[p])
+            for p in parts[1:]
+        ]
+        head = self(a[parts[0]], b[parts[0]])
+        return np.concatenate([head, *(job.result() for job in jobs)])
+
 
 @dataclass(frozen=True)
 class NipSpec:
