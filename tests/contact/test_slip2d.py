@@ -110,10 +110,10 @@ def test_slip_zone_that_does_not_settle_says_so() -> None:
 
 
 def test_slip_zone_iteration_converges_in_a_few_passes() -> None:
-    """The default settles every increment (measured on 24 steps: 8.9 passes per increment
-    on average, the largest well under the 50 allowed)."""
+    """The default settles every increment (measured: 6.6 passes per increment on average
+    at the default 16 increments, 8.9 at 24; the largest well under the 50 allowed)."""
     res = solve(ContactOptions(slip="reduced-shear"))
-    assert res.slip_passes < 20 * 24
+    assert res.slip_passes < 20 * (res.delta.size - 1)
 
 
 @pytest.mark.slow
