@@ -88,9 +88,9 @@ def window_factorisation(repeat: int = 5) -> None:
     rn = 0.15 + np.arange(26)[:, None] * 2 * h[None, :]
     E = np.full((25, 61), 2e6)
     ab, *_ = st._system(rn, E, None)
-    u, n = ab.shape[0] - 1, ab.shape[1]
-    i, j = np.nonzero(ab)
-    rows, cols = j + i - u, j
+    n = ab.shape[1]
+    i, j = np.nonzero(ab)  # the lower band: ab[i, j] = A[j + i, j]
+    rows, cols = j + i, j
     A = csc_matrix((ab[i, j], (rows, cols)), shape=(n, n))
     A = A + csc_matrix((ab[i, j][rows != cols], (cols[rows != cols], rows[rows != cols])), (n, n))
     b = np.ones(n)
@@ -98,7 +98,7 @@ def window_factorisation(repeat: int = 5) -> None:
 
     with threadpool_limits(limits=1, user_api="blas"):  # as the winding runs it
         t_chol = min(
-            timed(lambda: cho_solve_banded((cholesky_banded(ab), False), b))[0]
+            timed(lambda: cho_solve_banded((cholesky_banded(ab, lower=True), True), b))[0]
             for _ in range(repeat)
         )
         t_lu = min(
