@@ -282,7 +282,7 @@ def test_newton_passes_reach_the_same_reading_with_fewer_factorisations(
     ref, _ = run(**kw)
     assert new == pytest.approx(old, rel=0.002)
     assert new == pytest.approx(ref, rel=0.002)
-    assert run()[0] == pytest.approx(ref, rel=0.002)  # measured 0.03 % taut, 0.02 % slack
+    assert run()[0] == pytest.approx(ref, rel=0.002)  # measured 0.03 % taut and slack
     # not fewer on every roll (26 against 24 on the slack one: a pass that grows the
     # mismatch is factorised again); on the 61 Table 3 sectors 1,859 against 2,939
     assert f_new <= 1.2 * f_old
