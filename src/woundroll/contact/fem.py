@@ -280,15 +280,13 @@ def _accumulate(
         A[3] += (w * bs)[:, :, None] * bs[:, None, :]
 
 
-def _accumulate_points(
-    A: FloatArray, rows: list[tuple[FloatArray, FloatArray, FloatArray]], full_shear: bool
-) -> None:
-    """:func:`_accumulate` over all integration points at once (``rows``: weight (ne,),
-    B (ne, 3, 8) and hoop row (ne, 8) per point): each matrix is one batched product
-    ``sum_g (w_g b_g) b_g^T`` instead of a pass over the (ne, 8, 8) arrays per point."""
-    w = np.stack([r[0] for r in rows], axis=1)[:, :, None]  # (ne, g, 1)
-    br = np.stack([r[1][:, 0, :] for r in rows], axis=1)  # (ne, g, 8)
-    bt = np.stack([r[2] for r in rows], axis=1)
+def _accumulate_points(A: FloatArray, pts: StrainPoints, full_shear: bool) -> None:
+    """:func:`_accumulate` over all integration points at once, from the basis's own
+    :class:`StrainPoints`: each matrix is one batched product ``sum_g (w_g b_g) b_g^T``
+    instead of a pass over the (ne, 8, 8) arrays per point (``full_shear``: A_s from the
+    shear points too; with reduced shear the caller sets it)."""
+    w = pts.w[:, :, None]  # (ne, g, 1)
+    br, bt = pts.b_r, pts.b_t  # (ne, g, 8)
     wr = (w * br).transpose(0, 2, 1)  # (ne, 8, g)
     A[0] += wr @ br
     rt = wr @ bt
@@ -296,8 +294,7 @@ def _accumulate_points(
     A[1] += rt.transpose(0, 2, 1)
     A[2] += (w * bt).transpose(0, 2, 1) @ bt
     if full_shear:
-        bs = np.stack([r[1][:, 2, :] for r in rows], axis=1)
-        A[3] += (w * bs).transpose(0, 2, 1) @ bs
+        A[3] += (pts.w_s[:, :, None] * pts.b_s).transpose(0, 2, 1) @ pts.b_s
 
 
 def _dofs(conn: IntArray) -> IntArray:
@@ -348,16 +345,15 @@ def _curved_basis(mesh: RollMesh, reduced_shear: bool, assumed_hoop: bool) -> El
             w = 0.25 * r * dr * dt  # r dr dtheta, Gauss weights 1/4
             rows.append((w, B, B_mid[:, 1, :] if assumed_hoop else B[:, 1, :]))
             area += w
-    _accumulate_points(A, rows, not reduced_shear)
     Bc, rc = b_matrix(0.5, 0.5)
-    shear = None
-    if reduced_shear:
-        bs = Bc[:, 2, :]
-        shear = (rc * dr * dt, bs)
+    shear = (rc * dr * dt, Bc[:, 2, :]) if reduced_shear else None
+    points = StrainPoints.of(rows, shear)
+    _accumulate_points(A, points, not reduced_shear)
+    if shear is not None:
+        bs = shear[1]
         A[3] = shear[0][:, None, None] * bs[:, :, None] * bs[:, None, :]
     tc = t0 + 0.5 * dt
     centre = np.stack([rc * np.cos(tc), rc * np.sin(tc)], axis=1)
-    points = StrainPoints.of(rows, shear)
     return ElementBasis(
         A=A, B_centre=Bc, dofs=_dofs(conn), centre_xy=centre, area=area, points=points
     )
