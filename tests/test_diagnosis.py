@@ -292,3 +292,105 @@ def test_cli_causes_full_level_range():
     )  # fmt: skip
     lines = [line for line in res.output.splitlines() if line.strip()]
     assert res.exit_code == 2 and len(lines) == 1 and "--full-level" in lines[0], res.output
+
+
+# --- the diagnosis in one sentence (issue 22 item 7) ------------------------------------
+# A stand-in forward chain: reading = 50 + 10 ln(T0 / 1 MPa) Rho. PCHIP in ln T0 reproduces
+# a function linear in ln T0 exactly, so the diagnosed tensions are known in closed form
+# (to Brent's xtol 1e-12 in ln T0) and the sentence's numbers can be checked digit by digit.
+def _fake_evaluate(self, web_stress):
+    r = 50.0 + 10.0 * math.log(web_stress / 1e6)
+    return ForwardPoint(float(web_stress), float(web_stress), 0.01 * web_stress, r, r, False)
+
+
+def _sentence_case(tension):
+    return load_case("pet1-26.7N", [f"winding.tension='{tension}'"])
+
+
+@pytest.fixture
+def fake_chain(monkeypatch):
+    monkeypatch.setattr(RollModel, "evaluate", _fake_evaluate)
+
+
+def test_sentence_one_position_si_force(fake_chain):
+    from scipy.stats import t as student
+
+    case = _sentence_case("26.7 N")
+    vals = [52.0, 53.0, 54.0]  # one position read three times: mean 53, SD 1
+    d = diagnose(case, readings_from_arrays([0.05] * 3, vals), verify=False)
+    area = case.web.width * case.web.thickness
+    T = 1e6 * math.exp(0.3)  # 53 Rho
+    half = student.ppf(0.975, 2) / math.sqrt(3)
+    lo, hi = 1e6 * math.exp(0.3 - half / 10), 1e6 * math.exp(0.3 + half / 10)
+    assert d.roll_level() == pytest.approx((T, lo, hi), rel=1e-9)
+    dev = 100 * (T * area / 26.7 - 1)
+    want = (
+        f"this roll reads as if wound at {T / 1e6:.3g} MPa ({T * area:.3g} N, "
+        f"{T * case.web.thickness:.3g} N/m), {abs(dev):.0f} % "
+        f"{'above' if dev > 0 else 'below'} the 26.7 N set point "
+        f"(95 %: {lo * area:.3g}-{hi * area:.3g} N)"
+    )
+    assert d.sentence() == want
+    assert d.to_dict()["summary"] == want
+
+
+def test_sentence_us_set_point_and_several_positions(fake_chain):
+    from scipy.stats import t as student
+
+    case = _sentence_case("2 pli")
+    means = [48.0, 50.0, 55.0]
+    d = diagnose(case, readings_from_arrays([0.03, 0.07, 0.11], means), verify=False)
+    h = case.web.thickness
+    pli = 4.4482216152605 / 0.0254
+    rbar = float(np.mean(means))
+    half = student.ppf(0.975, 2) * float(np.std(means, ddof=1)) / math.sqrt(3)
+    T = 1e6 * math.exp((rbar - 50) / 10)
+    lo, hi = (1e6 * math.exp((rbar - 50 + s * half) / 10) for s in (-1, 1))
+    s = d.sentence()
+    # the set point was given in pli: the sentence speaks psi, lbf and pli
+    assert s.startswith(f"this roll reads as if wound at {T / 6894.757293168361:.3g} psi (")
+    assert f"{T * h / pli:.3g} pli)" in s and "the 2 pli set point" in s
+    assert f"(95 %: {lo * h / pli:.3g}-{hi * h / pli:.3g} pli)" in s
+    t_pos = [1e6 * math.exp((m - 50) / 10) * h / pli for m in means]
+    assert s.endswith(f"; 3 positions, from {min(t_pos):.3g} to {max(t_pos):.3g} pli")
+    # asked in SI: the same tension in N/m
+    assert f"the {2 * pli:.3g} N/m set point" in d.sentence("si")
+    with pytest.raises(InputError) as exc:
+        d.sentence("imperial")
+    assert exc.value.field == "units"
+
+
+def test_sentence_beyond_the_chain_says_softer(fake_chain):
+    # 1/64 of the case's tension is the slackest run: a reading below it has no tension
+    case = _sentence_case("1.75 MPa")
+    t_min = 1.75e6 / 64
+    r_min = 50 + 10 * math.log(t_min / 1e6)
+    d = diagnose(case, readings_from_arrays([0.05], [r_min - 5]), verify=False)
+    s = d.sentence()
+    assert s.startswith("this roll reads softer (mean ") and "nan" not in s.lower()
+    assert f"wound at {t_min / 1e6:.3g} MPa" in s and "(1/64 of the 1.75 MPa set point)" in s
+
+
+def test_set_point_units_family():
+    from woundroll.diagnosis import set_point_units
+
+    pli = 4.4482216152605 / 0.0254
+    assert set_point_units("force_per_length", 2 * pli) == "us"
+    assert set_point_units("force_per_length", 350.0) == "si"
+    assert set_point_units("force", 26.7) == "si"
+    assert set_point_units("force", 6 * 4.4482216152605) == "us"
+    assert set_point_units("pressure", 1.75e6) == "si"
+
+
+def test_cli_diagnose_prints_the_sentence_first(fake_chain, tmp_path):
+    # CliRunner runs in this process: the stand-in chain applies
+    f = tmp_path / "r.csv"
+    f.write_text("position [in],rho\n2,52\n2,53\n2,54\n", encoding="utf-8")
+    res = CliRunner().invoke(
+        app, ["diagnose", "pet1-26.7N", "--readings", str(f), "--set", "winding.tension='2 pli'"]
+    )
+    assert res.exit_code == 0, res.output
+    first = res.output.strip().splitlines()[0]
+    assert first.startswith("this roll reads as if wound at ") and "the 2 pli set point" in first
+    res = CliRunner().invoke(app, ["diagnose", "pet1-26.7N", "--readings", str(f), "--json"])
+    assert json.loads(res.output)["diagnosis"]["summary"].startswith("this roll reads as if")

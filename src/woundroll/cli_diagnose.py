@@ -207,6 +207,7 @@ def diagnose_cmd(
         return
     if quiet:
         return
+    out.print(escape(d.sentence()), highlight=False, soft_wrap=True)
     t = Table(
         "position [in]",
         f"reading [{d.curve.scale}]",

@@ -66,6 +66,7 @@ __all__ = [
     "diagnose",
     "forward_curve",
     "reading_of",
+    "set_point_units",
 ]
 
 #: Initial grid of tension factors (times the case's tension) and the outermost factors.
@@ -438,6 +439,11 @@ class Diagnosis:
     material_sensitivity: dict[str, Any] = field(default_factory=dict)
     verification: dict[str, Any] = field(default_factory=dict)
     notes: tuple[str, ...] = ()
+    #: the case's ``winding.tension`` as given: (kind, SI value); kind "force" [N],
+    #: "force_per_length" [N/m] or "pressure" [Pa]
+    set_point: tuple[str, float] | None = None
+    web_width: float = math.nan
+    web_thickness: float = math.nan
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (the CLI's ``diagnosis``); NaN -> null."""
@@ -471,7 +477,122 @@ class Diagnosis:
             "curve": self.curve.to_dict(),
             "verification": self.verification,
             "notes": list(self.notes),
+            "summary": self.sentence(),
         }
+
+    def roll_level(self) -> tuple[float, float, float]:
+        """Web tension at the core T0 [Pa] the whole roll reads like, and its interval.
+
+        One position: that position's result (scatter and material). Several: T0 at the mean
+        of the positions' mean readings; its interval maps the mean's confidence interval
+        (Student t over the positions' means) through the forward curve and adds the median
+        position's material half-width in quadrature in ``ln T0``. NaN where the reading
+        lies beyond what the forward chain can produce (an open interval end likewise).
+        """
+        from scipy.stats import t as student
+
+        k = self.position.size
+        if k == 1:
+            return (
+                float(self.web_tension[0]),
+                float(self.web_tension_low[0]),
+                float(self.web_tension_high[0]),
+            )
+        c = self.curve
+        r = self.reading
+        rbar = float(np.mean(r))
+        half = float(student.ppf(0.5 + 0.5 * self.confidence, k - 1) * np.std(r, ddof=1))
+        half /= math.sqrt(k)
+        T = float(c.tension_for(rbar)[0])
+        lo = float(c.tension_for(max(rbar - half, c.reading[0]))[0])
+        hi = float(c.tension_for(min(rbar + half, c.reading[-1]))[0])
+        lo = math.nan if rbar - half < c.reading[0] else lo
+        hi = math.nan if rbar + half > c.reading[-1] else hi
+        # material half-width of each position: its interval minus its scatter part
+        with np.errstate(invalid="ignore", divide="ignore"):
+            lt = np.log(self.web_tension)
+            scatter = lt - np.log(c.tension_for(np.clip(self.reading_low, c.reading[0], None)))
+            m2 = (lt - np.log(self.web_tension_low)) ** 2 - scatter**2
+        m2 = m2[np.isfinite(m2)]
+        m = math.sqrt(max(float(np.median(m2)), 0.0)) if m2.size else 0.0
+        if math.isfinite(T):
+            if math.isfinite(lo):
+                lo = math.exp(math.log(T) - math.hypot(math.log(T) - math.log(lo), m))
+            if math.isfinite(hi):
+                hi = math.exp(math.log(T) + math.hypot(math.log(hi) - math.log(T), m))
+        return T, lo, hi
+
+    def sentence(self, units: str | None = None) -> str:
+        """The diagnosis in one sentence, against the case's set point (``winding.tension``).
+
+        ``"this roll reads as if wound at 4.60 MPa (70.1 N, 2.62 pli), 31 % above the
+        53.4 N set point (95 %: 55.2-84.0 N)"``: the roll-level web tension at the core
+        (:meth:`roll_level`) as a stress, a force over the web width and a force per width;
+        the deviation from the set point; the interval in the set point's unit. ``units``:
+        ``"si"`` (MPa, N, N/m) or ``"us"`` (psi, lbf, pli); default: the set point's own
+        family (:func:`set_point_units`).
+        """
+        kind, value = self.set_point or ("pressure", self.case_tension)
+        system = units or set_point_units(kind, value)
+        if system not in _UNIT_SYSTEMS:
+            raise InputError(f"must be one of {', '.join(_UNIT_SYSTEMS)}, got {units!r}", "units")
+        w, h = self.web_width, self.web_thickness
+        if not (math.isfinite(w) and math.isfinite(h)):
+            kind, value = "pressure", self.case_tension  # no geometry: stresses only
+        per_stress = {"pressure": 1.0, "force": w * h, "force_per_length": h}
+        unit, factor = _UNIT_SYSTEMS[system][kind]
+
+        def setp(stress: float) -> str:
+            return f"{stress * per_stress[kind] / factor:.3g}"
+
+        set_text = f"the {value / factor:.3g} {unit} set point"
+        T, lo, hi = self.roll_level()
+        c = self.curve
+        where = f"{self.position.size} positions, " if self.position.size > 1 else ""
+        rbar = float(np.mean(self.reading))
+        if not math.isfinite(T):
+            softer = rbar < c.reading[0]
+            edge = float(c.web_stress[0] if softer else c.web_stress[-1])
+            ratio = edge / self.case_tension
+            times = f"1/{1 / ratio:.3g} of" if ratio < 1 else f"{ratio:.3g} times"
+            return (
+                f"this roll reads {'softer' if softer else 'harder'} ({where}mean "
+                f"{rbar:.1f} {c.scale}) than a roll wound at {setp(edge)} {unit}, "
+                f"{'the slackest' if softer else 'the tightest'} tension the model reaches "
+                f"({times} {set_text})"
+            )
+        parts = []
+        for k in ("pressure", "force", "force_per_length"):
+            if k == "pressure" or (math.isfinite(w) and math.isfinite(h)):
+                u, f = _UNIT_SYSTEMS[system][k]
+                parts.append(f"{T * per_stress[k] / f:.3g} {u}")
+        dev = 100.0 * (T / self.case_tension - 1.0)
+        if abs(dev) < 0.5:
+            vs = f"on {set_text}"
+        else:
+            vs = f"{abs(dev):.0f} % {'above' if dev > 0 else 'below'} {set_text}"
+        if math.isfinite(lo) and math.isfinite(hi):
+            band = f"{setp(lo)}-{setp(hi)} {unit}"
+        elif math.isfinite(hi):
+            band = f"<= {setp(hi)} {unit}"
+        elif math.isfinite(lo):
+            band = f">= {setp(lo)} {unit}"
+        else:
+            band = "unbounded"
+        conf = f"{100 * self.confidence:.0f} %"
+        tail = ""
+        if self.position.size > 1:
+            ok = np.isfinite(self.web_tension)
+            tail = f"; {self.position.size} positions"
+            if np.count_nonzero(ok) > 1:
+                tail += (
+                    f", from {setp(float(np.min(self.web_tension[ok])))} to "
+                    f"{setp(float(np.max(self.web_tension[ok])))} {unit}"
+                )
+        return (
+            f"this roll reads as if wound at {parts[0]} ({', '.join(parts[1:])}), {vs} "
+            f"({conf}: {band}){tail}"
+        ).replace(" ()", "")
 
     def summary(self) -> list[tuple[str, ...]]:
         """Rows for a table: position [in], reading, WOT [MPa] and P [kPa] with intervals
@@ -579,6 +700,28 @@ class Diagnosis:
             fig1.savefig(f"{path_prefix}_curve.png", dpi=120)
             fig2.savefig(f"{path_prefix}_cmd.png", dpi=120)
         return [fig1, fig2]
+
+
+#: Units of the diagnosis sentence: system -> tension kind -> (unit, SI value of one unit).
+_UNIT_SYSTEMS: dict[str, dict[str, tuple[str, float]]] = {
+    "si": {"pressure": ("MPa", 1e6), "force": ("N", 1.0), "force_per_length": ("N/m", 1.0)},
+    "us": {
+        "pressure": ("psi", 6894.757293168361),
+        "force": ("lbf", 4.4482216152605),
+        "force_per_length": ("pli", 4.4482216152605 / 0.0254),
+    },
+}
+
+
+def set_point_units(kind: str, value: float) -> str:
+    """The unit family of a tension set point given as ``(kind, SI value)``: ``"us"`` when
+    it is a round number of pli, lbf or psi (2 pli, 6 lbf, 300 psi: to 1e-6, in steps of
+    0.05), else ``"si"``. The case keeps the SI value only; a round US value is the trace
+    its unit leaves."""
+    _, f = _UNIT_SYSTEMS["us"][kind]
+    x = value / f
+    steps = x / 0.05
+    return "us" if x > 0 and abs(steps - round(steps)) < 1e-6 * max(steps, 1.0) else "si"
 
 
 def _quantiles(readings: Readings, confidence: float, repeatability: float | None) -> FloatArray:
@@ -789,6 +932,9 @@ def diagnose(
         material_sensitivity=sens,
         verification=verification,
         notes=tuple(notes),
+        set_point=case.winding.tension,
+        web_width=model.web.width,
+        web_thickness=model.web.thickness,
     )
 
 

@@ -314,7 +314,13 @@ def to_si(value: Any, kind: str, field: str | None = None, *, bare_is_si: bool =
             not bare and dims == _KIND_DIMS[kind]
         ):
             return _finite(mag, value, field)
-    q = parse_quantity(value, field)
+    try:
+        q = parse_quantity(value, field)
+    except InputError:
+        if kind != "dimensionless" or not isinstance(value, str) or not value.strip():
+            raise
+        # a plain-number field: "lots" is not a number, not an unknown unit
+        raise InputError(f"expects a number (e.g. '0.3'), got {value!r}", field) from None
     target = _dimensionality(kind)
     if kind == "dimensionless":
         if not q.dimensionless:
