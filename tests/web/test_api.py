@@ -4,6 +4,7 @@ no file paths, size limits, progress, cancellation; the server keeps serving."""
 import json
 import time
 
+import numpy as np
 import pytest
 
 pytest.importorskip("fastapi")
@@ -229,3 +230,156 @@ def test_server_draws_headless():
     matplotlib.use("svg")
     create_app()
     assert matplotlib.get_backend().lower() == "agg"
+
+
+# --- issue 22: the web page's input handling and what it shows -------------------------
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "text"),
+    [
+        ({"content": b"not json", "headers": {"Content-Type": "application/json"}}, "not JSON"),
+        ({"content": b'{"case": "x"', "headers": {"Content-Type": "application/json"}}, "not JSON"),
+        ({"content": b"case=1", "headers": {"Content-Type": "text/plain"}}, "JSON object"),
+        ({"json": [1, 2]}, "JSON object"),
+    ],
+)
+def test_non_json_body_gets_the_documented_error(client, kwargs, text):
+    r = client.post("/api/run", **kwargs)
+    assert r.status_code == 422, r.text
+    err = r.json()["error"]
+    assert err["field"] == "request" and err["line"].startswith("request: ")
+    assert text in err["line"] and "\n" not in err["line"]
+
+
+def test_unknown_path_and_method_answer_in_the_same_form(client):
+    r = client.get("/api/nothing")
+    assert r.status_code == 404 and r.json()["error"]["field"] == "request"
+    r = client.get("/api/run")
+    assert r.status_code == 405 and "GET /api/run" in r.json()["error"]["line"]
+
+
+def test_every_field_error_at_once(client):
+    body = {
+        "case": FAST_TOML,
+        "overrides": {
+            "winding.tension": "3 furlong",
+            "winding.friction": "lots",
+            "web.thickness": "1 psi",
+            "web.width": "6 in",  # good: not reported
+        },
+        "readings": "position [in],rho\n1,50\n",
+    }
+    r = client.post("/api/run", json=body)
+    assert r.status_code == 422
+    errs = {e["field"]: e["line"] for e in r.json()["errors"]}
+    assert set(errs) == {"winding.tension", "winding.friction", "web.thickness"}
+    assert r.json()["error"]["field"] == "winding.tension"  # the first, as before
+    # a dimensionless field given a word: it expects a number (not "unknown unit")
+    assert errs["winding.friction"] == "winding.friction: expects a number (e.g. '0.3'), got 'lots'"
+    # a bad override and bad readings together: both
+    body["overrides"] = {"winding.friction": "lots"}
+    body["readings"] = "position [in],rho\n1,abc\n"
+    fields = [e["field"] for e in client.post("/api/run", json=body).json()["errors"]]
+    assert fields == ["winding.friction", "readings"]
+
+
+def test_readings_outside_the_scale_are_refused_with_line_and_value(client):
+    body = {"case": FAST_TOML, "readings": "position [in],rho\n1,-50\n2,5000\n3,55\n"}
+    r = client.post("/api/run", json=body)
+    assert r.status_code == 422
+    err = r.json()["error"]
+    assert err["field"] == "readings" and "\n" not in err["line"]
+    assert "line 2: -50" in err["line"] and "line 3: 5000" in err["line"]
+    assert "0-100" in err["line"] and "line 4" not in err["line"]
+    # the scale's ends are readings the dial shows: accepted
+    body["readings"] = "position [in],rho\n1,0\n2,100\n"
+    assert client.post("/api/run", json=body).status_code == 200
+
+
+def test_inputs_used_and_their_sources(client):
+    text = FAST_TOML.replace("[winding]", '[winding]\nnip_load = "1 pli"')
+    r = client.post("/api/run", json={"case": text, "overrides": {"winding.tension": "2 pli"}})
+    s = wait(client, r.json()["job"])
+    rows = {row["key"]: row for row in s["result"]["inputs"]}
+    assert list(rows) == [
+        "winding.tension",
+        "winding.outer_radius",
+        "winding.nip_load",
+        "winding.friction",
+        "web.thickness",
+        "web.width",
+        "web.E_theta",
+    ]
+    t = rows["winding.tension"]
+    assert t["source"] == "web form" and t["value"] == "2 pli"
+    # 1 pli = 4.4482216152605 N / 0.0254 m exactly
+    assert t["si"] == pytest.approx(2 * 4.4482216152605 / 0.0254, rel=1e-12)
+    assert rows["winding.outer_radius"]["source"] == "case file"
+    assert rows["winding.nip_load"]["value"] == "1 pli"
+    assert rows["winding.friction"]["source"] == "default" and rows["winding.friction"]["si"] == 0
+    # the PET1 preset: 100 um thick, 6 in wide (docs/case-files.md)
+    assert rows["web.thickness"]["source"] == "preset PET1"
+    assert rows["web.thickness"]["si"] == pytest.approx(100e-6, rel=1e-12)
+    assert rows["web.width"]["si"] == pytest.approx(0.1524, rel=1e-12)
+
+
+def test_plots_hoop_stress_smooth_and_impact_from_contact(client):
+    r = client.post("/api/run", json={"case": FAST_TOML})
+    s = wait(client, r.json()["job"])
+    plots = {p["id"]: p for p in s["result"]["plots"]}
+    ref = woundroll.run(woundroll.load_case(__import__("tomllib").loads(FAST_TOML)))
+    w = ref.winding
+
+    def roughness(y):
+        # median node-to-node wiggle (second difference) over the plotted range
+        y = np.asarray(y)
+        return float(np.median(np.abs(np.diff(y, 2))) / (y.max() - y.min()))
+
+    # the node values saw-tooth with the layer period (~7 % of the range per node here)
+    assert roughness(w.sigma_theta) > 1e-2
+    st = plots["plot-sigma-t"]["series"][0]
+    rm, mean = w.layer_mean_hoop_stress()
+    np.testing.assert_allclose(st["y"], mean / 1e3, rtol=1e-12)
+    assert roughness(st["y"]) < 1e-3  # the layer means are smooth
+    imp = plots["plot-impact"]
+    x = imp["series"][0]["x"]
+    assert imp["xlabel"] == "time since first contact [ms]"
+    # the history starts at the first contact (one FD step resolution) and lasts the
+    # contact time
+    dt = ref.hardness.fd.time_step * 1e3
+    assert abs(x[0]) <= dt and x[-1] == pytest.approx(
+        ref.hardness.fd.contact_time * 1e3, abs=2 * dt
+    )
+
+
+def test_job_progress_never_claims_100_percent_while_working(client, monkeypatch):
+    from woundroll.web import JobStore
+
+    store = JobStore()
+    seen = []
+    import woundroll.pipeline as pl
+
+    real = pl.run
+
+    def run(case, progress=None):
+        def spy(stage, fraction):
+            progress(stage, fraction)
+            j = next(iter(store.jobs.values()))  # the thread may start before start() returns
+            seen.append((j.stage, j.fraction, j.indeterminate))
+
+        return real(case, progress=spy)
+
+    monkeypatch.setattr(pl, "run", run)
+    job = store.start(_fast_case("26.7 N"), None)
+    t0 = time.time()
+    while job.state in ("queued", "running") and time.time() - t0 < 60:
+        time.sleep(0.02)
+    assert job.state == "done" and seen, job.error
+    for stage, fraction, indeterminate in seen:
+        # a stage that reports 100 % is done; the job goes on: no per cent is claimed
+        assert indeterminate == (fraction >= 1.0), (stage, fraction)
+        if indeterminate:
+            assert "done; " in stage
+    st = job.status()
+    assert st["fraction"] == 1.0 and st["indeterminate"] is False

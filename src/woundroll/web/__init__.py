@@ -26,6 +26,7 @@ unless told otherwise):
 # and their types are imported inside create_app()
 
 import math
+import re
 import tempfile
 import threading
 import time
@@ -89,31 +90,30 @@ def _bundled_file_refs() -> set[tuple[str, str]]:
 BUNDLED_FILE_REFS = _bundled_file_refs()
 
 
-def case_from_text(text: str, overrides: dict[str, str] | None = None) -> Any:
-    """Validate a case given as TOML text plus form overrides, as the CLI would.
+class InputErrors(InputError):
+    """Several independent input errors at once (one per field); the first is the
+    :class:`InputError` itself, :attr:`errors` holds them all."""
 
-    Raises
-    ------
-    InputError
-        ``case``: too large or not TOML; ``<key>``: a file path that is not one of the
-        bundled cases' files; any error of :func:`woundroll.case.case_from_dict`.
-    """
-    from woundroll.case import case_from_dict, parse_override, set_dotted
+    def __init__(self, errors: list[InputError]) -> None:
+        super().__init__(errors[0].message, errors[0].field)
+        self.errors = errors
 
+
+def _parse_case_text(text: str) -> dict[str, Any]:
     size = len(text.encode("utf-8"))
     if size > MAX_CASE_BYTES:
         raise InputError(
             f"the case is {size} bytes; the page takes at most {MAX_CASE_BYTES} bytes", "case"
         )
     try:
-        data = tomllib.loads(text)
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"not valid TOML: {exc}", "case") from None
-    for key, value in (overrides or {}).items():
-        if key not in FORM_FIELDS:
-            raise InputError("not a field of this form", key)
-        if value is not None and str(value).strip():
-            set_dotted(data, key, parse_override(f"{key}={value}")[1])
+
+
+def _case_from_data(data: dict[str, Any]) -> Any:
+    from woundroll.case import case_from_dict
+
     for key in _FILE_KEYS:
         v = _get(data, key)
         if v is not None and (key, v) not in BUNDLED_FILE_REFS:
@@ -124,6 +124,151 @@ def case_from_text(text: str, overrides: dict[str, str] | None = None) -> Any:
             )
     # relative references resolve against the bundled cases (the only ones allowed)
     return case_from_dict(data, _cases_dir())
+
+
+def check_inputs(
+    text: str, overrides: dict[str, str] | None = None
+) -> tuple[Any, list[InputError]]:
+    """:func:`case_from_text`, but every form field's error at once: each override is
+    checked on its own against the case, then the case with the good ones.
+
+    Returns
+    -------
+    (case, errors)
+        ``errors``: one per field the user wrote wrong (the case's own error once);
+        ``case``: the case with the good overrides (the readings are checked against it),
+        None when the case itself is wrong.
+
+    Raises
+    ------
+    InputError
+        ``case``: too large or not TOML (nothing else can be checked).
+    """
+    import copy
+
+    from woundroll.case import parse_override, set_dotted
+
+    data = _parse_case_text(text)  # nothing else can be checked without the case
+    errors: list[InputError] = []
+    good: dict[str, str] = {}
+    for key, value in (overrides or {}).items():
+        if key not in FORM_FIELDS:
+            errors.append(InputError("not a field of this form", key))
+            continue
+        if value is None or not str(value).strip():
+            continue
+        try:
+            trial = copy.deepcopy(data)
+            set_dotted(trial, key, parse_override(f"{key}={value}")[1])
+            _case_from_data(trial)
+        except InputError as exc:
+            if exc.field == key:
+                errors.append(exc)
+                continue
+        good[key] = value  # an error elsewhere is the case's own: reported below
+    try:
+        case = case_from_text(text, good)
+    except InputError as exc:
+        errors.append(exc)
+        case = None
+    return case, errors
+
+
+def inputs_used(text: str, overrides: dict[str, str], case: Any) -> list[dict[str, Any]]:
+    """The form's quantities as the run used them and where each came from: ``"web form"``
+    (typed on the page), ``"case file"`` (the TOML), ``"preset"`` (the web's material
+    preset) or ``"default"``. ``value`` is what the user wrote (or the SI value of a default),
+    ``si`` the SI value the run used, with its unit."""
+    data = tomllib.loads(text)
+    preset = _get(data, "web.preset")
+    kind, v = case.winding.tension
+    si: dict[str, tuple[float, str]] = {
+        "winding.tension": (v, {"force": "N", "force_per_length": "N/m", "pressure": "Pa"}[kind]),
+        "winding.outer_radius": (
+            case.winding.final_radius(case.web.build(), case.core.build()),
+            "m",
+        ),
+        "winding.nip_load": (case.winding.nip_load, "N/m"),
+        "winding.friction": (case.winding.friction, ""),
+        "web.thickness": (case.web.thickness, "m"),
+        "web.width": (case.web.width, "m"),
+        "web.E_theta": (case.web.E_theta, "Pa"),
+    }
+    rows = []
+    for key, (label, _) in FORM_FIELDS.items():
+        given = (overrides or {}).get(key)
+        value, unit = si[key]
+        if given is not None and str(given).strip():
+            source, shown = "web form", str(given).strip()
+        elif _get(data, key) is not None:
+            source, shown = "case file", str(_get(data, key))
+        elif key.startswith("web.") and preset:
+            source, shown = f"preset {preset}", f"{value:.6g} {unit}".strip()
+        else:
+            source, shown = "default", f"{value:.6g} {unit}".strip()
+        rows.append(
+            {
+                "key": key,
+                "label": label,
+                "value": shown,
+                "si": value,
+                "si_unit": unit,
+                "source": source,
+            }
+        )
+    return rows
+
+
+def check_scale(readings: Any) -> None:
+    """Reject readings outside their instrument scale's range (Rho 0-100, R 10-100,
+    L 0-1000: :data:`woundroll.instruments.definitions.READING_RANGES`), naming each line
+    and value. A stand-in at the web entry until the readers do it themselves.
+
+    Raises
+    ------
+    InputError
+        field ``readings``.
+    """
+    from woundroll.instruments.definitions import READING_RANGES
+    from woundroll.readings import SCALES
+
+    rng = READING_RANGES.get(SCALES.get(readings.scale, ""))
+    if rng is None:
+        return
+    lo, hi = rng
+    bad = [
+        (int(ln), float(v))
+        for ln, v in zip(readings.raw_line, readings.raw_value, strict=True)
+        if not lo <= v <= hi
+    ]
+    if bad:
+        where = ", ".join(f"line {ln}: {v:g}" if ln else f"{v:g}" for ln, v in bad[:5])
+        more = f" and {len(bad) - 5} more" if len(bad) > 5 else ""
+        raise InputError(
+            f"{where}{more} {readings.scale} lie outside the {readings.scale} scale "
+            f"{lo:g}-{hi:g} (a reading the instrument cannot show: a typo or another scale?)",
+            "readings",
+        )
+
+
+def case_from_text(text: str, overrides: dict[str, str] | None = None) -> Any:
+    """Validate a case given as TOML text plus form overrides, as the CLI would.
+
+    Raises
+    ------
+    InputError
+        ``case``: too large or not TOML; ``<key>``: a file path that is not one of the
+        bundled cases' files; any error of :func:`woundroll.case.case_from_dict`.
+    """
+    from woundroll.case import parse_override, set_dotted
+
+    data = _parse_case_text(text)
+    for key, value in (overrides or {}).items():
+        if key not in FORM_FIELDS:
+            raise InputError("not a field of this form", key)
+        if value is not None and str(value).strip():
+            set_dotted(data, key, parse_override(f"{key}={value}")[1])
+    return _case_from_data(data)
 
 
 def readings_from_text(text: str, case: Any, lane_width: str = "", roll: str = "") -> Any:
@@ -166,9 +311,22 @@ def readings_from_text(text: str, case: Any, lane_width: str = "", roll: str = "
             # the temporary directory is nobody's business: name the sheet, not the path
             msg = exc.message.replace(str(path), "readings.csv").replace(tmp, "")
             raise InputError(msg, exc.field or "readings") from None
+    check_scale(r)
     from dataclasses import replace
 
     return replace(r, source="readings pasted on the web page")
+
+
+#: What the page says for the models' progress stages.
+STAGE_LABELS = {
+    "winding": "winding the roll",
+    "contact": "contact model (roll spring under the head)",
+    "impact": "impact of the striker",
+    "foundation": "foundation (CMD profile)",
+    "dynamic": "dynamic contact",
+    "diagnosis: forward curve": "diagnosis: full forward runs over tension",
+    "diagnosis: material": "diagnosis: material sensitivity",
+}
 
 
 class Cancelled(Exception):
@@ -181,6 +339,10 @@ class Job:
     state: str = "queued"  # queued, running, done, error, cancelled
     stage: str = ""
     fraction: float = 0.0
+    #: True while work goes on that reports no fraction (the page shows a moving bar)
+    indeterminate: bool = False
+    inputs: list[dict[str, Any]] | None = None
+    units: str | None = None
     started: float = field(default_factory=time.time)
     cancel: threading.Event = field(default_factory=threading.Event)
     result: Any = None
@@ -197,7 +359,8 @@ class Job:
             "id": self.id,
             "state": self.state,
             "stage": self.stage,
-            "fraction": round(self.fraction, 4),
+            "fraction": None if self.indeterminate else round(self.fraction, 4),
+            "indeterminate": self.indeterminate,
             "elapsed_s": round(time.time() - self.started, 2),
         }
         if self.state == "done":
@@ -218,13 +381,26 @@ class JobStore:
     def running(self) -> int:
         return sum(j.state in ("queued", "running") for j in self.jobs.values())
 
-    def start(self, case: Any, readings: Any, diagnose: bool = False) -> Job:
+    def start(
+        self,
+        case: Any,
+        readings: Any,
+        diagnose: bool = False,
+        inputs: list[dict[str, Any]] | None = None,
+        units: str | None = None,
+    ) -> Job:
         with self.lock:
             if self.running() >= MAX_RUNNING:
                 raise InputError(
                     f"the server is busy ({MAX_RUNNING} runs going): wait or cancel one", "run"
                 )
-            job = Job(uuid.uuid4().hex[:12], readings=readings, diagnose=diagnose)
+            job = Job(
+                uuid.uuid4().hex[:12],
+                readings=readings,
+                diagnose=diagnose,
+                inputs=inputs,
+                units=units,
+            )
             self.jobs[job.id] = job
             done = [k for k, j in self.jobs.items() if j.state not in ("queued", "running")]
             for k in done[: max(0, len(self.jobs) - MAX_JOBS)]:
@@ -238,18 +414,27 @@ class JobStore:
     def _run(self, job: Job, case: Any) -> None:
         from woundroll.pipeline import run
 
-        def progress(stage: str, fraction: float) -> None:
+        def progress(stage: str, fraction: float, after: str = "next step") -> None:
             if job.cancel.is_set():
                 raise Cancelled
-            job.stage, job.fraction = stage, float(fraction)
+            label = STAGE_LABELS.get(stage, stage)
+            if fraction >= 1.0:
+                # the stage is done but the job is not: say what runs now, claim no per cent
+                job.stage, job.fraction, job.indeterminate = f"{label} done; {after}", 1.0, True
+            else:
+                job.stage, job.fraction, job.indeterminate = label, float(fraction), False
+
+        def between(stage: str) -> None:
+            if job.cancel.is_set():
+                raise Cancelled
+            job.stage, job.indeterminate = stage, True
 
         job.state = "running"
         try:
             from woundroll.defects import defect_report
 
             result = run(case, progress=progress)
-            if job.cancel.is_set():
-                raise Cancelled
+            between("comparing and summing up")
             measured = _measured(job.readings)
             if measured is not None and result.profile is not None:
                 from dataclasses import replace
@@ -258,11 +443,24 @@ class JobStore:
             if job.diagnose and job.readings is not None:
                 from woundroll.diagnosis import diagnose
 
-                job.diagnosis = diagnose(case, job.readings, progress=progress)
+                between("diagnosis: starting the forward runs over tension")
+
+                def diag_progress(stage: str, fraction: float) -> None:
+                    progress(
+                        f"diagnosis: {stage}",
+                        fraction,
+                        "diagnosis: checking the result with a full forward run",
+                    )
+
+                job.diagnosis = diagnose(case, job.readings, progress=diag_progress)
+            between("defect risk and summary")
             job.defects = defect_report(case, job.diagnosis, winding=result.winding)
             job.result = result
-            job.payload = result_payload(result, measured, job.diagnosis, job.defects)
+            job.payload = result_payload(
+                result, measured, job.diagnosis, job.defects, job.inputs, job.units
+            )
             job.state = "done"
+            job.indeterminate = False
         except Cancelled:
             job.state = "cancelled"
         except (InputError, ConvergenceError) as exc:
@@ -305,11 +503,26 @@ def _series(x: Any, y: Any, label: str, style: str = "line") -> dict[str, Any]:
     return {"x": [float(v) for v in x], "y": [float(v) for v in y], "label": label, "style": style}
 
 
+_US_UNITS = re.compile(r"\b(pli|lbf|lb|psi|in|inch|inches|mil|mils|ft)\b")
+
+
+def unit_system(text: str) -> str:
+    """``"us"`` when ``text`` (the tension as the user wrote it) uses US units, else
+    ``"si"``: the family the page's diagnosis sentence and positions speak."""
+    return "us" if _US_UNITS.search(str(text)) else "si"
+
+
 def result_payload(
-    result: Any, measured: Any = None, diagnosis: Any = None, defects: Any = None
+    result: Any,
+    measured: Any = None,
+    diagnosis: Any = None,
+    defects: Any = None,
+    inputs: list[dict[str, Any]] | None = None,
+    units: str | None = None,
 ) -> dict[str, Any]:
     """What the page shows: summary rows, every scalar of the CLI's JSON, plot series, the
-    diagnosis table and the defect-risk flags."""
+    diagnosis (sentence, table, caveats), the defect-risk flags and the inputs used with
+    their sources."""
     from woundroll.cli import result_summary
 
     d = result.to_dict()
@@ -325,13 +538,16 @@ def result_payload(
                 "series": [_series(w.radius * 100, w.sigma_r / 1e3, "sigma_r")],
             }
         )
+        # the node values of sigma_theta saw-tooth with the layer period (within a layer
+        # the hoop stress falls outward); the layer means from equilibrium are the field
+        rm, st = w.layer_mean_hoop_stress()
         plots.append(
             {
                 "id": "plot-sigma-t",
-                "title": "hoop stress",
+                "title": "hoop stress (mean over each layer)",
                 "xlabel": "radius [cm]",
                 "ylabel": "sigma_theta [kPa]",
-                "series": [_series(w.radius * 100, w.sigma_theta / 1e3, "sigma_theta")],
+                "series": [_series(rm * 100, st / 1e3, "sigma_theta, layer mean")],
             }
         )
     p = result.profile
@@ -381,28 +597,56 @@ def result_payload(
             )
     if result.hardness is not None:
         h = d["hardness"]
+        # the FD history's clock runs from the striker's release: count from first contact
+        t0 = float(result.hardness.fd.contact_start)
         plots.append(
             {
                 "id": "plot-impact",
                 "title": "impact: contact force against time",
-                "xlabel": "time [ms]",
+                "xlabel": "time since first contact [ms]",
                 "ylabel": "force [N]",
-                "series": [_series([t * 1e3 for t in h["time_s"]], h["force_N"], "FD model")],
+                "series": [
+                    _series([(t - t0) * 1e3 for t in h["time_s"]], h["force_N"], "FD model")
+                ],
             }
         )
     diag = None
     if diagnosis is not None:
         g = diagnosis
+        us = units == "us"
+        pos_unit, pos_scale = ("in", 1 / 0.0254) if us else ("mm", 1e3)
+        rows = [list(r) for r in g.summary()]
+        for i, row in enumerate(rows):
+            row[0] = f"{g.position[i] * pos_scale:.{2 if us else 1}f}"
+        caveats = []
+        zero = [
+            i
+            for i in range(g.position.size)
+            if math.isfinite(g.web_tension[i]) and g.web_tension_low[i] == g.web_tension_high[i]
+        ]
+        if zero:
+            caveats.append(
+                f"zero-width interval at {len(zero)} of {g.position.size} positions: one "
+                "reading each and no readings.repeatability, so the scatter is unknown and the "
+                "interval says nothing about it; read each position at least twice"
+            )
+        elif not g.readings.has_scatter:
+            caveats.append(
+                "no repeated readings: the intervals hold the material uncertainty only, not "
+                "the tester's scatter; read each position at least twice"
+            )
         diag = {
+            "summary": g.sentence(units),
             "header": [
-                "position [in]",
+                f"position [{pos_unit}]",
                 f"reading [{g.curve.scale}]",
                 "wound-on tension [MPa]",
                 f"P at {g.pressure_depth * 1e3:.1f} mm [kPa]",
                 "status",
             ],
-            "rows": [list(r) for r in g.summary()],
+            "rows": rows,
             "notes": list(g.notes),
+            "caveats": caveats,
         }
         ok = [i for i in range(g.position.size) if math.isfinite(g.wound_on_tension[i])]
         xs = [g.position[i] * 100 for i in ok]
@@ -436,6 +680,7 @@ def result_payload(
         "notes": list(result.notes),
         "plots": plots,
         "measured": measured_rows,
+        "inputs": inputs or [],
     }
 
 
@@ -474,23 +719,65 @@ def create_app() -> Any:
         diagnose: bool = False
 
     def bad(exc: InputError | ConvergenceError, status: int = 422) -> JSONResponse:
-        return JSONResponse({"error": _error(exc)}, status_code=status)
+        body: dict[str, Any] = {"error": _error(exc)}
+        body["errors"] = [_error(e) for e in getattr(exc, "errors", [exc])]
+        return JSONResponse(body, status_code=status)
 
-    async def _unprocessable(request: Request, exc: Exception) -> JSONResponse:
-        # FastAPI's own validation (a field too long, a wrong type): one line too
-        errs = getattr(exc, "errors", lambda: [])()
-        first = errs[0] if errs else {"loc": ("body",), "msg": str(exc)}
-        loc = [str(p) for p in first.get("loc", ()) if p != "body"]
-        fld = loc[0] if loc else "request"
-        msg = str(first.get("msg", "invalid request"))
-        if first.get("type") == "string_too_long":
+    def _one(err: dict[str, Any]) -> InputError:
+        loc = [str(p) for p in err.get("loc", ()) if p != "body"]
+        typ = err.get("type", "")
+        if typ == "json_invalid":
+            pos = f" (character {loc[0]})" if loc else ""
+            why = (err.get("ctx") or {}).get("error", "")
+            return InputError(
+                f"the request body is not JSON{pos}{': ' + str(why) if why else ''}; send "
+                '{"case": TOML text, "overrides": {...}, "readings": CSV text}',
+                "request",
+            )
+        if typ in ("model_attributes_type", "dict_type") and not loc:
+            return InputError(
+                'the request body must be a JSON object {"case": ..., "overrides": ...}',
+                "request",
+            )
+        fld = ".".join(loc) if loc else "request"
+        if loc and loc[0] == "overrides" and len(loc) > 1:
+            fld = loc[1]  # the form field itself
+        msg = str(err.get("msg", "invalid request"))
+        if typ == "string_too_long":
             limit = MAX_CASE_BYTES if fld == "case" else MAX_READINGS_BYTES
             msg = f"too large: the page takes at most {limit} bytes"
-        return bad(InputError(msg, fld))
+        elif typ == "missing":
+            msg = "missing (required)"
+        return InputError(msg, fld)
+
+    async def _unprocessable(request: Request, exc: Exception) -> JSONResponse:
+        # FastAPI's own validation (not JSON, a field too long, a wrong type): one line
+        # per field, in the page's {"error": ...} form
+        errs = list(getattr(exc, "errors", lambda: [])())
+        if not errs:
+            errs = [{"loc": (), "msg": str(exc)}]
+        mine, seen = [], set()
+        for e in errs:
+            one = _one(e)
+            if one.field not in seen:
+                seen.add(one.field)
+                mine.append(one)
+        return bad(InputErrors(mine))
+
+    async def _http_error(request: Request, exc: Any) -> JSONResponse:
+        # unknown paths and wrong methods answer in the same form as everything else
+        what = {404: "no such page or API path", 405: "method not allowed here"}.get(
+            exc.status_code, str(exc.detail)
+        )
+        return bad(
+            InputError(f"{what}: {request.method} {request.url.path}", "request"), exc.status_code
+        )
 
     from fastapi.exceptions import RequestValidationError
+    from starlette.exceptions import HTTPException as StarletteHTTPException
 
     app.add_exception_handler(RequestValidationError, _unprocessable)
+    app.add_exception_handler(StarletteHTTPException, _http_error)
 
     @app.get("/", response_class=HTMLResponse)
     def index(request: Request) -> Any:
@@ -515,13 +802,23 @@ def create_app() -> Any:
     @app.post("/api/run")
     def start_run(req: RunRequest) -> Any:
         try:
-            case = case_from_text(req.case, req.overrides)
+            case, errors = check_inputs(req.case, req.overrides)
             readings = None
             if req.readings.strip():
-                readings = readings_from_text(req.readings, case, req.lane_width, req.roll)
+                try:
+                    if case is not None:
+                        readings = readings_from_text(req.readings, case, req.lane_width, req.roll)
+                    elif len(req.readings.encode("utf-8")) > MAX_READINGS_BYTES:
+                        readings_from_text(req.readings, None)  # the size error needs no case
+                except InputError as exc:
+                    errors.append(exc)
             elif req.diagnose:
-                raise InputError("give readings to diagnose", "readings")
-            job = store.start(case, readings, req.diagnose)
+                errors.append(InputError("give readings to diagnose", "readings"))
+            if errors:
+                raise InputErrors(errors)
+            inputs = inputs_used(req.case, req.overrides, case)
+            units = unit_system(next(r["value"] for r in inputs if r["key"] == "winding.tension"))
+            job = store.start(case, readings, req.diagnose, inputs, units)
         except InputError as exc:
             return bad(exc, 429 if exc.field == "run" else 422)
         return {"job": job.id, "status_url": f"/api/jobs/{job.id}"}
