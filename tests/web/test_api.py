@@ -383,3 +383,48 @@ def test_job_progress_never_claims_100_percent_while_working(client, monkeypatch
             assert "done; " in stage
     st = job.status()
     assert st["fraction"] == 1.0 and st["indeterminate"] is False
+
+
+def _fake_evaluate(self, web_stress):
+    # a stand-in forward chain for the diagnosis (tests/test_diagnosis.py): fast, exact
+    import math
+
+    from woundroll.diagnosis import ForwardPoint
+
+    r = 50.0 + 10.0 * math.log(web_stress / 1e6)
+    return ForwardPoint(float(web_stress), float(web_stress), 0.01 * web_stress, r, r, False)
+
+
+# the fast roll without the explicit roll spring (the diagnosis varies the contact)
+DIAG_TOML = FAST_TOML.replace('roll_spring = { alpha = "2.6e8 N/m^2", beta = "1.05e5 N/m" }\n', "")
+
+
+@pytest.mark.parametrize(
+    ("tension", "units", "pos"), [("2 pli", "us", "in"), ("26.7 N", "si", "mm")]
+)
+def test_diagnosis_sentence_caveat_and_position_units(client, monkeypatch, tension, units, pos):
+    from woundroll.diagnosis import RollModel, diagnose
+    from woundroll.web import readings_from_text
+
+    monkeypatch.setattr(RollModel, "evaluate", _fake_evaluate)
+    readings = "position [in],rho\n1,50\n3,52\n"  # one reading per position
+    body = {
+        "case": DIAG_TOML,
+        "overrides": {"winding.tension": tension},
+        "readings": readings,
+        "diagnose": True,
+    }
+    s = wait(client, client.post("/api/run", json=body).json()["job"])
+    assert s["state"] == "done", s.get("error")
+    g = s["result"]["diagnosis"]
+    case = woundroll.load_case(
+        __import__("tomllib").loads(DIAG_TOML), [f"winding.tension='{tension}'"]
+    )
+    want = diagnose(case, readings_from_text(readings, case)).sentence(units)
+    assert g["summary"] == want and want.startswith("this roll reads as if wound at ")
+    assert g["header"][0] == f"position [{pos}]"
+    first = {"in": "1.00", "mm": "25.4"}[pos]  # 1 in
+    assert g["rows"][0][0] == first
+    # one reading per position, no readings.repeatability, no [uncertainty]: zero width
+    assert len(g["caveats"]) == 1 and g["caveats"][0].startswith("zero-width interval at 2 of 2")
+    assert any("no repeated readings" in n for n in g["notes"])

@@ -169,6 +169,21 @@ def test_run_matches_cli_and_renders(server, browser, cli_json, tmp_path):
     assert drv.find_element(By.ID, "defect-risk").text.startswith("defect risk: ")
     # measured readings beside the prediction
     assert drv.find_element(By.CSS_SELECTOR, '[data-key="measured.n"]').text == "3"
+    # the inputs used and where each came from (issue 22 item 2)
+    src = {
+        tr.get_attribute("data-key"): tr.find_elements(By.TAG_NAME, "td")
+        for tr in drv.find_elements(By.CSS_SELECTOR, "#inputs tr[data-key]")
+    }
+    assert [c.text for c in src["winding.tension"]][2:] == [TENSION, "350.254 N/m", "web form"]
+    assert src["winding.outer_radius"][4].text == "case file"
+    assert src["winding.outer_radius"][2].text == "13.34 cm"
+    assert src["web.thickness"][4].text == "preset PET1"
+    # the hoop stress is the smooth layer mean; the impact's clock starts at first contact
+    cap = drv.find_element(By.CSS_SELECTOR, "#plot-sigma-t .cap").text
+    assert cap.startswith("hoop stress (mean over each layer)")
+    imp = drv.find_element(By.ID, "plot-impact")
+    labels = [t.text for t in imp.find_elements(By.TAG_NAME, "text")]
+    assert "time since first contact [ms]" in labels and "0" in labels
     for pid in ("plot-sigma-r", "plot-profile", "plot-impact"):
         assert drv.find_element(By.ID, pid).find_elements(By.TAG_NAME, "polyline")
     # zoom into a lane: a wheel event narrows the x axis of the profile plot
@@ -213,6 +228,14 @@ BAD = [
     ("case-text", "PATH", "err-case", "winding.thickness_profile: the web page takes no file"),
     ("case-text", "BIG", "err-case", f"at most {MAX_CASE_BYTES} bytes"),
     ("case-text", "UNKNOWN", "err-case", "core.rigidity: unknown key"),
+    ("f-winding.friction", "lots", "err-winding.friction", "expects a number (e.g. '0.3')"),
+    # outside the Rho scale 0-100: the line and value named (issue 22 item 3)
+    (
+        "readings-text",
+        "position [in],rho\n1,-50\n2,5000\n",
+        "err-readings",
+        "readings: line 2: -50, line 3: 5000 Rho lie outside the Rho scale 0-100",
+    ),
 ]
 
 
@@ -250,3 +273,113 @@ def test_long_run_shows_progress_and_cancels(server, browser):
     drv.find_element(By.ID, "cancel").click()
     _wait(drv, lambda d: d.find_element(By.ID, "stage").text == "cancelled", 120)
     assert drv.find_element(By.ID, "run").is_enabled()
+
+
+def _results_count(drv):
+    return len(drv.find_elements(By.ID, "summary"))
+
+
+def test_every_field_error_shown_at_once(server, browser):
+    drv = browser
+    drv.get(server + "/")
+    _pick(drv, "pet1-26.7N")
+    _set(drv, "f-winding.tension", "3 furlong")
+    _set(drv, "f-winding.friction", "lots")
+    _set(drv, "f-web.thickness", "1 psi")
+    _set(drv, "readings-text", "position [in],rho\n1,abc\n")
+    _run(drv)
+    _wait(drv, lambda d: d.find_element(By.ID, "err-readings").text, 60)
+    for box, text in (
+        ("err-winding.tension", "winding.tension: '3 furlong'"),
+        ("err-winding.friction", "winding.friction: expects a number"),
+        ("err-web.thickness", "web.thickness: '1 psi'"),
+        ("err-readings", "readings: "),
+    ):
+        msg = drv.find_element(By.ID, box).text
+        assert msg.startswith(text) and "\n" not in msg, (box, msg)
+    assert drv.find_element(By.ID, "err-web.width").text == ""
+    assert "bad" in drv.find_element(By.ID, "f-winding.friction").get_attribute("class")
+
+
+def test_oversize_upload_stops_the_run(server, browser, tmp_path):
+    from woundroll.web import MAX_READINGS_BYTES
+
+    drv = browser
+    drv.get(server + "/")
+    _pick(drv, "pet1-26.7N")
+    big = tmp_path / "big.csv"
+    big.write_text("position [in],rho\n" + "1,50\n" * (MAX_READINGS_BYTES // 5), encoding="utf-8")
+    drv.find_element(By.ID, "readings-file").send_keys(str(big))
+    msg = _wait(drv, lambda d: d.find_element(By.ID, "err-readings").text, 30)
+    assert "big.csv" in msg and f"at most {MAX_READINGS_BYTES} bytes" in msg
+    # Run does not go on without the readings the user chose
+    _run(drv)
+    time.sleep(1.0)
+    assert drv.find_element(By.ID, "err-readings").text == msg
+    assert drv.find_element(By.ID, "stage").text == "idle" and _results_count(drv) == 0
+    # a file that fits replaces it; the run goes on with its readings
+    small = tmp_path / "small.csv"
+    small.write_text("position [in],rho\n1,50\n3,52\n", encoding="utf-8")
+    drv.find_element(By.ID, "readings-file").send_keys(str(small))
+    _wait(drv, lambda d: "3,52" in d.find_element(By.ID, "readings-text").get_property("value"))
+    assert drv.find_element(By.ID, "err-readings").text == ""
+    _run(drv)
+    _wait(drv, lambda d: d.find_elements(By.CSS_SELECTOR, '[data-key="measured.n"]'))
+    assert drv.find_element(By.CSS_SELECTOR, '[data-key="measured.n"]').text == "2"
+
+
+def _slow_fake_evaluate(self, web_stress):
+    # the stand-in forward chain of tests/test_diagnosis.py, 0.3 s a run: the page has
+    # time to show each stage
+    import math
+
+    from woundroll.diagnosis import ForwardPoint
+
+    time.sleep(0.3)
+    r = 50.0 + 10.0 * math.log(web_stress / 1e6)
+    return ForwardPoint(float(web_stress), float(web_stress), 0.01 * web_stress, r, r, False)
+
+
+def test_diagnosis_progress_sentence_and_caveat(server, browser, monkeypatch):
+    from woundroll.case import load_case
+    from woundroll.diagnosis import RollModel, diagnose
+    from woundroll.web import readings_from_text
+
+    # the server runs in this process: its jobs use the stand-in chain
+    monkeypatch.setattr(RollModel, "evaluate", _slow_fake_evaluate)
+    drv = browser
+    drv.get(server + "/")
+    _pick(drv, "pet1-26.7N")
+    drv.find_element(By.ID, "f-winding.tension").send_keys("2 pli")
+    readings = "position [in],rho\n1,50\n3,52\n5,51\n"
+    _set(drv, "readings-text", readings)
+    drv.find_element(By.ID, "diagnose").click()
+    _run(drv)
+    samples = []
+    t0 = time.time()
+    while not _results_count(drv):
+        assert time.time() - t0 < 180, "the diagnosis did not finish"
+        bar = drv.find_element(By.ID, "progress")
+        samples.append((drv.find_element(By.ID, "stage").text, bar.get_dom_attribute("value")))
+        time.sleep(0.05)
+    running = [(t, v) for t, v in samples if t.startswith("running")]
+    # never 100 % while the work goes on; after a stage is done the bar moves without a
+    # value (indeterminate) and the stage says what runs now
+    assert running and not any("100 %" in t for t, _ in running)
+    fwd = [t for t, v in running if "diagnosis: full forward runs over tension" in t and v]
+    assert fwd and all(" %" in t for t in fwd)
+    check = [v for t, v in running if "diagnosis: checking the result with a full forward run" in t]
+    assert check and all(v is None for v in check)
+    # the sentence in the user's units (pli typed on the form), first on the page
+    case = load_case("pet1-26.7N", ["winding.tension='2 pli'"])
+    want = diagnose(case, readings_from_text(readings, case)).sentence("us")
+    assert drv.find_element(By.ID, "diagnosis-summary").text == want
+    assert "the 2 pli set point" in want
+    # positions with their unit; the single-reading caveat on the page
+    head = drv.find_elements(By.CSS_SELECTOR, "#diagnosis th")[0].text
+    assert head == "position [in]"
+    cells = drv.find_elements(By.CSS_SELECTOR, "#diagnosis tr td:first-child")
+    assert [c.text for c in cells] == ["1.00", "3.00", "5.00"]
+    cav = drv.find_element(By.ID, "diagnosis-caveats").text
+    assert "zero-width interval at 3 of 3 positions" in cav
+    assert "no repeated readings" in drv.find_element(By.ID, "diagnosis-notes").text

@@ -414,7 +414,7 @@ class JobStore:
     def _run(self, job: Job, case: Any) -> None:
         from woundroll.pipeline import run
 
-        def progress(stage: str, fraction: float, after: str = "next step") -> None:
+        def progress(stage: str, fraction: float, after: str = "working on the next step") -> None:
             if job.cancel.is_set():
                 raise Cancelled
             label = STAGE_LABELS.get(stage, stage)
