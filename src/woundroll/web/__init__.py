@@ -182,6 +182,13 @@ def inputs_used(text: str, overrides: dict[str, str], case: Any) -> list[dict[st
     data = tomllib.loads(text)
     preset = _get(data, "web.preset")
     kind, v = case.winding.tension
+    # how a value the user did not write is shown: (unit, SI value of one unit)
+    shown_in = {
+        "winding.outer_radius": ("cm", 1e-2),
+        "web.thickness": ("um", 1e-6),
+        "web.width": ("cm", 1e-2),
+        "web.E_theta": ("MPa", 1e6),
+    }
     si: dict[str, tuple[float, str]] = {
         "winding.tension": (v, {"force": "N", "force_per_length": "N/m", "pressure": "Pa"}[kind]),
         "winding.outer_radius": (
@@ -198,14 +205,16 @@ def inputs_used(text: str, overrides: dict[str, str], case: Any) -> list[dict[st
     for key, (label, _) in FORM_FIELDS.items():
         given = (overrides or {}).get(key)
         value, unit = si[key]
+        u, f = shown_in.get(key, (unit, 1.0))
+        nice = f"{value / f:.6g} {u}".strip()
         if given is not None and str(given).strip():
             source, shown = "web form", str(given).strip()
         elif _get(data, key) is not None:
             source, shown = "case file", str(_get(data, key))
         elif key.startswith("web.") and preset:
-            source, shown = f"preset {preset}", f"{value:.6g} {unit}".strip()
+            source, shown = f"preset {preset}", nice
         else:
-            source, shown = "default", f"{value:.6g} {unit}".strip()
+            source, shown = "default", nice
         rows.append(
             {
                 "key": key,
@@ -459,8 +468,8 @@ class JobStore:
             job.payload = result_payload(
                 result, measured, job.diagnosis, job.defects, job.inputs, job.units
             )
+            job.stage, job.fraction, job.indeterminate = "", 1.0, False
             job.state = "done"
-            job.indeterminate = False
         except Cancelled:
             job.state = "cancelled"
         except (InputError, ConvergenceError) as exc:
