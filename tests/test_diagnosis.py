@@ -394,3 +394,27 @@ def test_cli_diagnose_prints_the_sentence_first(fake_chain, tmp_path):
     assert first.startswith("this roll reads as if wound at ") and "the 2 pli set point" in first
     res = CliRunner().invoke(app, ["diagnose", "pet1-26.7N", "--readings", str(f), "--json"])
     assert json.loads(res.output)["diagnosis"]["summary"].startswith("this roll reads as if")
+
+
+def test_forward_curve_progress_rises_with_every_run(fake_chain):
+    # readings far below the grid: extension to 1/8 and refinement runs after the grid of 5
+    model = RollModel.from_case(load_case("pet1-26.7N"))
+
+    n = {"runs": 0}
+    real = RollModel.evaluate
+
+    def counted(self, t):
+        n["runs"] += 1
+        return real(self, t)
+
+    RollModel.evaluate = counted
+    try:
+        seen = []
+        forward_curve(model, [20.0, 30.0, 51.0], progress=lambda f: seen.append((f, n["runs"])))
+    finally:
+        RollModel.evaluate = real
+    fr = [f for f, _ in seen]
+    assert n["runs"] > 7  # more runs than the grid and two
+    assert all(b > a for a, b in zip(fr, fr[1:], strict=False))  # every run moves the bar
+    assert fr[-1] == 1.0 and max(fr[:-1]) < 1.0  # 100 % only when the curve is done
+    assert [r for _, r in seen[:-1]] == list(range(1, n["runs"] + 1))

@@ -341,10 +341,16 @@ def forward_curve(
         else [t_case * f for f in factors]
     )
     pts: dict[float, ForwardPoint] = {}
-    for i, t in enumerate(grid):
-        pts[t] = model.evaluate(t)
+
+    def step() -> None:
+        # runs done over runs expected (the grid and two more, typically: extension and
+        # refinement); it rises with every run and reaches 1 only at the end
         if progress is not None:
-            progress((i + 1) / (len(grid) + 2))
+            progress(len(pts) / max(len(grid) + 2, len(pts) + 1))
+
+    for t in grid:
+        pts[t] = model.evaluate(t)
+        step()
     targets = np.asarray(targets, dtype=float)
     targets = targets[np.isfinite(targets)]
     if tensions is None and targets.size:
@@ -363,6 +369,7 @@ def forward_curve(
                 break
             try:
                 pts[t_new] = model.evaluate(t_new)
+                step()
             except (ConvergenceError, InputError):
                 stuck[side] = True  # the chain has no answer there (e.g. too slack to solve)
     if tensions is None and targets.size and refine > 1.0:
@@ -381,6 +388,7 @@ def forward_curve(
             for k in sorted(split):
                 t_new = math.sqrt(ts[k] * ts[k - 1])
                 pts[t_new] = model.evaluate(t_new)
+                step()
     if progress is not None:
         progress(1.0)
     return ForwardCurve(tuple(pts[t] for t in sorted(pts)), model.scale)
