@@ -399,7 +399,6 @@ def test_cli_diagnose_prints_the_sentence_first(fake_chain, tmp_path):
 def test_forward_curve_progress_rises_with_every_run(fake_chain):
     # readings far below the grid: extension to 1/8 and refinement runs after the grid of 5
     model = RollModel.from_case(load_case("pet1-26.7N"))
-
     n = {"runs": 0}
     real = RollModel.evaluate
 

@@ -203,6 +203,7 @@ def test_diagnosis_on_the_page_and_in_the_report(client):
     assert s["state"] == "done", s.get("error")
     g = s["result"]["diagnosis"]
     assert len(g["rows"]) == 3 and all(row[-1] == "ok" for row in g["rows"])
+    assert g["summary"].startswith("this roll reads as if wound at ")
     assert any(p["id"] == "plot-diagnosis" for p in s["result"]["plots"])
     rep = client.get(s["report_url"]).text
     assert 'id="diagnosis"' in rep and 'id="defects"' in rep
