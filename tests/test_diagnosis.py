@@ -392,6 +392,9 @@ def test_cli_diagnose_prints_the_sentence_first(fake_chain, tmp_path):
     assert res.exit_code == 0, res.output
     first = res.output.strip().splitlines()[0]
     assert first.startswith("this roll reads as if wound at ") and "the 2 pli set point" in first
+    # every column header keeps its unit (rich once ate "[in]" and "[kPa]" as markup)
+    for head in ("position [in]", "reading [Rho]", "[kPa]"):
+        assert head in res.output, head
     res = CliRunner().invoke(app, ["diagnose", "pet1-26.7N", "--readings", str(f), "--json"])
     assert json.loads(res.output)["diagnosis"]["summary"].startswith("this roll reads as if")
 

@@ -208,11 +208,12 @@ def diagnose_cmd(
     if quiet:
         return
     out.print(escape(d.sentence()), highlight=False, soft_wrap=True)
+    # headers escaped: rich reads "[in]" and "[kPa]" as markup and drops them
     t = Table(
-        "position [in]",
-        f"reading [{d.curve.scale}]",
-        "wound-on tension [MPa]",
-        f"P at {d.pressure_depth * 1e3:.1f} mm [kPa]",
+        escape("position [in]"),
+        escape(f"reading [{d.curve.scale}]"),
+        escape("wound-on tension [MPa]"),
+        escape(f"P at {d.pressure_depth * 1e3:.1f} mm [kPa]"),
         "status",
         title=escape(
             f"{c.title or case}: diagnosis ({100 * d.confidence:.0f} % intervals in brackets)"
