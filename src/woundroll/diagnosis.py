@@ -111,7 +111,7 @@ class RollModel:
     depth: float = 0.0
     semi_contact_width_given: bool = False
     winding_options: Any = None
-    contact_model: str = "2d"
+    contact_model: str | None = None  # a registry name; None: the default
 
     @classmethod
     def from_case(cls, case: Case, scale: str | None = None) -> RollModel:
