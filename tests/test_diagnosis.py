@@ -292,3 +292,22 @@ def test_cli_causes_full_level_range():
     )  # fmt: skip
     lines = [line for line in res.output.splitlines() if line.strip()]
     assert res.exit_code == 2 and len(lines) == 1 and "--full-level" in lines[0], res.output
+
+
+def test_saturated_reading_bounds_the_tension_from_one_side():
+    # three passes at two positions; the first reads the dial's end (100 Rho) once: that
+    # position's tension is only a lower bound (no upper end of its interval), the other
+    # position keeps a two-sided interval
+    from woundroll.diagnosis import saturated_positions
+
+    x = [0.03, 0.03, 0.03, 0.09, 0.09, 0.09]
+    v = [99.0, 100.0, 99.5, 55.0, 56.0, 55.5]
+    r = readings_from_arrays(x, v)
+    top, bottom = saturated_positions(r)
+    assert top.tolist() == [True, False] and not bottom.any()
+    d = diagnose("pet1-26.7N", r, verify=False)
+    assert d.status[0] == "saturated: at least" and d.status[1] == "ok"
+    assert math.isnan(d.web_tension_high[0]) and math.isfinite(d.web_tension_low[0])
+    assert math.isfinite(d.web_tension_high[1]) and math.isfinite(d.web_tension_low[1])
+    assert d.web_tension[0] > d.web_tension[1]  # the harder position, at least
+    assert any("saturated" in n for n in d.notes)

@@ -20,7 +20,7 @@ from woundroll.site_calibration import calibrate_site
 
 runner = CliRunner()
 
-ROLLS = {"a": ("PET1", "20 N"), "b": ("PET1", "45 N"), "c": ("PET2", "30 N"), "d": ("PET2", "70 N")}
+ROLLS = {"a": ("PET1", "10 N"), "b": ("PET1", "18 N"), "c": ("PET2", "30 N"), "d": ("PET2", "70 N")}
 CASE = """title = "{name}"
 [web]
 preset = "{preset}"

@@ -196,9 +196,11 @@ def calibrate_cmd(
     from woundroll.cli import _fail, err, out
     from woundroll.site_calibration import calibrate_site
 
+    live = not (quiet or as_json) and err.is_terminal  # a pipe or a log gets no progress
+
     def progress(stage: str, runs: int) -> None:
-        if not (quiet or as_json):
-            err.print(f"\r{stage}: {runs} model runs", end="", highlight=False)
+        if live:
+            err.print(f"\r{stage}: {runs} full model runs", end="", highlight=False)
 
     try:
         cal = calibrate_site(readings, cases, fit, progress=progress)
@@ -210,12 +212,14 @@ def calibrate_cmd(
                     f"cannot write {out_file}: {exc.strerror or exc}", "--out"
                 ) from None
     except InputError as exc:
-        if not (quiet or as_json):
+        if live:
             err.print("")
         _fail(exc, 2)
     except ConvergenceError as exc:
+        if live:
+            err.print("")
         _fail(exc, 1)
-    if not (quiet or as_json):
+    if live:
         err.print("")
     if as_json:
         sys.stdout.write(strict_json(cal.to_dict()) + "\n")
