@@ -137,9 +137,9 @@ def test_fast_path_within_3_percent_of_3d(key: str) -> None:
 
 
 def test_pipeline_json_names_the_model() -> None:
-    auto = json.loads(
-        run(load_case("pet1-26.7N", ["contact.model='2d+cmd-spread'"])).to_json()
-    )["contact"]
+    auto = json.loads(run(load_case("pet1-26.7N", ["contact.model='2d+cmd-spread'"])).to_json())[
+        "contact"
+    ]
     assert auto["model"] == MODEL_NAME
     cs = auto["cmd_spread"]
     assert (cs["basin_factor_c_b"], cs["end_factor_c_a"]) == (BASIN_FACTOR, END_FACTOR)
@@ -227,9 +227,7 @@ def test_3d_reference_recomputed(key: str) -> None:
     # H = 2 cm since the fit window was widened) and regrades the 24 hypoelastic increments,
     # which moves F by up to 9 % at the first depth and 1.5 % further on (Rho by 0.3 %)
     pin = f"contact.depth_max='{float(d[-1])!r} m'"
-    case = load_case(
-        _case_name(key), [*_overrides(key)[:-2], REF_HEAD, "contact.model='3d'", pin]
-    )
+    case = load_case(_case_name(key), [*_overrides(key)[:-2], REF_HEAD, "contact.model='3d'", pin])
     res = run(case)
     assert res.contact.model == "3d"
     c = res.contact.contact
