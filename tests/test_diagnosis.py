@@ -420,3 +420,22 @@ def test_forward_curve_progress_rises_with_every_run(fake_chain):
     assert all(b > a for a, b in zip(fr, fr[1:], strict=False))  # every run moves the bar
     assert fr[-1] == 1.0 and max(fr[:-1]) < 1.0  # 100 % only when the curve is done
     assert [r for _, r in seen[:-1]] == list(range(1, n["runs"] + 1))
+
+
+def test_saturated_reading_bounds_the_tension_from_one_side():
+    # three passes at two positions; the first reads the dial's end (100 Rho) once: that
+    # position's tension is only a lower bound (no upper end of its interval), the other
+    # position keeps a two-sided interval
+    from woundroll.diagnosis import saturated_positions
+
+    x = [0.03, 0.03, 0.03, 0.09, 0.09, 0.09]
+    v = [99.0, 100.0, 99.5, 55.0, 56.0, 55.5]
+    r = readings_from_arrays(x, v)
+    top, bottom = saturated_positions(r)
+    assert top.tolist() == [True, False] and not bottom.any()
+    d = diagnose("pet1-26.7N", r, verify=False)
+    assert d.status[0] == "saturated: at least" and d.status[1] == "ok"
+    assert math.isnan(d.web_tension_high[0]) and math.isfinite(d.web_tension_low[0])
+    assert math.isfinite(d.web_tension_high[1]) and math.isfinite(d.web_tension_low[1])
+    assert d.web_tension[0] > d.web_tension[1]  # the harder position, at least
+    assert any("saturated" in n for n in d.notes)

@@ -125,9 +125,9 @@ def test_head_length_override_scales_the_force():
     assert long.contact.to_dict()["head_length_m"] == pytest.approx(0.0508)
     # and the reading rises (a stiffer spring for the same striker)
     assert long.hardness.to_dict()["rho_energy"] > base.hardness.to_dict()["rho_energy"]
-    # the default path adds the load spread past the ends, s(d), which does not depend on
-    # the head's length: F_long / F = (2 L + 2 s) / (L + 2 s)
-    opts[-1] = "contact.model='auto'"
+    # the CMD-spreading path adds the load spread past the ends, s(d), which does not
+    # depend on the head's length: F_long / F = (2 L + 2 s) / (L + 2 s)
+    opts[-1] = "contact.model='2d+cmd-spread'"
     base = woundroll.run(woundroll.load_case("pet1-26.7N", opts)).contact
     long = woundroll.run(woundroll.load_case("pet1-26.7N", [*opts, "tester.head_length='5.08 cm'"]))
     s, L = base.cmd_spread.spread[1:], 0.0254
@@ -139,7 +139,7 @@ def test_head_length_override_scales_the_force():
 @pytest.mark.parametrize(
     ("overrides", "field"),
     [
-        (["tester.instrument='schmidt-n'", "contact.model='2d'"], "tester.instrument"),
+        (["tester.instrument='schmidt-n'", "contact.model='2d'"], "contact.model"),
         (["contact.depth_max='10 um'", "contact.no_update=false"], "contact.depth_max"),
         (["contact.options.bogus=1"], "contact.options.bogus"),
         (["contact.friction=-1"], "contact.friction"),
@@ -206,10 +206,13 @@ def test_uniform_profile_reads_like_the_1d_chain(tmp_path):
     rho_1d = one_d.hardness.to_dict()["rho_energy"]
     # uniform: symmetric about mid-width; the edge sectors differ slightly (free CMD edges)
     assert prof.rho[0] == pytest.approx(prof.rho[2], rel=1e-9)
-    assert prof.rho == pytest.approx(np.full(3, rho_1d), rel=0.03)
-    # the FD model per sector: it reads the striker spring too and has the roll's active
-    # mass (a = 0.6 cm), so it differs from the energy model by a few per cent
-    assert prof.rho_fd == pytest.approx(prof.rho, rel=0.06)
+    assert prof.rho_energy == pytest.approx(np.full(3, rho_1d), rel=0.03)
+    # the headline per sector is the FD model (the instrument's own reading): it reads the
+    # striker spring too and has the roll's active mass (a = 0.6 cm), so it differs from
+    # the energy model by a few per cent
+    assert prof.rho == pytest.approx(prof.rho_energy, rel=0.06)
+    d = prof.to_dict()
+    assert d["roll_model"] == "2d" and d["reading_model"] == pytest.approx(list(prof.rho))
 
 
 def test_profile_json_and_plots(tmp_path):

@@ -53,6 +53,9 @@ def test_bad_contact_model_is_rejected() -> None:
 
 
 def test_cli_model_option_names_the_studies() -> None:
-    res = CliRunner().invoke(app, ["study", "tension", "--model", "3d", "-q"])
+    # the dynamic study fixes its models (2D and 3D rows side by side)
+    res = CliRunner().invoke(app, ["study", "dynamic", "--model", "3d", "-q"])
     assert res.exit_code == 2
     assert "--model" in res.output and "slip" in res.output
+    res = CliRunner().invoke(app, ["study", "tension", "--model", "4d", "-q"])
+    assert res.exit_code == 2 and "unknown roll model" in res.output

@@ -287,8 +287,19 @@ class WindingSpec(_Section):
         )
 
 
+def _roll_model_name(name: Any) -> str | None:
+    """``contact.model``: a registered roll model's name (or unset: the default)."""
+    from woundroll.contact.models import check_model_name
+
+    return check_model_name(name, "contact.model")
+
+
 class ContactSpec(_Section):
-    """``[contact]``: the 2D contact model that gives the roll spring under the striker.
+    """``[contact]``: the roll model that gives the roll spring under the striker.
+
+    ``model``: its name in the registry :data:`woundroll.contact.models.ROLL_MODELS`; unset,
+    the registry's default for the instrument's head (plane strain ``"2d"`` for a cylinder,
+    docs/contact.md "Which model reads a roll").
 
     ``depth_max``: largest indentation [length]; by default it follows the impact (the
     contact is solved to 1.25 x the impact's maximum depth, see
@@ -305,13 +316,22 @@ class ContactSpec(_Section):
     friction: Q("dimensionless", "nonnegative") = 0.3
     no_update: bool = False
     options: dict[str, Any] = Field(default_factory=dict)
-    #: "2d" plane strain, "3d" (any head), "auto": 2D for cylinders, 3D for other heads
-    model: Literal["2d", "3d", "auto"] = "auto"
+    #: the roll model by its registry name (:data:`woundroll.contact.models.ROLL_MODELS`:
+    #: "2d" plane strain, "2d+cmd-spread", "3d"); unset: the registry's default for the head
+    model: Annotated[str | None, BeforeValidator(_roll_model_name)] = None
     options3d: dict[str, Any] = Field(default_factory=dict)
     #: slip emulation (Figure 19) in the 2D and 3D models: G_r_theta (and G_r_z) of the
     #: elements where SF {23} reaches 1 (mu = ``friction``) drop to ``slip_shear_fraction``
     slip: Literal["none", "reduced-shear"] = "none"
     slip_shear_fraction: Q("dimensionless") = 0.01
+
+    def roll_model(self, head_shape: str = "cylinder") -> Any:
+        """The registry entry of the roll model that reads this case's roll
+        (:func:`woundroll.contact.models.resolve_model`: ``model``, or the default for the
+        head)."""
+        from woundroll.contact.models import resolve_model
+
+        return resolve_model(self.model, head_shape, "contact.model")
 
     def _slip_options(self, table: dict[str, Any], name: str) -> dict[str, Any]:
         """``table`` with the section's slip keys (one spelling for 2D and 3D)."""
@@ -633,6 +653,8 @@ def _check_options(case: Case) -> None:
     _ = case.tester_setup
     if case.tester is not None:
         case.contact.contact_options()
+        if "roll_spring" not in case.tester and case.tester_setup is not None:
+            case.contact.roll_model(case.tester_setup.instrument.head_shape)
     if case.contact.dynamic or case.contact.dynamic_options:
         case.contact.dynamic_settings()
         if case.tester is None or "roll_spring" in case.tester:
@@ -645,16 +667,6 @@ def _check_options(case: Case) -> None:
             raise InputError(
                 "the impact in time runs on the single roll, not per CMD sector: remove "
                 "winding.thickness_profile or contact.dynamic",
-                "contact.dynamic",
-            )
-        if (
-            case.contact.model == "2d"
-            and case.tester_setup is not None
-            and case.tester_setup.instrument.head_shape != "cylinder"
-        ):
-            raise InputError(
-                "the impact in time on the 2D (plane-strain) FE roll takes a cylindrical "
-                "head; use contact.model = '3d' (or 'auto') for this head",
                 "contact.dynamic",
             )
     _read_file(case, "thickness_profile", "winding.thickness_profile")

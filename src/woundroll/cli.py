@@ -245,10 +245,12 @@ def result_summary(result: RunResult) -> list[tuple[str, str]]:
     h = result.hardness
     if h is not None:
         d = h.to_dict()
-        outside = result.flags.get("reading_outside_range")
-        flag = " (outside the instrument's range)" if outside else ""
+        model = d.get("roll_model") or (c.model if (c := result.contact) else "")
+        shown = f"{d['reading']:.1f}"
+        if d["saturated"]:
+            shown += f" (saturated: the model reads {d['reading_model']:.1f}, off the scale)"
         rows += [
-            (f"{d['readout']} reading ({d['instrument']})", f"{d['reading']:.1f}{flag}"),
+            (f"{d['readout']} reading ({d['instrument']}, roll model {model})", shown),
             ("Rho (finite difference / energy)", f"{d['rho_fd']:.1f} / {d['rho_energy']:.1f}"),
             ("impulse", f"{d['impulse_Ns']:.4f} N s"),
             ("max depth", f"{d['delta_max_m'] * 1e3:.3f} mm"),
@@ -281,16 +283,25 @@ def result_summary(result: RunResult) -> list[tuple[str, str]]:
     p = result.profile
     if p is not None:
         st, th = p.rho_stats, p.thickness_stats
+        n_sat = int(p.saturated.sum())
         rows += [
-            ("CMD sectors", f"{st.n}"),
+            ("CMD sectors", f"{p.z.size}"),
+            ("roll model / reading", f"{p.roll_model} / FD (energy model beside it)"),
             ("thickness mean / CoV", f"{th.mean * 1e6:.2f} um / {100 * th.cov:.2f} %"),
-            ("Rho mean / SD", f"{st.mean:.1f} / {st.sd:.1f}"),
-            ("Rho CoV", f"{100 * st.cov:.1f} % ({st.band})"),
-            (
-                "Rho min / max / peak-to-peak",
-                f"{st.min:.1f} / {st.max:.1f} / {st.peak_to_peak:.1f}",
-            ),
         ]
+        if n_sat:
+            rows.append(("saturated sectors (off the scale, excluded)", f"{n_sat}"))
+        if st is None:
+            rows.append(("Rho statistics", "fewer than two readings on the scale"))
+        else:
+            rows += [
+                ("Rho mean / SD (on the scale)", f"{st.mean:.1f} / {st.sd:.1f}"),
+                ("Rho CoV", f"{100 * st.cov:.1f} % ({st.band})"),
+                (
+                    "Rho min / max / peak-to-peak",
+                    f"{st.min:.1f} / {st.max:.1f} / {st.peak_to_peak:.1f}",
+                ),
+            ]
         n_slack = int(p.slack.sum())
         if n_slack:
             rows.append(("slack sectors (reading set by the E_r floor)", f"{n_slack}"))
@@ -326,32 +337,19 @@ def study(
     ] = 1,
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar.")] = False,
     model: Annotated[
-        str,
+        str | None,
         typer.Option(
-            help="Contact model of the pile-height (2d, auto = 2d + CMD spread, 3d) and slip "
-            "(2d, 3d) studies."
+            help="Roll model that reads the rolls of the tension, pile-height, slip and all "
+            "studies (2d, 2d+cmd-spread, 3d; slip: 2d or 3d). Default: the registry's (2d)."
         ),
-    ] = "2d",
+    ] = None,
 ) -> None:
     """Run one of the reference paper's studies on its Table 2 rolls; print its tables."""
     from woundroll._output import strict_json
     from woundroll.studies import run_study
 
     def job(progress):  # type: ignore[no-untyped-def]
-        if name == "slip" and model in ("2d", "3d"):
-            from woundroll.studies.slip import run as slip_study
-
-            return slip_study(progress, workers=workers, model=model)
-        if model != "2d" or name == "pile-height":
-            from woundroll.studies.pile_height import pile_height_study
-
-            if name != "pile-height" or model not in ("2d", "3d", "auto"):
-                raise InputError(
-                    "--model is for the pile-height (2d, auto or 3d) and slip (2d or 3d) studies",
-                    "--model",
-                )
-            return pile_height_study(progress=progress, workers=workers, model=model)
-        return run_study(name, progress=progress, workers=workers)
+        return run_study(name, progress=progress, workers=workers, model=model)
 
     from woundroll._pool import Interrupted, clean_stop
 
@@ -493,6 +491,11 @@ from woundroll import cli_sweep as _cli_sweep  # noqa: E402
 _cli_report.register(app)
 _cli_sweep.register(app)
 _cli_serve.register(app)
+
+# calibration: the head on its block, and the model on a mill's own rolls
+from woundroll import cli_calibrate as _cli_calibrate  # noqa: E402
+
+_cli_calibrate.register(app)
 
 
 def main() -> None:

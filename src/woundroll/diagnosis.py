@@ -112,7 +112,7 @@ class RollModel:
     depth: float = 0.0
     semi_contact_width_given: bool = False
     winding_options: Any = None
-    contact_model: str = "2d"
+    contact_model: str | None = None  # a registry name; None: the default
 
     @classmethod
     def from_case(cls, case: Case, scale: str | None = None) -> RollModel:
@@ -774,6 +774,28 @@ def _perturbed_webs(model: RollModel, unc: Any) -> list[tuple[str, float, Web]]:
     return out
 
 
+def saturated_positions(readings: Any) -> tuple[NDArray[np.bool_], NDArray[np.bool_]]:
+    """Positions with a reading at the top (``[0]``) or the bottom (``[1]``) end of the
+    instrument's scale (:data:`woundroll.instruments.definitions.READING_RANGES`): saturated
+    readings, which bound the roll's hardness from one side only."""
+    from woundroll.instruments.definitions import READING_RANGES
+    from woundroll.readings import SCALES
+
+    n = np.size(readings.position)
+    rng = READING_RANGES.get(SCALES.get(readings.scale, ""))
+    if rng is None:
+        return np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
+    pos = np.asarray(readings.position, dtype=float)
+    raw_p = np.asarray(readings.raw_position, dtype=float)
+    raw_v = np.asarray(readings.raw_value, dtype=float)
+    top, bottom = np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
+    for i, p in enumerate(pos):
+        v = raw_v[np.isclose(raw_p, p, rtol=0.0, atol=1e-9)]
+        top[i] = bool(np.any(v >= rng[1]))
+        bottom[i] = bool(np.any(v <= rng[0])) and not top[i]
+    return top, bottom
+
+
 def diagnose(
     case: Case | str | Path,
     readings: Readings | str | Path | None = None,
@@ -845,10 +867,28 @@ def diagnose(
     # an interval end beyond the curve is unbounded on that side
     t_lo = np.where(r_lo < curve.reading[0], math.nan, t_lo)
     t_hi = np.where(r_hi > curve.reading[-1], math.nan, t_hi)
+    # a reading at the scale's end is saturated: the roll is at least that hard (or soft),
+    # so it bounds the tension from one side only
+    top, bottom = saturated_positions(readings)
+    t_hi = np.where(top, math.nan, t_hi)
+    t_lo = np.where(bottom, math.nan, t_lo)
     status = tuple(
-        "below range" if m < curve.reading[0] else "above range" if m > curve.reading[-1] else "ok"
-        for m in r_mid
+        "saturated: at least"
+        if tp
+        else "saturated: at most"
+        if bt
+        else "below range"
+        if m < curve.reading[0]
+        else "above range"
+        if m > curve.reading[-1]
+        else "ok"
+        for m, tp, bt in zip(r_mid, top, bottom, strict=True)
     )
+    if np.any(top | bottom):
+        notes.append(
+            f"{int(np.sum(top | bottom))} position(s) read at the scale's end (saturated): "
+            "their tension is a bound, the interval open on the saturated side"
+        )
     if case.winding.thickness_profile is not None:
         notes.append(
             "each position is read as its own 1D roll at the nominal thickness; the case's "

@@ -101,6 +101,11 @@ class RunResult:
             part = getattr(self, name)
             if part is not None:
                 out[name] = part.to_dict()
+        if "hardness" in out:
+            # the roll model behind the reading (the registry's name, or the given spring)
+            out["hardness"]["roll_model"] = (
+                self.contact.model if self.contact is not None else "tester.roll_spring"
+            )
         if self.dynamic is not None and "hardness" in out:
             out["hardness"]["dynamic"] = self.dynamic.to_dict()
         out["flags"] = dict(self.flags)
@@ -214,10 +219,17 @@ def result_flags(
         out = (r < rng[0]) | (r > rng[1]) | ~np.isfinite(r)
         if out.any():
             flags["reading_outside_range"] = True
-            where = f" in {int(out.sum())} of {r.size} sectors" if r.size > 1 else ""
+            bad = r[out]
+            far = bad[np.nanargmax(np.abs(bad - 0.5 * (rng[0] + rng[1])))]
+            where = (
+                f" in {int(out.sum())} of {r.size} sectors (excluded from the statistics)"
+                if r.size > 1
+                else ""
+            )
             warnings.append(
-                f"reading {np.nanmax(r):.4g}{where} is outside the {instrument.name}'s range "
-                f"{rng[0]:g}-{rng[1]:g} ({instrument.readout}): the instrument would not show it"
+                f"the model reads {far:.4g}{where}, beyond the {instrument.name}'s scale "
+                f"{rng[0]:g}-{rng[1]:g} ({instrument.readout}): the instrument shows the scale's "
+                "end there (saturated)"
             )
     for label, rs in stiffness:
         if rs is not None and rs.extrapolated:
@@ -254,6 +266,19 @@ def hardness_on_roll(
     return hardness_from_spring(
         setup, stiffness.alpha, stiffness.beta, pile_height=pile_height, density=density
     )
+
+
+def _calibration_notes(instrument: Any, model: str) -> list[str]:
+    """A note when the head was calibrated on its block in another model than the one that
+    reads this roll (docs/instruments.md, "The head calibrated in the reading's model")."""
+    cal = instrument.calibration_model
+    if not cal or cal == model:
+        return []
+    return [
+        f"the head was calibrated on its block in the {cal!r} model, this roll is read in "
+        f"{model!r}: `woundroll calibrate-head --model {model}` gives a head calibrated in it "
+        "(on the Table 2 rolls the head radius moves the reading by about 0.4 %)"
+    ]
 
 
 def _restitution_given(case: Case) -> bool:
@@ -350,20 +375,21 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     H = r_out - core.outer_radius
     a_given = "semi_contact_width" in (case.tester or {})
     spec = case.contact
-    # the FE impact (contact.dynamic) is on the plane-strain roll: the 1.5D models beside it
-    # take the same roll's spring, without the CMD-spreading correction of "auto"
-    plane = spec.dynamic and spec.model == "auto" and setup.instrument.head_shape == "cylinder"
+    model = spec.roll_model(setup.instrument.head_shape).name
+    # the FE impact (contact.dynamic) is on the plane-strain or the 3D roll: the 1.5D models
+    # beside it take the same roll's spring, without the CMD-spreading correction
+    plane = spec.dynamic and model == "2d+cmd-spread"
     args = {
         "depth_max": spec.depth_max,
         "friction": spec.friction,
         "options": spec.contact_options(),
-        "model": "2d" if plane else spec.model,
+        "model": "2d" if plane else model,
         "options3d": spec.contact3d_options(),
     }
     report("contact", 0.0)
     with _user_fields(case, H):
         stiff = roll_stiffness(web, core, winding.radius, winding.sigma_r, setup.instrument, **args)
-    unloading_notes: list[str] = []
+    unloading_notes: list[str] = _calibration_notes(setup.instrument, stiff.model)
     if web.radial_unloading is not None and not _restitution_given(case):
         p_peak = float(np.max(-stiff.at_impact.sigma_r))
         setup = _with_unloading(setup, web, p_peak, unloading_notes)
@@ -420,7 +446,7 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         if plane:
             unloading_notes.append(
                 "dynamic: the FE impact runs on the plane-strain roll, so the 1.5D models use "
-                "the plane-strain spring too (contact.model '2d', no CMD-spreading correction)"
+                "the plane-strain spring too (contact.model '2d' instead of '2d+cmd-spread')"
             )
     return RunResult(
         case=case,
@@ -497,13 +523,7 @@ def _run_profile(
     winding leaves free (inline when there are no workers)."""
     from woundroll.contact.spring import head_length_of
     from woundroll.instruments import get_instrument, tester_from_spec
-    from woundroll.profile.hardness import (
-        ContactModel,
-        FdReadout,
-        NipSpec,
-        early_pool,
-        predict_profile,
-    )
+    from woundroll.profile.hardness import ContactModel, NipSpec, early_pool, predict_profile
     from woundroll.winding.hakiel import wind
 
     if setup is not None and setup.roll_spring is not None:
@@ -529,6 +549,14 @@ def _run_profile(
             "nip: uniform nip-induced tension mu N / h across the CMD "
             "(give [winding.nip_roller] for the beam-on-foundation distribution)"
         )
+    entry = case.contact.roll_model(instrument.head_shape)
+    if not entry.per_sector:
+        raise InputError(
+            f"the {entry.name!r} roll model is too slow to solve once per CMD sector "
+            f"({spec.sectors} sectors): use '2d' or '2d+cmd-spread' for a profile",
+            "contact.model",
+        )
+    notes += _calibration_notes(instrument, entry.name)
     contact = ContactModel(
         web,
         core,
@@ -537,7 +565,7 @@ def _run_profile(
         spec.depth_max,
         instrument=instrument,
         options=case.contact.contact_options(),
-        model="2d" if case.contact.model == "2d" else "auto",  # no 3D solve per sector
+        model=entry.name,
     )
 
     def progress(stage: str, done: int, total: int) -> None:
@@ -561,15 +589,9 @@ def _run_profile(
             workers=spec.workers,
             progress=progress,
             pool=pool,
+            setup=setup if setup is not None else tester_from_spec({"instrument": "rho-meter"}),
         )
         winding = job.result() if job is not None else wind(*reference, options=options)
-        # the FD model per sector (the paper's "FD optional"), shared with a worker
-        fd_setup = setup if setup is not None else tester_from_spec({"instrument": "rho-meter"})
-        w = profile.winding
-        fd = FdReadout(fd_setup, w.build_radius - w.core_radius, web.density)
-        profile = replace(
-            profile, rho_fd=fd.shared(profile.alpha, profile.beta, pool, spec.workers)
-        )
     measured = case.measured_profile
     if measured is not None:
         profile = profile.compare(measured)

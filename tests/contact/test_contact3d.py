@@ -277,7 +277,7 @@ COARSE3D = [
 
 @pytest.mark.slow
 def test_schmidt_hammer_reads_a_roll_through_the_3d_model() -> None:
-    """``contact.model = "auto"`` (the default) sends the spherical Schmidt tip to the 3D
+    """The registry's default for a spherical head sends the Schmidt tip to the 3D
     model: a reading from winder settings without a hand-given roll spring (coarse mesh:
     this checks the coupling, the mesh study checks the numbers)."""
     import woundroll

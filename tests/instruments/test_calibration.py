@@ -64,26 +64,32 @@ def test_hertz_approach_equals_integrated_axis_strain():
         assert float(c.approach(F)) == pytest.approx(-val, rel=1e-9)
 
 
-def test_preset_reads_77_rho_on_the_block():
-    # the deliverable: the shipped head geometry reads 77 +- 0.5 Rho (FD = accelerometer)
-    law = HertzLineContact(RM.head_radius, RM.head_length, BLOCK).law(
+#: The head radius Hertz line contact calibrates (docs/instruments.md, section 6): the
+#: bundled file's head is calibrated through the default roll model instead (7.820 mm,
+#: tests/contact/test_block.py), so the Hertz value is stated here.
+HERTZ_HEAD = RM.with_overrides(head_radius=6.565e-3)
+
+
+def test_hertz_head_reads_77_rho_on_the_block():
+    # the Hertz-calibrated head reads 77 +- 0.5 Rho (FD = accelerometer) through Hertz
+    law = HertzLineContact(HERTZ_HEAD.head_radius, RM.head_length, BLOCK).law(
         0.5 * RM.spring_stiffness * RM.release_position**2
     )
-    fd = impact_fd(RM, law)
+    fd = impact_fd(HERTZ_HEAD, law)
     assert fd.rho == pytest.approx(77.0, abs=0.5)
     # the energy model {22} reads lower by the striker spring's share (a few per cent)
-    en = impact_energy(RM, law)
+    en = impact_energy(HERTZ_HEAD, law)
     assert fd.rho - en.rho == pytest.approx(
         RM.spring_stiffness * (RM.contact_position + en.max_depth) / (RM.rho_unit * RM.mass),
         abs=1e-3,
     )
 
 
-def test_calibration_reproduces_the_preset_radius():
+def test_calibration_reproduces_the_hertz_radius():
     cal = calibrate_head(RM)
     assert cal.rho_fd == pytest.approx(77.0, abs=1e-6)
-    # the preset stores the radius to 4 figures (6.565 mm)
-    assert cal.head_radius == pytest.approx(RM.head_radius, rel=2e-4)
+    # the documented Hertz radius to 4 figures (6.565 mm)
+    assert cal.head_radius == pytest.approx(HERTZ_HEAD.head_radius, rel=2e-4)
     # Hertz stays a small-contact problem: half-width well below radius and block thickness
     assert cal.half_width < 0.3 * cal.head_radius and cal.half_width < 0.1 * BLOCK.thickness
     # the quadratic fit {3} over the impact's depth range reads within 1 Rho of the exact curve

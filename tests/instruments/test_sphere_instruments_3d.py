@@ -3,7 +3,7 @@ roll from its winder settings through the 3D contact model, with no hand-given r
 
 Coarse 3D mesh and few increments (these tests check the coupling: the contact model's
 spring reaches the impact model and the readout; docs/contact.md's mesh study checks the
-numbers). ``contact.model`` is left at the case's default ("auto": 3D for spheres).
+numbers). ``contact.model`` is left unset: the registry's default for a sphere is "3d".
 """
 
 from __future__ import annotations

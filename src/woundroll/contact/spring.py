@@ -405,10 +405,10 @@ def roll_stiffness(
     update_modulus: bool = True,
     options: Any = None,
     field: str = "contact",
-    model: str = "2d",
+    model: str | None = None,
     options3d: Any = None,
 ) -> RollStiffness:
-    """The 2D contact solve that gives the roll spring {3} under the instrument's head.
+    """The contact solve that gives the roll spring {3} under the instrument's head.
 
     Parameters
     ----------
@@ -431,13 +431,12 @@ def roll_stiffness(
         As :func:`woundroll.contact.indent`.
     field : str
         Table named in error messages (``"contact"``, ``"profile"``).
-    model : {"2d", "3d", "auto"}
-        The contact model: the plane-strain 2D model as it is, the 3D model
-        (:func:`woundroll.contact.solver3d.indent3d`, any head), or ``"auto"``: for a
-        cylindrical head the 2D model corrected for the load the roll carries past the
-        head's ends (:mod:`woundroll.contact.cmd_spread`, within 3 % of the 3D model's Rho
-        on the Table 2 rolls and pile heights), the 3D model for the heads 2D cannot
-        represent (sphere, punch).
+    model : str, optional
+        The roll model by its name in :data:`woundroll.contact.models.ROLL_MODELS`:
+        ``"2d"`` (plane strain), ``"2d+cmd-spread"`` (plane strain corrected for the load
+        carried past the head's ends, :mod:`woundroll.contact.cmd_spread`) or ``"3d"``
+        (:func:`woundroll.contact.solver3d.indent3d`, any head). None: the registry's
+        default for the instrument's head (:data:`~woundroll.contact.models.DEFAULT_ROLL_MODEL`).
     options3d : Contact3DOptions, optional
         Settings of the 3D model.
 
@@ -448,24 +447,9 @@ def roll_stiffness(
     ConvergenceError
         The striker's depth kept growing past four solutions.
     """
-    from woundroll.contact.solver import indent
+    from woundroll.contact.models import resolve_model
 
-    if model not in ("2d", "3d", "auto"):
-        raise InputError(f"must be '2d', '3d' or 'auto', got {model!r}", f"{field}.model")
-    use_3d = model == "3d" or (model == "auto" and instrument.head_shape != "cylinder")
-    spread = model == "auto" and not use_3d  # plane strain + CMD spreading
-    if use_3d:
-        from woundroll.contact.heads import Head
-        from woundroll.contact.solver3d import indent3d
-
-        head = Head.from_instrument(instrument)
-
-        def indent(web, core, r, sigma_r, *, head_radius, head_length, options, **kw):  # noqa: ARG001
-            return indent3d(web, core, r, sigma_r, head=head, options=options3d, **kw)
-
-        head_length = float(instrument.head_length or 0.0)
-    else:
-        head_length = head_length_of(instrument)
+    entry = resolve_model(model, instrument.head_shape, f"{field}.model")
     r = np.asarray(radius, dtype=float)
     # the model's reach: below half the head radius and a quarter of the wound thickness
     reach = 0.98 * min(
@@ -479,33 +463,27 @@ def roll_stiffness(
     else:
         depth = min(FIRST_DEPTH, 0.8 * reach)
     stop = None
-    if depth_max is None and not use_3d:
+    if depth_max is None and entry.extends:
         stop = _past_the_reach(instrument)
     for _ in range(4):
         try:
-            contact = indent(
+            contact, correction = entry.solve(
                 web,
                 core,
                 r,
                 sigma_r,
-                head_radius=instrument.head_radius,
-                head_length=head_length,
+                instrument,
                 depth_max=depth,
                 friction=friction,
                 update_modulus=update_modulus,
                 options=options,
+                options3d=options3d,
                 # past the first depth by the same steps while the striker goes deeper
                 **({"stop": stop, "extend_to": reach} if stop is not None else {}),
             )
         except InputError as exc:
             raise exc.at(field) from None
-        correction = None
-        if spread:
-            from woundroll.contact.cmd_spread import MODEL_NAME, apply_cmd_spread
-
-            correction = apply_cmd_spread(contact)
-            contact = correction.corrected
-        name = "3d" if use_3d else (MODEL_NAME if spread else "2d")
+        name = entry.name
         spring = fit_roll_spring(contact.delta, contact.force, instrument, reach=FIT_REACH)
         # deepen while the fit window [0, FIT_REACH d_max] is cut off by the solution's
         # depth (not only when d_max itself is beyond it): the window then always has its

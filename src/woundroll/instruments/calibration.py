@@ -72,6 +72,9 @@ class CalibrationBlock:
         Reference depth of the Hertz approach (block on a rigid table).
     target_rho : float [Rho]
         The reading the device must show on it.
+    width : float or None [m]
+        Extent along the head's axis (the 3D model of the block,
+        :mod:`woundroll.contact.block`); None: not given.
     """
 
     youngs_modulus: float
@@ -79,8 +82,11 @@ class CalibrationBlock:
     density: float
     thickness: float
     target_rho: float = 77.0
+    width: float | None = None
 
     def __post_init__(self) -> None:
+        if self.width is not None and not (math.isfinite(self.width) and self.width > 0):
+            raise InputError(f"must be a positive length, got {self.width!r}", "block.width")
         for name in ("youngs_modulus", "density", "thickness", "target_rho"):
             v = getattr(self, name)
             if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
@@ -106,6 +112,7 @@ class CalibrationBlock:
             density=to_si(t["density"], "density", "block.density"),
             thickness=to_si(t["thickness"], "length", "block.thickness"),
             target_rho=float(t.get("target_rho", 77.0)),
+            width=to_si(t["width"], "length", "block.width") if "width" in t else None,
         )
 
 

@@ -38,7 +38,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from woundroll.errors import InputError
-from woundroll.instruments.definitions import Instrument, get_instrument
+from woundroll.instruments.definitions import Instrument, as_shown, beyond_scale, get_instrument
 from woundroll.instruments.impact import (
     COLLISIONS,
     EnergyResult,
@@ -349,8 +349,23 @@ class HardnessResult:
             return self.fd.rebound_r
         return self.fd.rebound_l
 
+    @property
+    def saturated(self) -> bool:
+        """The model's :attr:`reading` lies beyond the instrument's scale: the device
+        shows the scale's end (:attr:`shown`)."""
+        return bool(beyond_scale(self.reading, self.instrument.reading_range))
+
+    @property
+    def shown(self) -> float:
+        """What the instrument shows: :attr:`reading` clipped to its scale."""
+        return float(as_shown(self.reading, self.instrument.reading_range))
+
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary: SI scalars (unit in the key) and time histories."""
+        """JSON-ready dictionary: SI scalars (unit in the key) and time histories.
+
+        ``reading``: what the instrument shows (its scale's end when ``saturated``);
+        ``reading_model``: the model's own value.
+        """
         fd = self.fd
 
         def lst(a: NDArray[np.float64]) -> list[float]:
@@ -359,7 +374,18 @@ class HardnessResult:
         return {
             "instrument": self.instrument.name,
             "readout": self.instrument.readout,
-            "reading": float(self.reading),
+            "reading": self.shown,
+            "reading_model": float(self.reading),
+            "saturated": self.saturated,
+            "scale": None
+            if self.instrument.reading_range is None
+            else list(self.instrument.reading_range),
+            "head_calibration": {
+                "head_radius_m": float(self.instrument.head_radius),
+                "head_length_m": self.instrument.head_length,
+                "calibrated_in": self.instrument.calibration_model or None,
+                "source": self.instrument.sources.get("head_radius"),
+            },
             "rho_energy": float(self.energy.rho),
             "rho_fd": float(fd.rho),
             "peak_g": float(fd.peak_g),

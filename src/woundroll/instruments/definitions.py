@@ -32,6 +32,9 @@ from functools import lru_cache
 from importlib import resources
 from typing import Any
 
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
 from woundroll.errors import InputError
 from woundroll.instruments.readout import G_STANDARD, READOUTS, RHO_PER_G
 from woundroll.units import to_si
@@ -50,7 +53,7 @@ QUANTITY_FIELDS: dict[str, str] = {
     "head_edge_radius": "length",
     "rho_per_g": "dimensionless",
 }  # "g" (an acceleration) is converted separately in _convert
-_TEXT_FIELDS = ("name", "title", "readout", "head_shape", "notes")
+_TEXT_FIELDS = ("name", "title", "readout", "head_shape", "notes", "calibration_model")
 #: Relative tolerance of ``k/m = omega^2`` {1} for an instrument that gives all three.
 EQ1_RTOL = 1e-3
 _HEAD_SHAPES = ("cylinder", "sphere", "punch")  # punch: 3D contact model only
@@ -64,6 +67,23 @@ READING_RANGES: dict[str, tuple[float, float] | None] = {
     "parotester-l": (0.0, 1000.0),
     "g": None,
 }
+
+
+def beyond_scale(values: ArrayLike, scale: tuple[float, float] | None) -> NDArray[np.bool_]:
+    """Where a model's reading lies beyond the instrument's ``scale`` (``(low, high)``;
+    None: no scale, nothing beyond it): the device would show the scale's end there
+    (*saturated*)."""
+    v = np.asarray(values, dtype=float)
+    if scale is None:
+        return np.zeros(v.shape, dtype=bool)
+    return (v < scale[0]) | (v > scale[1])
+
+
+def as_shown(values: ArrayLike, scale: tuple[float, float] | None) -> NDArray[np.float64]:
+    """What the instrument shows for a model's reading: the value clipped to its
+    ``scale`` (unchanged without one)."""
+    v = np.asarray(values, dtype=float)
+    return v.copy() if scale is None else np.clip(v, scale[0], scale[1])
 
 
 @dataclass(frozen=True)
@@ -100,6 +120,10 @@ class Instrument:
         1 Rho = ``rho_per_g`` g ({22}: 3.76 and 9.81).
     calibrated : bool
         False when no calibration data exist for rolls (readings are then model output only).
+    calibration_model : str
+        The model in which the head's unknown dimension was calibrated on the block: a roll
+        model's registry name (``woundroll calibrate-head``), ``"hertz"`` (plane-strain Hertz
+        line contact), or "" (not calibrated).
     sources : dict
         Field -> where its value comes from.
     """
@@ -120,6 +144,7 @@ class Instrument:
     calibrated: bool = True
     notes: str = ""
     head_edge_radius: float | None = None
+    calibration_model: str = ""
     sources: dict[str, str] = field(default_factory=dict, compare=False)
 
     def __post_init__(self) -> None:

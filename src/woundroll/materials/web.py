@@ -90,6 +90,32 @@ class Web:
         if self.G_theta_z is None:
             object.__setattr__(self, "G_theta_z", self.E_theta / (2.0 * (1.0 + self.nu_theta_z)))
 
+    @classmethod
+    def isotropic(
+        cls, E: float, nu: float, *, thickness: float, width: float, density: float
+    ) -> Web:
+        """An isotropic linear-elastic solid as a "web" (e.g. the calibration block): every
+        modulus follows from ``E`` [Pa] and ``nu`` [-]: ``E_r = E_theta = E_z = E``, every
+        Poisson ratio ``nu``, every shear modulus ``E / (2 (1 + nu))``. ``thickness`` [m]
+        sets the FE surface ring; ``width`` [m] the extent along the CMD."""
+        from woundroll.materials.radial_modulus import Constant
+
+        G = E / (2.0 * (1.0 + nu))
+        return cls(
+            thickness=thickness,
+            width=width,
+            E_theta=E,
+            radial_modulus=Constant(E),
+            E_z=E,
+            density=density,
+            nu_theta_r=nu,
+            nu_z_r=nu,
+            nu_theta_z=nu,
+            G_r_theta=G,
+            G_r_z=G,
+            G_theta_z=G,
+        )
+
     def E_r(self, sigma_r: ArrayLike) -> NDArray[np.float64]:
         """Radial modulus [Pa] at radial stress ``sigma_r`` [Pa] (compression negative)."""
         return self.radial_modulus.modulus(sigma_r)

@@ -10,8 +10,12 @@ hardness simulation"):
 2. each sector is taken as a plane-strain roll and a contact callable turns its radial
    stress profile into the roll spring ``F = alpha d^2 + beta d`` {3} (default:
    :func:`woundroll.contact.indent` with the instrument's head);
-3. a readout callable turns (alpha, beta) into the reading (default: the energy model
-   {19}-{22}, :func:`woundroll.instruments.rho_energy`).
+3. the reading of each sector: with an instrument (default), the instrument's own reading
+   by the FD model {4}-{13} (the Rho-meter's accelerometer peak, the headline of every
+   woundroll result), with the energy model {19}-{22} beside it as a check; or any readout
+   callable ``(alpha, beta) -> reading``. A reading beyond the instrument's scale is what
+   the device shows, the scale's end, flagged ``saturated`` (the model's value kept beside
+   it); the profile statistics use the on-scale readings only.
 
 Both callables are injected, so any contact model or instrument model can be used; they run
 for the sectors in parallel (``workers`` processes when the callables can be pickled,
@@ -42,11 +46,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from woundroll.errors import InputError
+from woundroll.instruments.definitions import as_shown as shown
+from woundroll.instruments.definitions import beyond_scale as saturated
 from woundroll.materials.thickness_profile import ThicknessProfile
 from woundroll.materials.web import Core, Web
 from woundroll.profile.compare import MeasuredProfile, ProfileComparison, compare_profiles
 from woundroll.profile.nip import NipRoller, nip_hook, solve_nip
-from woundroll.profile.stats import ProfileStats, profile_stats
+from woundroll.profile.stats import ProfileStats, profile_stats, reading_stats
 from woundroll.winding.axisymmetric import AxisymmetricResult, wind_axisymmetric
 from woundroll.winding.tension import TensionSchedule
 
@@ -62,7 +68,7 @@ ProgressFn = Callable[[str, int, int], None]
 
 @dataclass(frozen=True)
 class ContactModel:
-    """The default contact callable on one sector: the roll spring {3} from the 2D model.
+    """The default contact callable on one sector: the roll spring {3} from the roll model.
 
     With an ``instrument``: :func:`woundroll.contact.roll_stiffness` with the instrument's
     head, starting at ``depth_max`` and deepened while the striker goes further (no
@@ -90,9 +96,9 @@ class ContactModel:
     depth_max: float = 1e-3
     instrument: Any = None
     options: Any = None
-    #: contact.model of the instrument's spring (roll_stiffness): "auto" corrects the
-    #: plane strain for the CMD spreading past the head's ends
-    model: str = "2d"
+    #: the roll model of the instrument's spring (:func:`woundroll.contact.roll_stiffness`,
+    #: a name in :data:`woundroll.contact.models.ROLL_MODELS`); None: the registry's default
+    model: str | None = None
 
     def __call__(self, radius: FloatArray, sigma_r: FloatArray) -> tuple[float, float]:
         from woundroll.contact import fit_roll_spring, indent, roll_stiffness
@@ -233,7 +239,9 @@ class ProfileResult:
     ----------
     z : ndarray [m]               sector centres.
     thickness : ndarray [m]       sector-average web thickness.
-    rho : ndarray [-]             reading (Rho for the Rho-meter).
+    rho : ndarray [-]             the model's reading per sector, unclipped: with an
+                                  instrument its own reading by the FD model {4}-{13}
+                                  (Rho for the Rho-meter), else the readout callable's.
     alpha, beta : ndarray         roll spring {3} per sector [N/m^2], [N/m].
     wot : ndarray [Pa]            layer-weighted mean wound-on tension per sector.
     sigma_r_outer : ndarray [Pa]  radial stress of the outermost layer group.
@@ -241,9 +249,12 @@ class ProfileResult:
     nip_load : ndarray or None [N/m]  nip load per width of the last increment.
     nip_foundation_depth : float or None [m]  depth range of the nip foundation's fit.
     comparison : ProfileComparison or None    a measured profile beside this one.
-    rho_fd : ndarray or None      the FD model's reading per sector (:class:`FdReadout`).
+    rho_energy : ndarray or None  the energy model's reading {19}-{22} per sector (a check).
+    scale : (float, float) or None  the instrument's scale (what it can show).
+    roll_model : str or None      the roll model that gave the springs (registry name).
     winding : AxisymmetricResult
-    rho_stats, thickness_stats : ProfileStats
+    rho_stats : ProfileStats or None   of the on-scale readings (None: fewer than two).
+    thickness_stats : ProfileStats
     timings : dict            seconds per stage.
     """
 
@@ -257,12 +268,14 @@ class ProfileResult:
     sigma_r_core: FloatArray
     nip_load: FloatArray | None
     winding: AxisymmetricResult
-    rho_stats: ProfileStats
+    rho_stats: ProfileStats | None
     thickness_stats: ProfileStats
     timings: dict[str, float] = field(default_factory=dict)
     nip_foundation_depth: float | None = None
     comparison: ProfileComparison | None = None
-    rho_fd: FloatArray | None = None
+    rho_energy: FloatArray | None = None
+    scale: tuple[float, float] | None = None
+    roll_model: str | None = None
 
     @property
     def slack(self) -> NDArray[np.bool_]:
@@ -270,28 +283,54 @@ class ProfileResult:
         reading is set by the modulus floor of a K1 = 0 law, not by the roll (flag them)."""
         return np.asarray(self.winding.slack, dtype=bool)
 
+    @property
+    def saturated(self) -> NDArray[np.bool_]:
+        """Sectors whose reading lies beyond the instrument's scale (the device shows the
+        scale's end there)."""
+        return saturated(self.rho, self.scale)
+
+    @property
+    def shown(self) -> FloatArray:
+        """The reading the instrument shows in each sector: the model's, clipped to the
+        scale."""
+        return shown(self.rho, self.scale)
+
     def compare(self, measured: MeasuredProfile) -> ProfileResult:
-        """This result with a measured profile compared (:mod:`woundroll.profile.compare`)."""
-        return replace(self, comparison=compare_profiles(self.z, self.rho, measured))
+        """This result with a measured profile compared (:mod:`woundroll.profile.compare`)
+        against what the instrument would show (:attr:`shown`)."""
+        return replace(self, comparison=compare_profiles(self.z, self.shown, measured))
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary: lists over CMD positions (SI, unit in the key) and stats."""
+        """JSON-ready dictionary: lists over CMD positions (SI, unit in the key) and stats.
+
+        ``reading``: what the instrument shows (the scale's end where ``saturated``);
+        ``reading_model``: the model's value; ``reading_energy``: the energy model's.
+        """
 
         def lst(a: FloatArray) -> list[float]:
             return [float(x) for x in a]
 
+        sat = self.saturated
         out: dict[str, Any] = {
             "z_m": lst(self.z),
-            "rho": lst(self.rho),
+            "reading": lst(self.shown),
+            "reading_model": lst(self.rho),
+            "saturated": [bool(x) for x in sat],
+            "reading_energy": None if self.rho_energy is None else lst(self.rho_energy),
+            "scale": None if self.scale is None else list(self.scale),
+            "roll_model": self.roll_model,
             "thickness_m": lst(self.thickness),
             "wot_Pa": lst(self.wot),
             "sigma_r_outer_Pa": lst(self.sigma_r_outer),
             "sigma_r_core_Pa": lst(self.sigma_r_core),
             "alpha_N_per_m2": lst(self.alpha),
             "beta_N_per_m": lst(self.beta),
-            "stats": {"rho": self.rho_stats.to_dict(), "thickness": self.thickness_stats.to_dict()},
+            "stats": {
+                "reading": None if self.rho_stats is None else self.rho_stats.to_dict(),
+                "reading_n_saturated": int(sat.sum()),
+                "thickness": self.thickness_stats.to_dict(),
+            },
             "slack": [bool(x) for x in self.slack],
-            "rho_fd": None if self.rho_fd is None else lst(self.rho_fd),
             "n_layers": self.winding.n_layers,
             "n_groups": int(self.winding.layers_per_group.size),
             "timings_s": dict(self.timings),
@@ -308,6 +347,19 @@ class ProfileResult:
             out["measured"] = self.comparison.to_dict()
         return out
 
+    def stats_title(self) -> str:
+        """One line on the on-scale readings: mean, CoV and band, and how many sectors
+        are saturated (excluded)."""
+        n_sat = int(self.saturated.sum())
+        st = self.rho_stats
+        if st is None:
+            text = f"fewer than two on-scale readings ({n_sat} of {self.rho.size} saturated)"
+        else:
+            text = f"mean {st.mean:.1f}, CoV {100 * st.cov:.1f} % ({st.band})"
+            if n_sat:
+                text += f"; {n_sat} of {self.rho.size} sectors off the scale, excluded"
+        return text
+
     def plot(self, path_prefix: str | Path | None = None) -> list[Any]:
         """Figures: thickness and Rho along the CMD (twin axes, Figures 20-21 of the paper)
         and the radial-stress map sigma_r(r, z). Saves ``<prefix>_cmd.png`` and
@@ -322,23 +374,42 @@ class ProfileResult:
         ax.set_xlabel("CMD position [cm]")
         ax.set_ylabel("thickness (MD average) [um]", color="tab:blue")
         ax2 = ax.twinx()
-        ax2.plot(zc, self.rho, color="tab:red", marker="o", ms=3, label="Rho (energy model)")
-        if self.rho_fd is not None:
-            ax2.plot(zc, self.rho_fd, color="tab:orange", ls="--", lw=1, label="Rho (FD model)")
-            ax2.legend(loc="best")
+        unit = "Rho" if self.scale == (0.0, 100.0) or self.scale is None else "reading"
+        ax2.plot(zc, self.shown, color="tab:red", marker="o", ms=3, label=f"{unit} (FD model)")
+        if self.rho_energy is not None:
+            ax2.plot(
+                zc,
+                shown(self.rho_energy, self.scale),
+                color="tab:orange",
+                ls="--",
+                lw=1,
+                label=f"{unit} (energy model, check)",
+            )
+        sat = self.saturated
+        if self.scale is not None:
+            for end in self.scale:
+                ax2.axhline(end, color="0.5", lw=0.8, ls=":")
+            if np.any(sat):
+                ax2.plot(
+                    zc[sat],
+                    self.shown[sat],
+                    "^",
+                    color="black",
+                    ms=6,
+                    mfc="none",
+                    label="saturated: the model reads beyond the scale",
+                )
         if np.any(self.slack):
             ax2.plot(
                 zc[self.slack],
-                self.rho[self.slack],
+                self.shown[self.slack],
                 "x",
                 color="tab:red",
                 ms=8,
                 label="slack sector (reading set by the E_r floor)",
             )
-            ax2.legend(loc="best")
-        ax2.set_ylabel("Rho", color="tab:red")
-        st = self.rho_stats
-        title = f"Rho mean {st.mean:.1f}, CoV {100 * st.cov:.1f} % ({st.band})"
+        ax2.set_ylabel(f"{unit} (instrument scale)", color="tab:red")
+        title = f"{unit}: " + self.stats_title()
         c = self.comparison
         if c is not None:
             ax2.plot(
@@ -348,11 +419,11 @@ class ProfileResult:
                 color="black",
                 ms=4,
                 mfc="none",
-                label="Rho (measured)",
+                label=f"{unit} (measured)",
             )
-            ax2.legend(loc="best")
             r = "n/a" if c.correlation is None else f"{c.correlation:.2f}"
             title += f"\nmeasured: bias {c.bias:+.1f}, RMS {c.rms:.1f}, correlation {r}"
+        ax2.legend(loc="best", fontsize=8)
         ax.set_title(title)
         w = self.winding
         f2 = Figure(figsize=(8, 4.2), layout="constrained")
@@ -556,6 +627,8 @@ def predict_profile(
     workers: int = 2,
     progress: ProgressFn | None = None,
     pool: cf.Executor | None = None,
+    setup: Any = None,
+    model: str | None = None,
 ) -> ProfileResult:
     """Predict the CMD hardness profile of a center-wound roll.
 
@@ -575,8 +648,9 @@ def predict_profile(
         ``(radius, sigma_r) -> (alpha, beta)``; default :class:`ContactModel` with the
         instrument's head and ``depth_max``.
     instrument : Instrument or callable, optional
-        An :class:`~woundroll.instruments.Instrument` (energy-model readout) or a callable
-        ``(alpha, beta) -> reading``; default the ``rho-meter`` preset.
+        An :class:`~woundroll.instruments.Instrument` (its own reading by the FD model, the
+        energy model beside it) or a callable ``(alpha, beta) -> reading``; default the
+        ``rho-meter`` preset.
     n_sectors, n_groups : int
         CMD sectors; winding increments (see :func:`wind_axisymmetric`).
     nip : NipSpec, optional
@@ -591,6 +665,12 @@ def predict_profile(
         Sector workers already started (:func:`early_pool` entered by the caller, which
         can give them other work while the roll is wound); used and left open. None: the
         profile starts (and closes) its own.
+    setup : TesterSetup, optional
+        The tester's settings for the FD reading (collision, restitution, time step);
+        default the instrument's (or the Rho-meter's) with the case defaults.
+    model : str, optional
+        Roll model of the default contact callable (a name in
+        :data:`woundroll.contact.models.ROLL_MODELS`; None: the registry's default).
 
     Raises
     ------
@@ -599,7 +679,9 @@ def predict_profile(
     """
     workers = _check_workers(workers)
     t0 = time.perf_counter()
-    readout, contact = _readout_and_contact(web, core, contact, instrument, depth_max)
+    readout, contact = _readout_and_contact(
+        web, core, contact, instrument, depth_max, setup=setup, model=model
+    )
     scope = contextlib.nullcontext(pool) if pool is not None else early_pool(contact, workers)
     with scope as pool:
         return _predict_profile(
@@ -627,7 +709,7 @@ def _predict_profile(
     thickness_profile: ThicknessProfile | None,
     outer_radius: float,
     contact: ContactFn,
-    readout: ReadoutFn,
+    readout: InstrumentReadout | ReadoutFn,
     *,
     n_sectors: int,
     n_groups: int | None,
@@ -687,12 +769,23 @@ def _predict_profile(
         pool=pool,
     )
     timings["contact"] = time.perf_counter() - t2
-    # 3. the reading
-    rho = np.asarray(readout(alpha, beta), dtype=float).reshape(-1)
+    # 3. the reading: the instrument's own (FD), the energy model beside it
+    scale, rho_energy, roll_model = None, None, None
+    if isinstance(readout, InstrumentReadout):
+        rho, rho_energy = readout.read(
+            alpha, beta, w.build_radius - w.core_radius, web.density, pool, workers
+        )
+        scale = readout.setup.instrument.reading_range
+    else:
+        rho = np.asarray(readout(alpha, beta), dtype=float).reshape(-1)
     if rho.shape != alpha.shape or not np.all(np.isfinite(rho)):
         raise InputError(
             "the readout must return one finite reading per sector", "tester.instrument"
         )
+    if isinstance(contact, ContactModel) and contact.instrument is not None:
+        from woundroll.contact.models import resolve_model
+
+        roll_model = resolve_model(contact.model, contact.instrument.head_shape).name
     timings["total"] = time.perf_counter() - t0
     return ProfileResult(
         z=w.z,
@@ -705,10 +798,13 @@ def _predict_profile(
         sigma_r_core=w.sigma_r_core.copy(),
         nip_load=w.nip_load[-1].copy() if nip is not None else None,
         winding=w,
-        rho_stats=profile_stats(rho, "profile.rho"),
+        rho_stats=reading_stats(rho, scale, "profile.reading"),
         thickness_stats=profile_stats(w.thickness, "profile.thickness"),
         timings=timings,
         nip_foundation_depth=f_depth,
+        rho_energy=rho_energy,
+        scale=scale,
+        roll_model=roll_model,
     )
 
 
@@ -723,22 +819,55 @@ def sector_contacts(contact: ContactFn, slack: NDArray[np.bool_]) -> list[Contac
     return [deep if s else contact for s in slack]
 
 
-def _readout_and_contact(
-    web: Web, core: Core, contact: Any, instrument: Any, depth_max: float
-) -> tuple[ReadoutFn, ContactFn]:
-    """The reading from (alpha, beta) (an Instrument's energy model, default the Rho-meter,
-    or a callable) and the per-sector contact callable (default :class:`ContactModel` with
-    the instrument's head)."""
-    readout: ReadoutFn
-    inst = None
-    if instrument is None:
-        from woundroll.instruments import get_instrument
+@dataclass(frozen=True)
+class InstrumentReadout:
+    """The readout of an instrument: its own reading by the FD model {4}-{13}
+    (:class:`FdReadout`, with each sector's pile height once the roll is wound) and the
+    energy model {19}-{22} beside it (:class:`EnergyReadout`)."""
 
-        inst = get_instrument("rho-meter")
-        readout = EnergyReadout(inst)
-    elif hasattr(instrument, "spring_stiffness") and hasattr(instrument, "head_radius"):
-        inst = instrument
-        readout = EnergyReadout(inst)
+    setup: Any
+
+    def read(
+        self,
+        alpha: FloatArray,
+        beta: FloatArray,
+        pile_height: FloatArray,
+        density: float,
+        pool: cf.Executor | None,
+        workers: int,
+    ) -> tuple[FloatArray, FloatArray]:
+        """(FD reading, energy reading) per sector."""
+        fd = FdReadout(self.setup, pile_height, density)
+        return fd.shared(alpha, beta, pool, workers), EnergyReadout(self.setup.instrument)(
+            alpha, beta
+        )
+
+
+def _readout_and_contact(
+    web: Web,
+    core: Core,
+    contact: Any,
+    instrument: Any,
+    depth_max: float,
+    setup: Any = None,
+    model: str | None = None,
+) -> tuple[InstrumentReadout | ReadoutFn, ContactFn]:
+    """The reading from (alpha, beta) (an Instrument's own reading, default the
+    Rho-meter, with the tester ``setup`` when given; or a callable) and the per-sector
+    contact callable (default :class:`ContactModel` with the instrument's head and the
+    roll model ``model``)."""
+    from woundroll.instruments import TesterSetup, get_instrument
+
+    readout: InstrumentReadout | ReadoutFn
+    inst = None
+    if setup is not None:
+        inst = setup.instrument
+        readout = InstrumentReadout(setup)
+    elif instrument is None or (
+        hasattr(instrument, "spring_stiffness") and hasattr(instrument, "head_radius")
+    ):
+        inst = get_instrument("rho-meter") if instrument is None else instrument
+        readout = InstrumentReadout(TesterSetup(inst))
     elif callable(instrument):
         readout = instrument
     else:
@@ -753,7 +882,7 @@ def _readout_and_contact(
                 "tester.contact",
             )
         contact = ContactModel(
-            web, core, inst.head_radius, inst.head_length, depth_max, instrument=inst
+            web, core, inst.head_radius, inst.head_length, depth_max, instrument=inst, model=model
         )
     elif not callable(contact):
         raise InputError("must be a callable (radius, sigma_r) -> (alpha, beta)", "tester.contact")
@@ -830,6 +959,7 @@ __all__ = [
     "ContactModel",
     "EnergyReadout",
     "FdReadout",
+    "InstrumentReadout",
     "NipSpec",
     "ProfileResult",
     "map_sectors",

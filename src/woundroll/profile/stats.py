@@ -89,3 +89,17 @@ def profile_stats(values: ArrayLike, field: str = "profile") -> ProfileStats:
         peak_to_peak=float(np.ptp(v)),
         band=cov_band(cov),
     )
+
+
+def reading_stats(
+    values: ArrayLike, scale: tuple[float, float] | None, field: str = "profile.reading"
+) -> ProfileStats | None:
+    """:func:`profile_stats` of the readings on the instrument's ``scale`` only: a reading
+    beyond it is the scale's end on the device (saturated) and says only that the roll is at
+    least that hard (or soft), so it is excluded, not averaged in. None when fewer than two
+    readings are on the scale. The caller reports how many were excluded."""
+    from woundroll.instruments.definitions import beyond_scale
+
+    v = np.asarray(values, dtype=float).ravel()
+    on = v[~beyond_scale(v, scale)]
+    return profile_stats(on, field) if on.size >= 2 else None

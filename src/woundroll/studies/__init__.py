@@ -70,18 +70,43 @@ STUDIES: dict[str, Callable[..., Any]] = {
 }
 
 
-def run_study(name: str, *, progress: Progress | None = None, workers: int = 1) -> StudyResult:
+#: Studies whose rolls are read by one roll model the user may choose (``--model``); the
+#: others fix their models (``dynamic``: 2D and 3D rows side by side).
+MODEL_STUDIES = ("tension", "pile-height", "slip", "all")
+
+
+def run_study(
+    name: str,
+    *,
+    progress: Progress | None = None,
+    workers: int = 1,
+    model: str | None = None,
+) -> StudyResult:
     """Run the study ``name`` (a key of :data:`STUDIES`) and return its result.
+
+    ``model``: the roll model (a name in :data:`woundroll.contact.models.ROLL_MODELS`) for
+    the studies of :data:`MODEL_STUDIES`; None: the registry's default.
 
     Raises
     ------
     InputError
-        Field ``"study"`` for an unknown name (the message lists the known ones).
+        Field ``"study"`` for an unknown name (the message lists the known ones);
+        ``"--model"`` for a model the study does not take.
     """
     fn = STUDIES.get(name) if isinstance(name, str) else None
     if fn is None:
         raise InputError(f"unknown study {name!r}; known: {', '.join(STUDIES)}", "study")
-    return fn(progress, workers=workers)
+    if model is None:
+        return fn(progress, workers=workers)
+    from woundroll.contact.models import check_model_name
+
+    check_model_name(model, "--model")
+    if name not in MODEL_STUDIES:
+        raise InputError(
+            f"the {name} study fixes its roll models; --model is for {', '.join(MODEL_STUDIES)}",
+            "--model",
+        )
+    return fn(progress, workers=workers, model=model)
 
 
 __all__ = [

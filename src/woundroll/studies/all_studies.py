@@ -34,11 +34,17 @@ class AllStudies:
         return _write(self, out_dir)
 
 
-def _all(progress: Progress | None = None, *, workers: int = 1) -> AllStudies:
+def _all(
+    progress: Progress | None = None, *, workers: int = 1, model: str | None = None
+) -> AllStudies:
     steps = (
-        (0.0, 0.55, lambda p: tension.tension_study(progress=p, workers=workers)),
-        (0.55, 0.35, lambda p: pile_height.pile_height_study(progress=p, workers=workers)),
-        (0.90, 0.10, lambda p: slip.slip_factor_study(progress=p)),
+        (0.0, 0.55, lambda p: tension.run(p, workers=workers, model=model)),
+        (
+            0.55,
+            0.35,
+            lambda p: pile_height.pile_height_study(progress=p, workers=workers, model=model),
+        ),
+        (0.90, 0.10, lambda p: slip.slip_factor_study(progress=p, model=model)),
     )
     parts = []
     for lo, span, fn in steps:
@@ -51,6 +57,9 @@ def _all(progress: Progress | None = None, *, workers: int = 1) -> AllStudies:
     return AllStudies(tuple(parts))
 
 
-def run(progress: Progress | None = None, *, workers: int = 1) -> AllStudies:
-    """The registry's entry: the three studies, progress split 55/35/10 %."""
-    return _all(progress, workers=workers)
+def run(
+    progress: Progress | None = None, *, workers: int = 1, model: str | None = None
+) -> AllStudies:
+    """The registry's entry: the three studies, progress split 55/35/10 %, read with the
+    roll ``model`` (None: the registry's default)."""
+    return _all(progress, workers=workers, model=model)

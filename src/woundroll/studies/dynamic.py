@@ -37,13 +37,6 @@ from woundroll.studies._common import (
 )
 from woundroll.studies.tension import MANUAL_IMPULSE_NS
 
-#: Radius of the rigid "table" under the calibration block in the FE model [m].
-BLOCK_CORE_RADIUS = 1.0
-
-#: The block's extent along the head's axis in the 3D model [m] (not published; 4 head
-#: lengths, so that the free edges are far from the 25.4 mm head: an assumption).
-BLOCK_WIDTH_3D = 0.1016
-
 #: The paper's 3D ABAQUS reading on the calibration block and the device manual's [Rho].
 BLOCK_ABAQUS_RHO = 76.1
 BLOCK_MANUAL_RHO = 77.0
@@ -161,37 +154,19 @@ def _histories(dy: Any, fd: Any) -> dict[str, Any]:
     }
 
 
-def block_roll(instrument: str = "rho-meter", width: float = 0.0254) -> tuple[Any, Any, Any, Any]:
-    """The calibration block as an FE roll: ``(web, core, radius, sigma_r)`` (module
-    docstring): isotropic linear elastic, Table 1 constants, on a rigid 1 m core. ``width``
-    matters only in 3D (the block's extent along the head's axis; Table 1 does not give it:
-    :data:`BLOCK_WIDTH_3D` there, an assumption)."""
+def block_roll(instrument: str = "rho-meter", model: str = "2d") -> tuple[Any, Any, Any, Any]:
+    """The calibration block as an FE roll for ``model``: ``(web, core, radius, sigma_r)``
+    (:func:`woundroll.contact.block.block_roll`: isotropic, every modulus from Table 1's E
+    and nu, on a rigid table; in 3D the instrument file's block width, an assumption)."""
+    from woundroll.contact.block import block_roll as roll_of_block
     from woundroll.instruments.calibration import CalibrationBlock
-    from woundroll.materials import Core, Web
-    from woundroll.materials.radial_modulus import Constant
 
-    b = CalibrationBlock.from_preset(instrument)
-    E, nu = b.youngs_modulus, b.poisson_ratio
-    web = Web(
-        thickness=1e-4,  # sets the FE surface ring (0.1 mm), no layers in a block
-        width=width,
-        E_theta=E,
-        radial_modulus=Constant(E),
-        E_z=E,
-        density=b.density,
-        nu_theta_r=nu,
-        nu_z_r=nu,
-        nu_theta_z=nu,
-        G_r_theta=E / (2.0 * (1.0 + nu)),
-    )
-    core = Core(BLOCK_CORE_RADIUS)
-    radius = np.array([BLOCK_CORE_RADIUS, BLOCK_CORE_RADIUS + b.thickness])
-    return web, core, radius, np.zeros(2)
+    return roll_of_block(CalibrationBlock.from_preset(instrument), model)
 
 
 def _measure_block(_: str, overrides: tuple[str, ...], model: str = "2d") -> dict[str, Any]:
-    """The calibration block: FE dynamic (2D, or 3D with the block :data:`BLOCK_WIDTH_3D`
-    wide), and the FD/energy models on the FE's quasi-static curve and on the calibrated
+    """The calibration block: FE dynamic (2D, or 3D as wide as the instrument file's block),
+    and the FD/energy models on the FE's quasi-static curve and on the calibrated
     Hertz curve (docs/instruments.md, section 6)."""
     from woundroll.contact import roll_stiffness
     from woundroll.contact.dynamic import impact_dynamic
@@ -206,7 +181,7 @@ def _measure_block(_: str, overrides: tuple[str, ...], model: str = "2d") -> dic
     from woundroll.instruments.calibration import CalibrationBlock, HertzLineContact
 
     inst = get_instrument("rho-meter")
-    web, core, r, s = block_roll(width=0.0254 if model == "2d" else BLOCK_WIDTH_3D)
+    web, core, r, s = block_roll(model=model)
     st = roll_stiffness(web, core, r, s, inst, model=model)
     c = st.contact
     curve = TabulatedLaw(c.delta, c.force)

@@ -289,7 +289,7 @@ def _pile_height_job(
     web, core = case.web.build(), case.core.build()
     out["axis_pressure"] = _axis_pressure(out["contact"], row["delta_max_m"])
     row.update(_axis_locality(out.pop("contact"), web))
-    row["contact_model"] = case.contact.model
+    row["contact_model"] = case.contact.roll_model(case.tester_setup.instrument.head_shape).name
     setup = case.tester_setup
     ins = setup.instrument
     depth = radius[-1] - radius
@@ -305,7 +305,7 @@ def _pile_height_job(
     row["rho_fd_ref_mass"] = hardness_from_spring(
         setup, row["alpha_N_per_m2"], row["beta_N_per_m"], m_ref
     ).fd.rho
-    if case.contact.model == "3d":
+    if row["contact_model"] == "3d":
         # the pre-stress decomposition is a plane-strain question (ring and core under a
         # line load); the 3D study reports the locality columns instead
         row["alpha_ref_prestress_N_per_m2"] = row["beta_ref_prestress_N_per_m"] = None
@@ -322,7 +322,7 @@ def _pile_height_job(
         start_depth=ref["depth_max"],
         friction=case.contact.friction,
         options=case.contact.contact_options(),
-        model=case.contact.model,
+        model=row["contact_model"],
     )
     row["alpha_ref_prestress_N_per_m2"] = stiff.alpha
     row["beta_ref_prestress_N_per_m"] = stiff.beta
@@ -355,7 +355,7 @@ def pile_height_study(
     progress: Progress | None = None,
     *,
     workers: int = 1,
-    model: str = "2d",
+    model: str | None = None,
 ) -> PileHeightStudy:
     """Figures 16/17: wind ``case`` to outer radius = core radius + H for each pile height.
 
@@ -368,10 +368,10 @@ def pile_height_study(
     progress : callable(stage, fraction), optional
     workers : int
         1: serial; 2: a spawned 2-process pool (the reference roll always runs first).
-    model : {"2d", "auto", "3d"}
-        Contact model of the roll spring (``contact.model``; ``"auto"``: 2D with the
-        CMD-spreading correction); with ``"3d"`` the pre-stress decomposition column is not
-        computed.
+    model : str, optional
+        Roll model of the spring (``contact.model``, a name in
+        :data:`woundroll.contact.models.ROLL_MODELS`; None: the case's, by default the
+        registry's); with ``"3d"`` the pre-stress decomposition column is not computed.
 
     The no-update solve is switched off (``contact.no_update=false``): not needed here.
     """
@@ -389,7 +389,7 @@ def pile_height_study(
             (
                 f"winding.outer_radius={r_core + h!r} m",
                 "contact.no_update=false",
-                f"contact.model='{model}'",
+                *(() if model is None else (f"contact.model='{model}'",)),
             ),
         )
         for h in heights
@@ -433,6 +433,8 @@ def pile_height_study(
     )
 
 
-def run(progress: Progress | None = None, *, workers: int = 1) -> PileHeightStudy:
+def run(
+    progress: Progress | None = None, *, workers: int = 1, model: str | None = None
+) -> PileHeightStudy:
     """The registry's entry: :func:`pile_height_study` with its defaults."""
-    return pile_height_study(progress=progress, workers=workers)
+    return pile_height_study(progress=progress, workers=workers, model=model)

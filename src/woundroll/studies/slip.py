@@ -233,7 +233,7 @@ def slip_factor_study(
     *,
     emulation_cases: Sequence[str] = (),
     slip_shear_fraction: float = 0.01,
-    model: str = "2d",
+    model: str | None = None,
     workers: int = 1,
 ) -> SlipStudy:
     """Figure 18: run ``case`` with interlayer friction ``friction`` and map SF >= 1;
@@ -241,8 +241,9 @@ def slip_factor_study(
 
     The no-update solve is switched off. The fields are those at the impact's maximum
     depth (FD model), from ``ContactResult.at_depth``. The emulation rows use the contact
-    ``model`` ("2d" or "3d"), mu = ``friction`` and ``slip_shear_fraction``; ``workers``
-    runs them in a process pool.
+    ``model`` ("2d" or "3d"; None: the registry's default,
+    :data:`woundroll.contact.models.DEFAULT_ROLL_MODEL`), mu = ``friction`` and
+    ``slip_shear_fraction``; ``workers`` runs them in a process pool.
     """
     if (
         isinstance(friction, bool)
@@ -250,8 +251,11 @@ def slip_factor_study(
         or not (math.isfinite(friction) and friction >= 0)
     ):
         raise InputError(f"must be a number >= 0, got {friction!r}", "study.friction")
+    from woundroll.contact.models import resolve_model
+
+    model = resolve_model(model, "cylinder", "study.model").name
     if model not in ("2d", "3d"):
-        raise InputError(f"must be '2d' or '3d', got {model!r}", "study.model")
+        raise InputError(f"the slip emulation runs in '2d' or '3d', got {model!r}", "study.model")
     _report(progress, f"slip: {case}", 0.0)
     # the Figure 18 roll is read with the emulation rows' contact model, so that its row is
     # the emulation's no-slip row (the CMD-spreading correction of the default path is not
@@ -330,7 +334,9 @@ def slip_factor_study(
     )
 
 
-def run(progress: Progress | None = None, *, workers: int = 1, model: str = "2d") -> SlipStudy:
+def run(
+    progress: Progress | None = None, *, workers: int = 1, model: str | None = None
+) -> SlipStudy:
     """The registry's entry: :func:`slip_factor_study` on PET2 53.4 N (Figure 18) and the
     slip emulation on the seven Table 2 rolls (Figure 19) with the contact ``model``."""
     return slip_factor_study(

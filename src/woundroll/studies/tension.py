@@ -193,6 +193,10 @@ def tension_study(
     return TensionStudy([o["row"] for o in out])
 
 
-def run(progress: Progress | None = None, *, workers: int = 1) -> TensionStudy:
-    """The registry's entry: :func:`tension_study` on the seven rolls of Table 2."""
-    return tension_study(progress=progress, workers=workers)
+def run(
+    progress: Progress | None = None, *, workers: int = 1, model: str | None = None
+) -> TensionStudy:
+    """The registry's entry: :func:`tension_study` on the seven rolls of Table 2, read with
+    the roll ``model`` (None: each case's, by default the registry's)."""
+    overrides = () if model is None else (f"contact.model='{model}'",)
+    return tension_study(progress=progress, workers=workers, overrides=overrides)

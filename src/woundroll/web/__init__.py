@@ -562,9 +562,9 @@ def result_payload(
     p = result.profile
     measured_rows = None
     if p is not None:
-        s = [_series(p.z * 100, p.rho, "predicted (energy model)")]
-        if p.rho_fd is not None:
-            s.append(_series(p.z * 100, p.rho_fd, "predicted (FD model)"))
+        s = [_series(p.z * 100, p.shown, "predicted (FD model, as the instrument shows it)")]
+        if p.rho_energy is not None:
+            s.append(_series(p.z * 100, p.rho_energy, "energy model (check, unclipped)"))
         if measured is not None:
             s.append(_series(measured.position * 100, measured.reading, "measured", "dots"))
         plots.append(
