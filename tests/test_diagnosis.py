@@ -439,3 +439,23 @@ def test_saturated_reading_bounds_the_tension_from_one_side():
     assert math.isfinite(d.web_tension_high[1]) and math.isfinite(d.web_tension_low[1])
     assert d.web_tension[0] > d.web_tension[1]  # the harder position, at least
     assert any("saturated" in n for n in d.notes)
+
+
+def test_sentence_saturated_reading_is_a_bound(monkeypatch):
+    # the stand-in chain shifted so that the dial's end (100 Rho) lies inside its range:
+    # reading = 70 + 10 ln(T0 / 1 MPa), 100 Rho at T0 = e^3 MPa
+    def evaluate(self, web_stress):
+        r = 70.0 + 10.0 * math.log(web_stress / 1e6)
+        return ForwardPoint(float(web_stress), float(web_stress), 0.01 * web_stress, r, r, False)
+
+    monkeypatch.setattr(RollModel, "evaluate", evaluate)
+    case = _sentence_case("1.75 MPa")
+    d = diagnose(case, readings_from_arrays([0.05] * 3, [99.0, 100.0, 99.5]), verify=False)
+    assert d.status == ("saturated: at least",)
+    s = d.sentence()
+    T = 1e6 * math.exp((99.5 - 70) / 10)  # the mean reading 99.5
+    assert s.startswith(f"this roll reads as if wound at least at {T / 1e6:.3g} MPa (")
+    assert "(95 %: >= " in s  # no upper end
+    assert s.endswith(
+        "1 of 1 positions read at the scale's end (saturated): a bound there, not a value"
+    )

@@ -588,6 +588,11 @@ class Diagnosis:
         else:
             band = "unbounded"
         conf = f"{100 * self.confidence:.0f} %"
+        sat = [st for st in self.status if st.startswith("saturated")]
+        wound = "as if wound at"
+        if self.position.size == 1 and sat:
+            # a reading at the scale's end bounds the tension from one side only
+            wound = "as if wound at least at" if "least" in sat[0] else "as if wound at most at"
         tail = ""
         if self.position.size > 1:
             ok = np.isfinite(self.web_tension)
@@ -597,8 +602,13 @@ class Diagnosis:
                     f", from {setp(float(np.min(self.web_tension[ok])))} to "
                     f"{setp(float(np.max(self.web_tension[ok])))} {unit}"
                 )
+        if sat:
+            tail += (
+                f"; {len(sat)} of {self.position.size} positions read at the scale's end "
+                "(saturated): a bound there, not a value"
+            )
         return (
-            f"this roll reads as if wound at {parts[0]} ({', '.join(parts[1:])}), {vs} "
+            f"this roll reads {wound} {parts[0]} ({', '.join(parts[1:])}), {vs} "
             f"({conf}: {band}){tail}"
         ).replace(" ()", "")
 
