@@ -276,7 +276,7 @@ def result_columns(d: dict[str, Any]) -> dict[str, Any]:
 def _column_name(key: str, readout: str | None) -> str:
     head, _, last = key.rpartition(".")
     prefix = f"{head}." if head else ""
-    if last == "reading" and readout:
+    if last in ("reading", "reading_model") and readout:
         return f"{key} [{readout}]"
     if last in _SCALE_KEYS:
         return f"{key} [{_SCALE_KEYS[last]}]"
