@@ -28,9 +28,9 @@ File format (CSV, ``#`` starts a comment line, a header row first)::
 * **Passes**: a ``pass`` column numbers the passes of a long sheet; without it, the k-th reading
   at a position belongs to pass k. Repeated readings at one position give its scatter.
 
-Every problem (no header, unknown scale, a value that is not a finite number, a position
-outside the roll, an unreadable file) raises :class:`~woundroll.errors.InputError` whose
-message names the file and the line.
+Every problem (no header, unknown scale, a value that is not a finite number or lies off the
+instrument's scale (:func:`scale_limits`), a position outside the roll, an unreadable file)
+raises :class:`~woundroll.errors.InputError` whose message names the file and the line.
 """
 
 from __future__ import annotations
@@ -50,7 +50,14 @@ from woundroll.errors import InputError
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 
-__all__ = ["SCALES", "Readings", "read_readings", "readings_from_arrays"]
+__all__ = [
+    "SCALES",
+    "Readings",
+    "check_on_scale",
+    "read_readings",
+    "readings_from_arrays",
+    "scale_limits",
+]
 
 #: Scale (unit of a reading) -> instrument readout kind (woundroll.instruments.readout.READOUTS).
 SCALES: dict[str, str] = {"Rho": "rho", "R": "schmidt-r", "L": "parotester-l", "g": "g"}
@@ -68,6 +75,13 @@ _SCALE_ALIASES: dict[str, str] = {
     "g": "g",
     "peak_g": "g",
     "tapper_g": "g",
+}
+#: What each scale's instrument is called in an error message.
+_SCALE_INSTRUMENT: dict[str, str] = {
+    "Rho": "Rho-meter",
+    "R": "Schmidt hammer",
+    "L": "Parotester",
+    "g": "tapper",
 }
 _POSITION_NAMES = ("position", "pos", "x", "z", "cmd", "cmd_position")
 _LANE_NAMES = ("lane", "lane_number", "lane_no")
@@ -87,6 +101,39 @@ def _scale_of(text: str) -> str | None:
     if text.strip() in SCALES:
         return text.strip()
     return _SCALE_ALIASES.get(_key(text))
+
+
+def scale_limits(scale: str) -> tuple[float, float]:
+    """Lowest and highest value the instrument of ``scale`` can show (its dial or display).
+
+    The ranges are the instruments' own (:data:`woundroll.instruments.definitions.READING_RANGES`:
+    Rho-meter dial 0-100 Rho, Schmidt hammer rebound number R 10-100, Parotester L 0-1000);
+    a tapper's peak deceleration in g has no upper end but cannot be negative (it is a
+    magnitude). A measured value outside these limits is a typing or export error, never a
+    reading (docs/tester-files.md, "Values off the scale").
+    """
+    from woundroll.instruments.definitions import READING_RANGES
+
+    sc = _scale_of(scale)
+    if sc is None:
+        raise InputError(f"unknown scale {scale!r} (known: {', '.join(SCALES)})", "readings.scale")
+    rng = READING_RANGES.get(SCALES[sc])
+    return (0.0, math.inf) if rng is None else (float(rng[0]), float(rng[1]))
+
+
+def check_on_scale(value: float, scale: str, where: str, field: str = "readings") -> None:
+    """Raise :class:`InputError` naming ``where`` (file and line) and the value when
+    ``value`` lies outside the instrument's scale (:func:`scale_limits`)."""
+    lo, hi = scale_limits(scale)
+    if lo <= value <= hi:
+        return
+    sc = _scale_of(scale) or scale
+    span = f"{lo:g} to {hi:g} {sc}" if math.isfinite(hi) else f"{lo:g} {sc} or more"
+    raise InputError(
+        f"{where}: {value:g} {sc} is off the {_SCALE_INSTRUMENT[sc]}'s scale "
+        f"({span}); a typing or export error?",
+        field,
+    )
 
 
 @dataclass(frozen=True)
@@ -292,6 +339,10 @@ def readings_from_arrays(
         )
     if not (np.all(np.isfinite(x)) and np.all(np.isfinite(v))):
         raise InputError("positions and values must be finite numbers", "readings")
+    for i, val in enumerate(v):
+        check_on_scale(
+            float(val), sc, f"{source}, reading {i + 1}" if source else f"reading {i + 1}"
+        )
     if width is not None:
         _check_inside(x, width, lambda i: f"{source or 'readings'} reading {i + 1}")
     p = None if passes is None else np.asarray(passes, dtype=int).ravel()
@@ -527,6 +578,7 @@ def read_readings(
             if len(value_cols) > 1 and (j >= len(row) or row[j] == ""):
                 continue  # a wide sheet may leave a pass empty at a position
             v = _number(row, j, header, at, field)
+            check_on_scale(v, next(iter(scales)), f"{at}, column {header[j]!r}", field)
             xs.append(pos)
             vs.append(v)
             ps.append(pass_no if pass_no is not None else k + 1)

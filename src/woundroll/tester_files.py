@@ -48,7 +48,13 @@ from pathlib import Path
 from typing import Any
 
 from woundroll.errors import InputError
-from woundroll.readings import SCALES, Readings, read_readings, readings_from_arrays
+from woundroll.readings import (
+    SCALES,
+    Readings,
+    check_on_scale,
+    read_readings,
+    readings_from_arrays,
+)
 
 __all__ = [
     "FORMATS",
@@ -239,6 +245,7 @@ def read_tappi_sheet(
                 v = math.nan
             if not math.isfinite(v):
                 raise InputError(f"{where}: {header[j]} = {cell!r} is not a number", field)
+            check_on_scale(v, sc, f"{where}, {header[j]}", field)
             d["x"].append(x)
             d["v"].append(v)
             d["p"].append(p or d["n"][0])
@@ -387,6 +394,7 @@ def read_profile_export(
                 raise InputError(
                     f"{where}: {header[k]} = {cell!r} is not a number", field
                 ) from None
+            check_on_scale(v, sc, f"{where}, {header[k]}", field)
             xs.append(x)
             vs.append(v)
             ps.append(k)
