@@ -253,6 +253,9 @@ def _print_defects(defects) -> None:  # type: ignore[no-untyped-def]
     for name, risk, sentence in defects.summary():
         t.add_row(escape(name), escape(risk), escape(sentence))
     out.print(t)
+    note = defects.needs_note()
+    if note:
+        out.print(escape(note), highlight=False)
 
 
 def defects_cmd(
