@@ -38,7 +38,7 @@ from __future__ import annotations
 import csv
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -53,7 +53,9 @@ IntArray = NDArray[np.int64]
 __all__ = [
     "SCALES",
     "Readings",
+    "DISPLAY_UNITS",
     "check_on_scale",
+    "display_unit",
     "read_readings",
     "readings_from_arrays",
     "scale_limits",
@@ -163,6 +165,10 @@ class Readings:
         Lane width when the file gives lane numbers.
     source : str
         File name (or a label).
+    position_unit : str
+        Length unit the file wrote its positions in (``"in"``, ``"cm"``, ``"mm"``, ``"m"``;
+        ``"in"`` for a TAPPI sheet's 6 in lanes), for showing positions back in the user's
+        unit; ``""`` when unknown (arrays, lane numbers of a generic file).
     """
 
     position: FloatArray
@@ -176,6 +182,7 @@ class Readings:
     raw_line: IntArray
     lane_width: float | None = None
     source: str = ""
+    position_unit: str = ""
 
     # -- derived ---------------------------------------------------------------------
     @property
@@ -482,6 +489,7 @@ def read_readings(
         )
     where = f"{name} line {hline}"
     pos_col, pos_factor, is_lane = None, 1.0, False
+    written_unit = ""
     pass_col = None
     value_cols: list[int] = []
     scales: set[str] = set()
@@ -498,6 +506,7 @@ def read_readings(
                 is_lane = True
             else:
                 pos_factor = _length_scale(unit, where)
+                written_unit = display_unit(unit)
             pos_col = j
         elif base in _LANE_NAMES and pos_col is None:
             pos_col, is_lane = j, True
@@ -589,7 +598,7 @@ def read_readings(
     passes = np.asarray(ps, dtype=np.int64)
     # a long sheet without a pass column: the k-th reading at a position is pass k
     implicit = pass_col is None and len(value_cols) == 1
-    return _assemble(
+    r = _assemble(
         x_arr,
         np.asarray(vs),
         None if implicit else passes,
@@ -598,6 +607,18 @@ def read_readings(
         lane_width if is_lane else None,
         name,
     )
+    return replace(r, position_unit=written_unit)
+
+
+#: Length units positions are shown in, and their size [m].
+DISPLAY_UNITS: dict[str, float] = {"in": 0.0254, "cm": 0.01, "mm": 0.001, "m": 1.0}
+
+
+def display_unit(unit: str) -> str:
+    """``"in"``, ``"cm"``, ``"mm"`` or ``"m"`` for a spelling of one of them, else ``""``."""
+    u = unit.strip().lower()
+    u = {"inch": "in", "inches": "in", '"': "in"}.get(u, u)
+    return u if u in DISPLAY_UNITS else ""
 
 
 def _delimiter(text: str) -> str:
