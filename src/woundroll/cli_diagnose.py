@@ -150,9 +150,9 @@ def readings_cmd(
     )
     ids = " (" + _ids_text(shown) + ")" if shown else ""
     t = Table(
-        *cols,
-        f"mean [{r.scale}]",
-        f"SD [{r.scale}]",
+        *(escape(c) for c in cols),
+        escape(f"mean [{r.scale}]"),
+        escape(f"SD [{r.scale}]"),
         "count",
         title=escape(f"{r.source}{ids}: {r.passes} pass(es), scale {r.scale}"),
     )
@@ -177,7 +177,7 @@ def readings_cmd(
     )
     rows = check.fault_rows(u)
     if rows:
-        ft = Table(*rows[0].keys(), title="hard and soft bands")
+        ft = Table(*(escape(k) for k in rows[0]), title="hard and soft bands")
         for row in rows:
             ft.add_row(*(escape(v) for v in row.values()))
         out.print(ft)
@@ -280,7 +280,7 @@ def _readings_trend(  # type: ignore[no-untyped-def]
     if lots:
         t.add_column("lot", no_wrap=True)
     for name in (f"mean [{s}]", "CoV [%]", f"p2p [{s}]"):
-        t.add_column(name, justify="right")
+        t.add_column(escape(name), justify="right")
     t.add_column("band", no_wrap=True)
     t.add_column("hard/soft", justify="right")
     t.add_column("limits", no_wrap=True)
