@@ -494,7 +494,11 @@ class DefectReport:
         ax.set_xlabel("CMD position [in] (red: slack lane)")
         ax.set_ylabel("margin per lane")
         ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7, ncol=3)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=7, ncol=3)
+        else:  # no lane was diagnosed (every reading outside the forward curve)
+            ax.text(0.5, 0.5, "no lane with a diagnosed tension", transform=ax.transAxes,
+                    ha="center", va="center", fontsize=8, color="0.35")  # fmt: skip
 
     def plot(self, path: str | Path | None = None) -> Any:
         """Margins of every roll criterion (log scale, 1 and the watch line marked); with
