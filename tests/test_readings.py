@@ -252,3 +252,22 @@ def test_web_api_rejects_readings_off_the_scale():
     assert r.status_code in (400, 422), r.text
     text = r.text
     assert "line 2" in text and "-50 Rho" in text and "0 to 100 Rho" in text, text
+
+
+@pytest.mark.parametrize(
+    "cmd",
+    [
+        ["diagnose", "pet1-26.7N", "--readings", "FILE"],
+        ["report", "pet1-26.7N", "--readings", "FILE", "--out", "OUT"],
+        ["readings", "FILE", "--trend", "FILE"],
+    ],
+)
+def test_every_command_rejects_readings_off_the_scale(tmp_path, cmd):
+    # the issue: -50 and 5000 Rho were accepted; each reader names file, line and value
+    p = write(tmp_path, "position [in],reading [Rho]\n1,52\n2,5000\n")
+    args = [{"FILE": str(p), "OUT": str(tmp_path / "o")}.get(a, a) for a in cmd]
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code == 2, res.output
+    lines = [ln for ln in res.output.splitlines() if ln.strip()]
+    assert len(lines) == 1 and "r.csv line 3" in lines[0] and "5000 Rho is off" in lines[0]
+    assert not (tmp_path / "o").exists()

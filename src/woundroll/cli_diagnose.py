@@ -38,7 +38,7 @@ def readings_cmd(
             "lane numbers with --lane-width; several value columns or repeated positions are "
             "passes), a TAPPI T 834 sheet or a dense profile export (see --format). Several "
             "files (or a sheet of several rolls with --trend): the roll-to-roll trend.",
-            metavar="FILE...",
+            metavar="CSV_FILE",
         ),
     ],
     width: Annotated[
@@ -245,12 +245,12 @@ def _readings_trend(  # type: ignore[no-untyped-def]
     from woundroll.cli import out
     from woundroll.profile_check import TREND_MIN_ROLLS, check_profile, read_rolls, roll_trend
 
-    rolls = read_rolls(files, format=fmt, width=width, lane_width=lane_width, field="FILE")
+    rolls = read_rolls(files, format=fmt, width=width, lane_width=lane_width, field="CSV_FILE")
     checks = []
     for r, ids in rolls:
         if r.n_positions < 2:
             raise InputError(
-                f"{r.source}: a roll in a trend needs readings at 2 positions or more", "FILE"
+                f"{r.source}: a roll in a trend needs readings at 2 positions or more", "CSV_FILE"
             )
         checks.append(check_profile(r, band=frac, ids=ids))
     tr = roll_trend(checks)
