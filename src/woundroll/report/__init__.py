@@ -607,6 +607,14 @@ def summary_section(
         )
         lines.append(f"Measured profile: {check.verdict}.")
     h = result.hardness
+    if h is not None:
+        d = h.to_dict()
+        from woundroll.readings import SCALES
+
+        unit = {readout: sc for sc, readout in SCALES.items()}.get(d["readout"], "")
+        head.append(
+            {"label": "predicted reading", "value": f"{d['reading']:.1f} {unit}", "level": ""}
+        )
     if h is not None and readings is not None:
         try:
             rd = readings.to_dict()
