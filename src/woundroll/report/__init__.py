@@ -557,7 +557,11 @@ def trend_section(trend: Any) -> dict[str, Any]:
         f"{100 * cc.lcl:.2f} to {100 * cc.ucl:.2f} %."
     )
     if trend.provisional:
-        limits += f" Provisional: {len(trend.rolls)} rolls, limits settle after about 20."
+        from woundroll.profile_check import TREND_MIN_ROLLS
+
+        limits += (
+            f" Provisional: {len(trend.rolls)} rolls, limits settle after about {TREND_MIN_ROLLS}."
+        )
     return {
         "header": header,
         "rows": rows,
