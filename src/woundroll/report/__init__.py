@@ -693,16 +693,18 @@ def _warnings(result: RunResult) -> list[str]:
     return w
 
 
-def _check_of(readings: Any) -> Any:
-    """The profile check of measured readings (None for fewer than 2 positions, a zero mean
-    or an object that is not :class:`woundroll.readings.Readings`)."""
+def _check_of(readings: Any, ids: dict[str, Any] | None = None) -> Any:
+    """The profile check of measured readings, labelled with the report's ids (None for
+    fewer than 2 positions, a zero mean or an object that is not
+    :class:`woundroll.readings.Readings`)."""
     from woundroll.profile_check import check_profile
     from woundroll.readings import Readings
 
     if not isinstance(readings, Readings) or readings.n_positions < 2:
         return None
+    plain = {k: (v if isinstance(v, str) else str(v[0])) for k, v in (ids or {}).items() if v}
     try:
-        return check_profile(readings)
+        return check_profile(readings, ids=plain)
     except InputError:
         return None
 
@@ -762,7 +764,7 @@ def build_report(
         if part is None or not hasattr(part, "plot"):
             continue
         sections.append({"title": sec_title, "figures": _figures(part, captions[name])})
-    check = profile_check if profile_check is not None else _check_of(readings)
+    check = profile_check if profile_check is not None else _check_of(readings, ids)
     id_rows = []
     for key, label in ID_FIELDS.items():
         v = (ids or {}).get(key)
