@@ -616,8 +616,16 @@ def summary_section(
         from woundroll.readings import SCALES
 
         unit = {readout: sc for sc, readout in SCALES.items()}.get(d["readout"], "")
-        head.append(
-            {"label": "predicted reading", "value": f"{d['reading']:.1f} {unit}", "level": ""}
+        value = f"{d['reading']:.1f} {unit}"
+        if d.get("saturated"):
+            value += f" (saturated: the model reads {d['reading_model']:.1f})"
+        head.append({"label": "predicted reading", "value": value, "level": ""})
+        model = result.contact.model if result.contact is not None else "tester.roll_spring"
+        lines.append(
+            f"Predicted reading read through the {model!r} roll model; the "
+            "head calibrated on its block in the "
+            f"{d['head_calibration']['calibrated_in'] or 'uncalibrated'!r} model "
+            f"(head radius {d['head_calibration']['head_radius_m'] * 1e3:.3f} mm)."
         )
     if h is not None and readings is not None:
         try:
@@ -658,10 +666,14 @@ def _assumptions(result: RunResult) -> list[str]:
         "Nip in the 1D model acts only through the wound-on tension WOT = T_w + mu N / h.",
     ]
     if result.contact is not None:
+        from woundroll.contact.models import ROLL_MODELS
+
+        entry = ROLL_MODELS.get(result.contact.model)
+        title = entry.title if entry is not None else result.contact.model
         out.append(
-            "Contact (2D): plane strain in the CMD, frictionless rigid cylindrical head, "
+            f"Roll model {result.contact.model!r} ({title}): frictionless rigid head, "
             "quasi-static F(d), no interlayer slip in the solution (the slip factor {23} "
-            "only flags it)."
+            "only flags it); docs/trust.md says how far to trust it."
         )
     if result.hardness is not None:
         out.append(
