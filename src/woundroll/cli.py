@@ -8,6 +8,7 @@ and exit with status 2; a solver that does not converge exits with status 1.
 
 from __future__ import annotations
 
+import json
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
@@ -217,8 +218,29 @@ def _with_progress(job):  # type: ignore[no-untyped-def]
         return job(progress)
 
 
+def _inputs(case) -> None:  # type: ignore[no-untyped-def]
+    """The inputs the run used as given, with their source (defaults counted, listed in
+    result.json)."""
+    t = Table("input", "value", "source", title="inputs", show_header=True)
+    defaults = 0
+    for v in case.inputs:
+        if v.source == "default":
+            defaults += 1
+            continue
+        given = v.given if isinstance(v.given, str) else json.dumps(v.given)
+        t.add_row(escape(v.key), escape(given), escape(v.source))
+    out.print(t)
+    if defaults:
+        out.print(
+            f"{defaults} more keys at their defaults (docs/case-files.md; listed in "
+            "result.json 'inputs')",
+            highlight=False,
+        )
+
+
 def _summary(result) -> None:  # type: ignore[no-untyped-def]
-    t = Table(title=result.case.title or "result", show_header=True)
+    _inputs(result.case)
+    t = Table(title=escape(result.case.display_title or "result"), show_header=True)
     t.add_column("quantity")
     t.add_column("value", justify="right")
     for name, value in result_summary(result):
