@@ -856,7 +856,8 @@ def case_from_dict(
         r_out = case.winding.final_radius(web, core)
         schedule = case.winding.schedule(web)
         options = WindingOptions.from_dict(case.winding.options, "winding.options")
-        warnings += limits.check_built(web, core, r_out, schedule, options)
+        size = "winding.length" if case.winding.length is not None else "winding.outer_radius"
+        warnings += limits.check_built(web, core, r_out, schedule, options, size)
         _check_options(case)
         slow = limits.contact_time_warning(case, web)
         if slow:

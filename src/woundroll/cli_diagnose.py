@@ -243,7 +243,7 @@ def diagnose_cmd(
         for note in fit.notes:
             out.print(f"note: {escape(note)}", highlight=False)
     for p in written:
-        out.print(f"wrote {p}")
+        out.print(f"wrote {escape(str(p))}")
 
 
 def _print_defects(defects) -> None:  # type: ignore[no-untyped-def]
@@ -484,7 +484,7 @@ def design_cmd(
         out.print(f"note: {escape(note)}", highlight=False)
     out.print("case file lines:\n" + escape(d.case_snippet()), highlight=False)
     if out_dir is not None:
-        out.print(f"wrote {out_dir / 'design.json'}\nwrote {out_dir / 'design.png'}")
+        out.print(escape(f"wrote {out_dir / 'design.json'}\nwrote {out_dir / 'design.png'}"))
 
 
 def register(app: typer.Typer) -> None:
