@@ -456,7 +456,8 @@ class DefectReport:
         ax.set_xlabel("CMD position [in] (red: slack lane)")
         ax.set_ylabel("margin per lane")
         ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7, ncol=3)
+        if ax.get_legend_handles_labels()[0]:  # no finite margin: no legend (and no warning)
+            ax.legend(fontsize=7, ncol=3)
 
     def plot(self, path: str | Path | None = None) -> Any:
         """Margins of every roll criterion (log scale, 1 and the watch line marked); with
