@@ -296,6 +296,10 @@ def test_set_provenance_in_python():
     assert c.source_of("winding.tension") == "case file"
     assert c.source_of("winding.nip_load") == "default"
     assert c.display_title.endswith("(web.radial_modulus.K2 = 80 by --set)")
+    # a flag that sets a key names itself (run --no-update sets contact.no_update)
+    flagged = woundroll.load_case("pet1-26.7N", [("contact.no_update=true", "--no-update")])
+    assert flagged.source_of("contact.no_update") == "--no-update" and flagged.contact.no_update
+    assert flagged.display_title.endswith("(contact.no_update = true by --no-update)")
     plain = woundroll.load_case("pet1-26.7N")
     assert plain.display_title == plain.title and plain.overrides == ()
     # another front end names itself as the source (the web page: "web form")

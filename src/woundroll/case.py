@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import tomllib
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property, partial
 from importlib import resources
@@ -766,7 +767,7 @@ def _defaults(prefix: str, spec: BaseModel, given: dict[str, Any]) -> list[Input
 
 
 def _sources_of(
-    data: dict[str, Any], overrides: list[tuple[str, Any]], override_source: str, file_source: str
+    data: dict[str, Any], overrides: list[tuple[str, Any, str]], file_source: str
 ) -> tuple[dict[str, Any], dict[str, str]]:
     """The given leaves of a case (``data`` with the overrides already set, the web preset
     merged in) and the source of each."""
@@ -774,9 +775,9 @@ def _sources_of(
     sources = {}
     for key in leaves:
         src = file_source
-        for k, _ in overrides:
+        for k, _, source in overrides:
             if key == k or key.startswith(k + "."):
-                src = override_source
+                src = source
         sources[key] = src
     web = data.get("web")
     if isinstance(web, dict) and isinstance(web.get("preset"), str):
@@ -826,25 +827,28 @@ def case_from_dict(
     data: dict[str, Any],
     base_dir: Path | None = None,
     *,
-    overrides: list[tuple[str, Any]] | None = None,
+    overrides: Sequence[tuple[str, Any] | tuple[str, Any, str]] | None = None,
     override_source: str = FROM_SET,
     source: str = FROM_CASE_FILE,
 ) -> Case:
     """Validate a case given as nested dicts (TOML structure) and return a :class:`Case`.
 
     ``overrides``: ``(dotted key, value)`` pairs set over ``data`` (not modified), each
-    recorded with ``override_source`` (``"--set"``, ``"web form"``); the values of ``data``
-    are recorded with ``source`` (:attr:`Case.inputs`, :attr:`Case.display_title`).
+    recorded with ``override_source`` (``"--set"``, ``"web form"``), or ``(key, value,
+    source)`` with its own; the values of ``data`` are recorded with ``source``
+    (:attr:`Case.inputs`, :attr:`Case.display_title`).
     """
     from woundroll import limits
     from woundroll.winding.hakiel import WindingOptions
 
     if not isinstance(data, dict):
         raise InputError("a case must be a table of tables ([web], [core], [winding])", "CASE")
-    given = list(overrides or [])
+    # (key, value, source): an override may name its own source (a CLI flag such as
+    # --no-update that sets a key), else it is override_source's
+    given = [(o[0], o[1], o[2] if len(o) > 2 else override_source) for o in overrides or []]
     if given:
         data = _deepcopy(data)
-        for key, value in given:
+        for key, value, _ in given:
             set_dotted(data, key, value)
     _BASE_DIR.value = base_dir
     try:
@@ -867,8 +871,8 @@ def case_from_dict(
     finally:
         _BASE_DIR.value = None
     case._warnings = tuple(warnings)
-    case._given, case._sources = _sources_of(data, given, override_source, source)
-    case._overrides = tuple((k, v, override_source) for k, v in given)
+    case._given, case._sources = _sources_of(data, given, source)
+    case._overrides = tuple(given)
     return case
 
 
@@ -991,12 +995,13 @@ def parse_override(text: str) -> tuple[str, Any]:
 
 def load_case(
     source: str | Path | dict[str, Any],
-    overrides: list[str] | None = None,
+    overrides: Sequence[str | tuple[str, str]] | None = None,
     *,
     override_source: str = FROM_SET,
 ) -> Case:
     """Read a case from a TOML file, a bundled case name, or a dict, with ``--set`` overrides
-    (``"dotted.key=value"``; recorded as coming from ``override_source``).
+    (``"dotted.key=value"``, recorded as coming from ``override_source``; or
+    ``("dotted.key=value", source)`` with a source of its own).
 
     Raises
     ------
@@ -1010,7 +1015,12 @@ def load_case(
         path = resolve_case_path(source)
         data = _read_toml(path)
         base_dir = path.parent
-    pairs = [parse_override(text) for text in overrides or []]
+    pairs = [
+        (*parse_override(o), override_source)
+        if isinstance(o, str)
+        else (*parse_override(o[0]), o[1])
+        for o in overrides or []
+    ]
     return case_from_dict(data, base_dir, overrides=pairs, override_source=override_source)
 
 

@@ -155,7 +155,8 @@ def run(
         try:
             if report and out_dir is None:
                 raise InputError("the report goes into the --out directory: give --out", "--report")
-            c = load_case(case, [*(set_ or []), *(["contact.no_update=true"] if no_update else [])])
+            flags = [("contact.no_update=true", "--no-update")] if no_update else []
+            c = load_case(case, [*(set_ or []), *flags])
             if out_dir is not None:
                 from woundroll._output import check_out_dir
 

@@ -177,7 +177,7 @@ def diagnose_cmd(
 
         defects = defect_report(c, d)
         payload = {
-            "case": {"title": c.title},
+            "case": {"title": c.display_title},
             "readings": d.readings.to_dict(),
             "diagnosis": {**d.to_dict(), "defects": defects.to_dict()},
         }
@@ -214,7 +214,8 @@ def diagnose_cmd(
         f"P at {d.pressure_depth * 1e3:.1f} mm [kPa]",
         "status",
         title=escape(
-            f"{c.title or case}: diagnosis ({100 * d.confidence:.0f} % intervals in brackets)"
+            f"{c.display_title or case}: diagnosis "
+            f"({100 * d.confidence:.0f} % intervals in brackets)"
         ),
     )
     for row in d.summary():
@@ -476,7 +477,7 @@ def design_cmd(
     if as_json:
         sys.stdout.write(strict_json({"design": d.to_dict()}) + "\n")
         return
-    tb = Table("quantity", "value", title=escape(f"{c.title or case}: setpoint design"))
+    tb = Table("quantity", "value", title=escape(f"{c.display_title or case}: setpoint design"))
     for name, value in d.summary():
         tb.add_row(escape(name), escape(value))
     out.print(tb)
