@@ -388,7 +388,7 @@ def diagnose_cmd(
 
         defects = defect_report(c, d)
         payload = {
-            "case": {"title": c.title},
+            "case": {"title": c.display_title},
             "readings": d.readings.to_dict(),
             "diagnosis": {**d.to_dict(), "defects": defects.to_dict()},
         }
@@ -425,7 +425,8 @@ def diagnose_cmd(
         f"P at {d.pressure_depth * 1e3:.1f} mm [kPa]",
         "status",
         title=escape(
-            f"{c.title or case}: diagnosis ({100 * d.confidence:.0f} % intervals in brackets)"
+            f"{c.display_title or case}: diagnosis "
+            f"({100 * d.confidence:.0f} % intervals in brackets)"
         ),
     )
     for row in d.summary():
@@ -454,7 +455,7 @@ def diagnose_cmd(
         for note in fit.notes:
             out.print(f"note: {escape(note)}", highlight=False)
     for p in written:
-        out.print(f"wrote {p}")
+        out.print(f"wrote {escape(str(p))}")
 
 
 def _print_defects(defects) -> None:  # type: ignore[no-untyped-def]
@@ -690,7 +691,7 @@ def design_cmd(
     if as_json:
         sys.stdout.write(strict_json({"design": d.to_dict()}) + "\n")
         return
-    tb = Table("quantity", "value", title=escape(f"{c.title or case}: setpoint design"))
+    tb = Table("quantity", "value", title=escape(f"{c.display_title or case}: setpoint design"))
     for name, value in d.summary():
         tb.add_row(escape(name), escape(value))
     out.print(tb)
@@ -698,7 +699,7 @@ def design_cmd(
         out.print(f"note: {escape(note)}", highlight=False)
     out.print("case file lines:\n" + escape(d.case_snippet()), highlight=False)
     if out_dir is not None:
-        out.print(f"wrote {out_dir / 'design.json'}\nwrote {out_dir / 'design.png'}")
+        out.print(escape(f"wrote {out_dir / 'design.json'}\nwrote {out_dir / 'design.png'}"))
 
 
 def register(app: typer.Typer) -> None:

@@ -130,6 +130,8 @@ def report_cmd(
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar.")] = False,
 ) -> None:
     """Run a case and write one self-contained HTML report (prints on A4 and Letter)."""
+    from rich.markup import escape
+
     from woundroll.case import load_case
     from woundroll.cli import _fail, _with_progress, out
     from woundroll.pipeline import run as run_case
@@ -187,7 +189,7 @@ def report_cmd(
     except ConvergenceError as exc:
         _fail(exc, 1)
     if not quiet:
-        out.print(f"wrote {path}")
+        out.print(f"wrote {escape(str(path))}")
 
 
 def _trend(files: list[str], r: Any, ids: dict[str, str], case: Any, lane_width: Any) -> Any:

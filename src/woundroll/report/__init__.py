@@ -146,7 +146,7 @@ def input_sections(case: Case) -> list[tuple[str, list[Row]]]:
     ``case file`` when the case sets it, ``default`` when neither does. The instrument's
     values carry the preset's own ``[sources]`` entry per field.
     """
-    from woundroll.case import WebSpec
+    from woundroll.case import FROM_SET, FROM_WEB_FORM, WebSpec
     from woundroll.materials.presets import list_materials
 
     sections: list[tuple[str, list[Row]]] = []
@@ -235,7 +235,17 @@ def input_sections(case: Case) -> list[tuple[str, list[Row]]]:
         rows.append(_row("contact.depth_max", c.depth_max, "length", "case file"))
     if setup is not None:
         sections.append(("Contact model", rows))
+    # where each value came from, as the case recorded it: a value set over the case (--set,
+    # the web form) says so, and "case file or default" becomes the one that applies
+    for _, rows in sections:
+        for i, row in enumerate(rows):
+            src = case.source_of(row.key)
+            if src in (FROM_SET, FROM_WEB_FORM) or row.source in ("case file", _EITHER):
+                rows[i] = Row(row.key, row.value, row.unit, src)
     return sections
+
+
+_EITHER = "case file or default"
 
 
 def _law_text(law: Any) -> str:
@@ -792,7 +802,7 @@ def build_report(
     )
     when = generated or datetime.now(UTC)
     return env.get_template("report.html").render(
-        title=title or case.title or "woundroll run",
+        title=title or case.display_title or "woundroll run",
         version=__version__,
         case_hash=case_hash(case),
         generated=when.strftime("%Y-%m-%d %H:%M UTC"),
