@@ -7,6 +7,7 @@ Each kind is a case file written to a temporary directory and run through the CL
 """
 
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -121,7 +122,7 @@ KINDS: dict[str, tuple[str | bytes, str]] = {
     ),
     "wound length 1e7 m": (
         BASE.replace('outer_radius = "5 cm"\n', 'length = "1e7 m"\n'),
-        "winding.outer_radius",
+        "winding.length",  # the key the user wrote, not the radius it makes (issue 22.5)
     ),
     "1e300 layers": (
         BASE.replace('"12 um"', '"1e-300 m"').replace('"5 cm"', "1e300"),
@@ -236,3 +237,76 @@ def test_usage_errors_are_one_line(args, name):
     assert res.exit_code == 2, res.output
     assert len(lines) == 1 and lines[0].startswith("error: ") and name in lines[0], res.output
     assert "--help" in lines[0]
+
+
+# issue 22.5: messages show the user's text as written, numbers without a false sign, the
+# field the user wrote, and a failing case's error alone
+
+
+def test_user_text_is_not_markup_or_emoji(tmp_path):
+    # ":x:" is an emoji code and "[bold]" rich markup: both stay text in the one-line error
+    f = tmp_path / "[bold]stack.csv"
+    f.write_text("root:x:0:0:[red]root,b\n1,2\n", encoding="utf-8")
+    res = runner.invoke(app, ["fit-stack", str(f)])
+    assert res.exit_code == 2
+    lines = res.output.strip().splitlines()
+    assert len(lines) == 1, res.output
+    assert "root:x:0:0:[red]root" in lines[0] and "[bold]stack.csv" in lines[0]
+    assert "\u274c" not in res.output  # the emoji rich makes of ":x:"
+
+
+def test_fit_stack_passwd_like_file_one_line(tmp_path):
+    f = tmp_path / "passwd"
+    f.write_text("root:x:0:0:root:/root:/bin/bash\ndaemon:x:1:1::/:/bin/false\n")
+    res = runner.invoke(app, ["fit-stack", str(f)])
+    assert res.exit_code == 2 and res.output.count("\n") == 1, res.output
+    assert res.output.startswith("error: CSV_FILE: passwd:") and ":x:" in res.output
+
+
+def test_zero_tension_prints_no_negative_zero(tmp_path):
+    case = tmp_path / "zero.toml"
+    case.write_text(BASE.replace('"1 pli"', '"0 N"'), encoding="utf-8")
+    res = runner.invoke(app, ["run", str(case)])
+    assert res.exit_code == 0, res.output
+    # no tension: no pressure; "-0.0" would claim a (rounded) tensile radial stress
+    assert re.search(r"core pressure\s*│\s*0\.0 kPa", res.output), res.output
+    assert "-0.0" not in res.output
+
+
+def test_num_drops_the_sign_of_a_rounded_zero():
+    from woundroll.cli import _num
+
+    assert _num(-1e-12, ".1f") == "0.0"
+    assert _num(-0.0, ".3g") == "0"
+    assert _num(-0.06, ".1f") == "-0.1"  # a real negative value keeps its sign
+    assert _num(-2e-7, ".1e") == "-2.0e-07"
+    assert _num(-0.04, "+.1f") == "0.0"
+
+
+def test_failing_case_prints_its_error_alone(tmp_path, monkeypatch):
+    # a case with a plausibility warning (tension far below the usual range) whose run fails:
+    # the error alone, not after the unrelated warning
+    from woundroll.errors import InputError
+
+    def fails(case, progress=None):
+        raise InputError("the solver met something it cannot handle", "contact.options")
+
+    monkeypatch.setattr("woundroll.pipeline.run", fails)
+    case = tmp_path / "t.toml"
+    case.write_text(BASE.replace('"1 pli"', '"0.001 N"'), encoding="utf-8")
+    from woundroll.case import load_case
+
+    assert load_case(case).warnings  # the premise: the case warns
+    res = runner.invoke(app, ["run", str(case), "-q"])
+    assert res.exit_code == 2
+    assert res.output.strip().splitlines() == [
+        "error: contact.options: the solver met something it cannot handle"
+    ]
+
+
+def test_warnings_follow_a_run_that_succeeds(tmp_path):
+    case = tmp_path / "t.toml"
+    case.write_text(BASE.replace('"1 pli"', '"0.001 N"'), encoding="utf-8")
+    res = runner.invoke(app, ["run", str(case), "-q"])
+    assert res.exit_code == 0
+    assert res.output.startswith("warning: winding.tension:"), res.output

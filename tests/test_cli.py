@@ -1,6 +1,7 @@
 """The command line: one-line errors naming the field with exit status 2, JSON output."""
 
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -181,3 +182,132 @@ def test_help_keeps_bracketed_units_and_sections():
     ):
         res = runner.invoke(app, cmd, env={"COLUMNS": "200"})
         assert res.exit_code == 0 and word in res.output, (cmd, res.output)
+
+
+# issue 22.2: a value set over the case is reported as set, with its source; nothing claims the
+# case file's value. A roll spring given in [tester] skips the contact solve (a run is cheap).
+PROVENANCE_CASE = """title = "PET1 wound at 26.7 N"
+[web]
+preset = "PET1"
+[core]
+outer_radius = "4.45 cm"
+rigid = true
+[winding]
+outer_radius = "6 cm"
+tension = "26.7 N"
+[tester]
+instrument = "rho-meter"
+roll_spring = { alpha = "2.6e8 N/m^2", beta = "1.05e5 N/m" }
+"""
+
+
+def _inputs_by_key(data):
+    return {v["key"]: v for v in data["case"]["inputs"]}
+
+
+def test_run_set_shows_the_value_used_and_its_source(tmp_path):
+    import woundroll
+
+    case = tmp_path / "pet1.toml"
+    case.write_text(PROVENANCE_CASE, encoding="utf-8")
+    res = runner.invoke(
+        app,
+        ["run", str(case), "--set", 'winding.tension="40 N"', "--out", str(tmp_path / "o")]
+        + ["--report"],
+    )
+    assert res.exit_code == 0, res.output
+    # the printed inputs: the value used, from --set; the case file's 26.7 N is not listed
+    assert re.search(r"winding\.tension\s*│\s*40 N\s*│\s*--set", res.output), res.output
+    assert re.search(r"core\.outer_radius\s*│\s*4\.45 cm\s*│\s*case file", res.output)
+    assert re.search(r"web\.thickness\s*│.*│\s*preset PET1", res.output)
+    assert "26.7 N\n" not in res.output.replace(" ", "")
+    data = json.loads((tmp_path / "o" / "result.json").read_text(encoding="utf-8"))
+    assert data["case"]["title"] == "PET1 wound at 26.7 N (winding.tension = 40 N by --set)"
+    assert data["case"]["case_title"] == "PET1 wound at 26.7 N"
+    assert data["case"]["overrides"] == [
+        {"key": "winding.tension", "given": "40 N", "source": "--set"}
+    ]
+    inputs = _inputs_by_key(data)
+    assert inputs["winding.tension"] == {
+        "key": "winding.tension",
+        "value": 40.0,  # "40 N" in SI: exact
+        "unit": "N",
+        "given": "40 N",
+        "source": "--set",
+    }
+    assert inputs["core.outer_radius"]["source"] == "case file"
+    assert inputs["core.outer_radius"]["value"] == pytest.approx(0.0445, rel=1e-12)  # 4.45 cm
+    assert inputs["web.thickness"]["source"] == "preset PET1"
+    assert inputs["winding.nip_load"] == {
+        "key": "winding.nip_load",
+        "value": 0.0,
+        "unit": "N/m",
+        "given": None,
+        "source": "default",
+    }
+    # the numbers are those of the overridden value: the same as a case file saying 40 N
+    direct = woundroll.run(woundroll.load_case(_toml_dict(PROVENANCE_CASE, "40 N")))
+    assert data["winding"]["core_pressure_Pa"] == direct.winding.core_pressure
+    html = (tmp_path / "o" / "report.html").read_text(encoding="utf-8")
+    assert "<h1>PET1 wound at 26.7 N (winding.tension = 40 N by --set)</h1>" in html
+
+
+def _toml_dict(text, tension):
+    import tomllib
+
+    data = tomllib.loads(text)
+    data["winding"]["tension"] = tension
+    return data
+
+
+def test_report_set_shows_the_value_used_and_its_source(tmp_path):
+    case = tmp_path / "pet1.toml"
+    case.write_text(PROVENANCE_CASE, encoding="utf-8")
+    res = runner.invoke(
+        app,
+        ["report", str(case), "--set", "winding.tension=40 N", "--set", "winding.friction=0.2"]
+        + ["--out", str(tmp_path), "--quiet"],
+    )
+    assert res.exit_code == 0, res.output
+    html = (tmp_path / "report.html").read_text(encoding="utf-8")
+    title = re.search(r"<h1>(.*?)</h1>", html).group(1)
+    assert title == (
+        "PET1 wound at 26.7 N (winding.tension = 40 N, winding.friction = 0.2 by --set)"
+    )
+    # the input rows: key, value, unit, source cells
+    cells = r'<td><code>([a-z_.]+)</code></td><td class="num">([^<]*)</td><td>([^<]*)</td>'
+    rows = {
+        m.group(1): m.groups()[1:]
+        for m in re.finditer(cells + r'<td class="src">([^<]*)</td>', html)
+    }
+    assert rows["winding.tension"] == ("40", "N", "--set")
+    assert rows["winding.friction"][2] == "--set"
+    assert rows["core.outer_radius"][2] == "case file"
+    assert rows["winding.nip_load"][2] == "default"
+
+
+def test_set_provenance_in_python():
+    import woundroll
+
+    c = woundroll.load_case("pet1-26.7N", ["web.radial_modulus.K2=80"])
+    assert c.source_of("web.radial_modulus.K2") == "--set"
+    assert c.source_of("web.radial_modulus") == "--set"  # a table with a value set inside
+    assert c.source_of("web.radial_modulus.K1") == "preset PET1"
+    assert c.source_of("winding.tension") == "case file"
+    assert c.source_of("winding.nip_load") == "default"
+    assert c.display_title.endswith("(web.radial_modulus.K2 = 80 by --set)")
+    # a flag that sets a key names itself (run --no-update sets contact.no_update)
+    flagged = woundroll.load_case("pet1-26.7N", [("contact.no_update=true", "--no-update")])
+    assert flagged.source_of("contact.no_update") == "--no-update" and flagged.contact.no_update
+    assert flagged.display_title.endswith("(contact.no_update = true by --no-update)")
+    plain = woundroll.load_case("pet1-26.7N")
+    assert plain.display_title == plain.title and plain.overrides == ()
+    # another front end names itself as the source (the web page: "web form")
+    from woundroll.case import FROM_WEB_FORM, case_from_dict
+
+    data = {**_toml_dict(PROVENANCE_CASE, "26.7 N")}
+    over = [("winding.tension", "2 pli")]
+    c = case_from_dict(data, overrides=over, override_source=FROM_WEB_FORM)
+    assert c.source_of("winding.tension") == "web form"
+    assert c.winding.tension == ("force_per_length", pytest.approx(350.2536704929527, rel=1e-12))
+    assert data["winding"]["tension"] == "26.7 N"  # the caller's table is left alone

@@ -66,21 +66,76 @@ def test_torque_and_axial_slip_by_hand(roll):
     assert c10["torque slip"].margin == pytest.approx(c["torque slip"].margin / 10, rel=1e-12)
 
 
-def test_negative_hoop_stress_is_watch_and_margin_uses_the_layer_mean(roll):
+def test_negative_hoop_stress_is_watch_by_rule_and_buckling_has_the_margin(roll):
     case, web, core, w = roll
-    c = by_name(assess_roll(w, web, core, DefectLimits()))["starring"]
+    c = by_name(assess_roll(w, web, core, DefectLimits()))
+    star, buck = c["starring"], c["buckling"]
     rm, st = w.layer_mean_hoop_stress()
-    assert st.min() < 0 and c.demand == pytest.approx(-st.min())
-    assert c.risk == "watch" and c.margin > WATCH_MARGIN  # far from the wrinkling estimate
+    assert st.min() < 0 and star.demand == pytest.approx(-st.min())
+    # the rule has no margin (nothing to draw against the watch line); the estimate's risk
+    # follows its margin: far above the watch line is "low" (issue 22, item 10)
+    assert star.risk == "watch" and star.margin is None
+    assert buck.margin > WATCH_MARGIN and buck.risk == "low"
+    assert buck.demand == star.demand and buck.where_m == star.where_m
     # the capacity is the wrinkling estimate with E_r and G = 2 E_r at the most compressed layer
-    assert c.capacity == pytest.approx(
+    assert buck.capacity == pytest.approx(
         buckling_stress(
             web.E_theta,
-            np.interp(c.where_m, w.radius, w.E_r),
-            2 * np.interp(c.where_m, w.radius, w.E_r),
+            np.interp(buck.where_m, w.radius, w.E_r),
+            2 * np.interp(buck.where_m, w.radius, w.E_r),
         ),
         rel=1e-12,
     )
+    assert buck.margin == pytest.approx(buck.capacity / buck.demand, rel=1e-12)
+
+
+@pytest.mark.parametrize("case_name", ["pet1-26.7N", "pet2-80N", "pet3-2.3MPa"])
+def test_every_risk_agrees_with_its_margin(case_name):
+    # a criterion with a margin is high below 1, watch below WATCH_MARGIN, low above: the
+    # bar's colour in the plot and the table's word never disagree with where it is drawn
+    rep = defect_report(load_case(case_name, ["defects.core_strength='150 kPa'"]))
+    for c in rep.roll:
+        if c.margin is None:
+            assert c.risk in ("watch", "low", "n/a"), c
+            continue
+        want = "high" if c.margin < 1 else "watch" if c.margin < WATCH_MARGIN else "low"
+        assert c.risk == want, (c.name, c.margin, c.risk)
+
+
+def test_unchecked_criteria_name_their_key_once(tmp_path):
+    rep = defect_report(load_case("pet1-26.7N", ["defects.core_strength='150 kPa'"]))
+    assert rep.unchecked == [
+        ("telescoping", "defects.axial_acceleration_g"),
+        ("torque slip", "defects.torque"),
+        ("blocking", "defects.blocking_pressure"),
+    ]
+    rows = {name: sentence for name, _, sentence in rep.summary()}
+    for name, key in rep.unchecked:
+        assert key in rows[name]
+    assert rep.to_dict()["unchecked"][0] == {
+        "name": "telescoping",
+        "needs": "defects.axial_acceleration_g",
+    }
+    res = CliRunner().invoke(app, ["defects", "pet1-26.7N"], terminal_width=200)
+    assert res.exit_code == 0, res.output
+    out = res.output
+    # each key once (its row), the how-to once (the note)
+    for _, key in rep.unchecked:
+        assert out.count(key) == 1, (key, out)
+    assert out.count("--set KEY=VALUE") == 1
+    # all limits given: no note
+    full = defect_report(
+        load_case(
+            "pet1-26.7N",
+            [
+                "defects.core_strength='150 kPa'",
+                "defects.blocking_pressure='1 MPa'",
+                "defects.torque='10 N m'",
+                "defects.axial_acceleration_g=1",
+            ],
+        )
+    )
+    assert full.unchecked == [] and full.needs_note() == ""
 
 
 def test_slack_roll():
@@ -125,6 +180,9 @@ def test_lanes_flag_the_slack_lane():
     # 0.9 / 1.75 = 0.51 of the median < 0.7
     assert [ln["slack_lane"] for ln in rep.lanes] == [False, False, True]
     assert rep.lanes[2]["wot_over_median"] == pytest.approx(0.9 / 1.75)
+    # criteria without a limit are the roll's, said once there, not again per lane
+    assert all(c["needs"] is None for ln in rep.lanes for c in ln["criteria"])
+    assert {c["name"] for c in rep.lanes[0]["criteria"]} == {"starring", "buckling", "slack"}
     assert any(row[0] == "slack lanes" and "4.7 in" in row[2] for row in rep.summary())
     import matplotlib.pyplot as plt
 

@@ -185,3 +185,89 @@ def test_spreadsheet_exports_semicolon_or_tab_and_decimal_comma(tmp_path, sep):
     bad = write(tmp_path, f"position [cm]{sep}rho\n5{sep}52,x\n", "bad.csv")
     with pytest.raises(InputError, match="bad.csv line 2"):
         read_readings(bad)
+
+
+# -- values off the instrument's scale (issue 22, item 3) ---------------------------------
+@pytest.mark.parametrize(
+    "header, value, span",
+    [
+        ("reading [Rho]", "-50", "0 to 100 Rho"),
+        ("reading [Rho]", "5000", "0 to 100 Rho"),
+        ("reading [Rho]", "100.5", "0 to 100 Rho"),
+        ("R", "9.5", "10 to 100 R"),
+        ("parotester_l", "1200", "0 to 1000 L"),
+        ("g", "-3", "0 g or more"),
+    ],
+)
+def test_values_off_the_scale_name_file_line_and_value(tmp_path, header, value, span):
+    good = {"reading [Rho]": "50", "R": "40", "parotester_l": "600", "g": "30"}[header]
+    p = write(tmp_path, f"# roll 7\nposition [in],{header}\n1,{good}\n2,{value}\n")
+    with pytest.raises(InputError) as e:
+        read_readings(p)
+    msg = e.value.message
+    assert msg.startswith("r.csv line 4, column") and f"{value} " in msg and span in msg, msg
+
+
+def test_values_on_the_scale_ends_are_readings(tmp_path):
+    # the ends of the dial are values the instrument can show: 0 and 100 Rho, 10 R
+    r = read_readings(write(tmp_path, "position [in],reading [Rho]\n1,0\n2,100\n"))
+    assert list(r.mean) == [0.0, 100.0]
+    r = read_readings(write(tmp_path, "position [in],R\n1,10\n", "s.csv"))
+    assert r.mean[0] == 10.0
+
+
+def test_from_arrays_rejects_values_off_the_scale():
+    with pytest.raises(InputError, match=r"roll 9, reading 2: 5000 Rho is off"):
+        readings_from_arrays([0.01, 0.02], [50.0, 5000.0], source="roll 9")
+
+
+def test_cli_readings_off_scale_is_one_line_exit_2(tmp_path):
+    p = write(tmp_path, "position [in],reading [Rho]\n1,-50\n2,5000\n")
+    res = CliRunner().invoke(app, ["readings", str(p)])
+    assert res.exit_code == 2
+    lines = res.output.strip().splitlines()
+    assert len(lines) == 1 and "r.csv line 2" in lines[0] and "-50 Rho" in lines[0], res.output
+    assert "Traceback" not in res.output
+
+
+def test_web_api_rejects_readings_off_the_scale():
+    pytest.importorskip("fastapi")
+    pytest.importorskip("httpx2")
+    from fastapi.testclient import TestClient
+
+    from woundroll.web import create_app
+
+    case = (
+        'title = "fast"\n[web]\npreset = "PET1"\n[core]\nouter_radius = "4.45 cm"\nrigid = true\n'
+        '[winding]\nouter_radius = "6 cm"\ntension = "26.7 N"\n[tester]\n'
+        'instrument = "rho-meter"\n'
+        'roll_spring = { alpha = "2.6e8 N/m^2", beta = "1.05e5 N/m" }\n'
+    )
+    with TestClient(create_app()) as client:
+        r = client.post(
+            "/api/run",
+            json={"case": case, "readings": "position [in],rho\n0.5,-50\n1.5,5000\n"},
+        )
+    # rejected before any run (the issue: a mean of 2475 Rho came back without a warning)
+    assert r.status_code in (400, 422), r.text
+    text = r.text
+    assert "line 2" in text and "-50 Rho" in text and "0 to 100 Rho" in text, text
+
+
+@pytest.mark.parametrize(
+    "cmd",
+    [
+        ["diagnose", "pet1-26.7N", "--readings", "FILE"],
+        ["report", "pet1-26.7N", "--readings", "FILE", "--out", "OUT"],
+        ["readings", "FILE", "--trend", "FILE"],
+    ],
+)
+def test_every_command_rejects_readings_off_the_scale(tmp_path, cmd):
+    # the issue: -50 and 5000 Rho were accepted; each reader names file, line and value
+    p = write(tmp_path, "position [in],reading [Rho]\n1,52\n2,5000\n")
+    args = [{"FILE": str(p), "OUT": str(tmp_path / "o")}.get(a, a) for a in cmd]
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code == 2, res.output
+    lines = [ln for ln in res.output.splitlines() if ln.strip()]
+    assert len(lines) == 1 and "r.csv line 3" in lines[0] and "5000 Rho is off" in lines[0]
+    assert not (tmp_path / "o").exists()

@@ -121,7 +121,7 @@ def test_dask_local_cluster_equals_serial(serial):
     distributed = pytest.importorskip("distributed")
     with (
         distributed.LocalCluster(
-            n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
+            n_workers=2, threads_per_worker=1, processes=False, dashboard_address=":0"
         ) as cluster,
         distributed.Client(cluster) as client,
     ):
@@ -214,7 +214,9 @@ def test_uncertainty_band_columns_bracket_nominal(uq_serial):
     for b in BANDS:
         assert f"{b}_low [Pa]" in s.columns and f"{b}_high [Pa]" in s.columns
     # an explicit roll spring: the reading does not depend on the stresses, no reading band
-    assert not any(c.startswith("hardness.reading_") for c in s.columns)
+    assert not any(
+        c.startswith(("hardness.reading_low", "hardness.reading_high")) for c in s.columns
+    )
     err = s.column("error")
     k2sd = s.column("uncertainty.K2 [-]")
     p = s.column("winding.core_pressure [Pa]")
@@ -243,7 +245,7 @@ def test_uncertainty_dask_equals_serial(uq_serial):
     distributed = pytest.importorskip("distributed")
     with (
         distributed.LocalCluster(
-            n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
+            n_workers=2, threads_per_worker=1, processes=False, dashboard_address=":0"
         ) as cluster,
         distributed.Client(cluster) as client,
     ):
@@ -264,8 +266,11 @@ def test_uncertainty_reading_band_with_contact_model():
     assert s.n_failed == 0
     (row,) = s.rows
     v = dict(zip(s.columns, row, strict=True))
-    assert v["hardness.reading_low [rho]"] < v["hardness.reading [rho]"]
-    assert v["hardness.reading [rho]"] < v["hardness.reading_high [rho]"]
+    # the band is the model's reading's (unclipped): it brackets reading_model; the column
+    # hardness.reading is what the dial shows (100 here: this 6 cm roll reads past the scale)
+    assert v["hardness.reading_low [rho]"] < v["hardness.reading_model [rho]"]
+    assert v["hardness.reading_model [rho]"] < v["hardness.reading_high [rho]"]
+    assert v["hardness.reading [rho]"] == min(v["hardness.reading_model [rho]"], 100.0)
     # the surrogate's check against full runs is reported (on this 6 cm roll, read beyond the
     # Rho-meter's range, it is several Rho: a property of the surrogate, docs/sweeps.md)
     assert v["uncertainty.surrogate_error [rho]"] >= 0.0
@@ -296,3 +301,110 @@ def test_cli_uncertainty(tmp_path):
     res = runner.invoke(app, [*args, "--uncertainty", "3", "--out", str(tmp_path / "e")])
     lines = [ln for ln in res.output.splitlines() if ln.strip()]
     assert res.exit_code == 2 and len(lines) == 1 and "--uncertainty:" in lines[0], res.output
+
+
+# the cluster a user starts: its own process, workers in their own processes; the test gives
+# its address on the command line exactly as a cluster user does
+_CLUSTER = """
+import sys, distributed
+if __name__ == "__main__":
+    with distributed.LocalCluster(
+        n_workers=1, threads_per_worker=1, processes=True, dashboard_address=":0"
+    ) as cluster:
+        print(cluster.scheduler_address, flush=True)
+        sys.stdin.read()  # until the test closes stdin
+"""
+
+FAST_TOML = """title = "fast sweep roll"
+web = { preset = "PET1" }
+core = { outer_radius = "4.45 cm", rigid = true }
+winding = { outer_radius = "6 cm", tension = "26.7 N" }
+[tester]
+instrument = "rho-meter"
+roll_spring = { alpha = "2.6e8 N/m^2", beta = "1.05e5 N/m" }
+"""
+
+
+@pytest.fixture(scope="module")
+def cluster_address():
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    pytest.importorskip("distributed")
+    src = str(Path(woundroll.__file__).resolve().parents[1])
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([src, os.environ.get("PYTHONPATH", "")])}
+    proc = subprocess.Popen(
+        [sys.executable, "-c", _CLUSTER],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+        text=True,
+        env=env,
+    )
+    try:
+        address = proc.stdout.readline().strip()  # blocks until the cluster is up
+        assert address.startswith("tcp://"), f"cluster did not start: {address!r}"
+        yield address, env
+    finally:
+        proc.stdin.close()  # the cluster's context manager closes scheduler and workers
+        try:
+            proc.wait(timeout=30)
+        except subprocess.TimeoutExpired:  # pragma: no cover - a stuck cluster
+            proc.kill()
+            proc.wait()
+        proc.stdout.close()
+
+
+def test_cli_scheduler_address_equals_serial(cluster_address, tmp_path):
+    # issue 22.1: `woundroll sweep --scheduler ADDRESS` failed with "No clients found" because
+    # the command's client is not the process's default client
+    import subprocess
+    import sys
+
+    address, env = cluster_address
+    case = tmp_path / "fast.toml"
+    case.write_text(FAST_TOML, encoding="utf-8")
+    vary = ["--vary", VARY[0], "--vary", VARY[1]]
+    cmd = [sys.executable, "-m", "woundroll.cli", "sweep", str(case), *vary, "--quiet"]
+    run = subprocess.run(
+        [*cmd, "--scheduler", address, "--out", str(tmp_path / "dask")],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=300,
+    )
+    assert run.returncode == 0, run.stderr
+    serial = CliRunner().invoke(
+        app, ["sweep", str(case), *vary, "--workers", "1", "--quiet", "--out", str(tmp_path / "s")]
+    )
+    assert serial.exit_code == 0, serial.output
+    dask_csv = (tmp_path / "dask" / "sweep.csv").read_text(encoding="utf-8")
+    serial_csv = (tmp_path / "s" / "sweep.csv").read_text(encoding="utf-8")
+    # the same rolls in the same code: the same table to the last digit (the csv writes
+    # floats with repr), failed rolls (K2 = -1) included
+    assert dask_csv == serial_csv
+    rows = list(csv.DictReader(serial_csv.splitlines()))
+    assert len(rows) == 12 and sum(1 for r in rows if r["error"]) == 4
+    pq = pytest.importorskip("pyarrow.parquet")
+    a = pq.read_table(tmp_path / "dask" / "sweep.parquet").to_pydict()
+    b = pq.read_table(tmp_path / "s" / "sweep.parquet").to_pydict()
+    assert list(a) == list(b)
+    assert _same(list(zip(*a.values(), strict=True)), list(zip(*b.values(), strict=True)))
+
+
+def test_cli_scheduler_unreachable_is_one_line(tmp_path, monkeypatch):
+    pytest.importorskip("distributed")
+    monkeypatch.setattr("woundroll.sweep.SCHEDULER_TIMEOUT", "2s")  # nobody listens on port 1
+    case = tmp_path / "fast.toml"
+    case.write_text(FAST_TOML, encoding="utf-8")
+    res = CliRunner().invoke(
+        app,
+        ["sweep", str(case), "--vary", VARY[0], "--scheduler", "tcp://127.0.0.1:1"]
+        + ["--out", str(tmp_path / "out")],
+    )
+    assert res.exit_code == 2
+    lines = res.output.strip().splitlines()
+    assert len(lines) == 1 and "--scheduler" in lines[0] and "127.0.0.1:1" in lines[0]
+    assert "Traceback" not in res.output

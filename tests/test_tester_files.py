@@ -153,3 +153,16 @@ def test_cli_readings_formats_and_roll():
         res = runner.invoke(app, ["readings", path, *args])
         lines = [ln for ln in res.output.splitlines() if ln.strip()]
         assert res.exit_code == 2 and len(lines) == 1 and f"{field}:" in lines[0], res.output
+
+
+def test_tappi_and_profile_values_off_the_scale_name_line_and_column(tmp_path):
+    sheet = tmp_path / "t.csv"
+    sheet.write_text("roll,pass,scale,lane 1,lane 2\nA,1,Rho,55,56\nB,1,R,20,5\n")
+    with pytest.raises(InputError, match=r"t\.csv line 3, lane 2: 5 R is off .*10 to 100 R"):
+        read_tappi_sheet(sheet)
+    prof = tmp_path / "p.csv"
+    prof.write_text(
+        "roll id;4711\nposition [mm];scan 1 [Rho];scan 2 [Rho]\n10;50;51\n20;52;101,5\n"
+    )
+    with pytest.raises(InputError, match=r"p\.csv line 4, scan 2 \[Rho\]: 101.5 Rho is off"):
+        read_tester_file(prof)

@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import math
 import tomllib
+from collections.abc import Sequence
+from dataclasses import dataclass
 from functools import cached_property, partial
 from importlib import resources
 from pathlib import Path
@@ -524,6 +526,73 @@ class Case(_Section):
     defects: DefectsSpec | None = None
     _base_dir: Path | None = PrivateAttr(default=None)
     _warnings: tuple[str, ...] = PrivateAttr(default=())
+    _given: dict[str, Any] = PrivateAttr(default_factory=dict)
+    _sources: dict[str, str] = PrivateAttr(default_factory=dict)
+    _overrides: tuple[tuple[str, Any, str], ...] = PrivateAttr(default=())
+
+    @property
+    def overrides(self) -> tuple[tuple[str, Any, str], ...]:
+        """``(key, value as given, source)`` of each value set over the case
+        (``--set``, the web form), in the order given."""
+        return self._overrides
+
+    @property
+    def display_title(self) -> str:
+        """The title with the values set over the case: ``PET1 wound at 26.7 N
+        (winding.tension = 40 N by --set)``; a title never claims a value that was
+        overridden without saying so."""
+        if not self._overrides:
+            return self.title
+        by: dict[str, list[str]] = {}
+        for key, value, source in self._overrides:
+            by.setdefault(source, []).append(f"{key} = {_given_text(value)}")
+        note = "; ".join(f"{', '.join(items)} by {src}" for src, items in by.items())
+        return f"{self.title} ({note})" if self.title else f"({note})"
+
+    def record(self) -> dict[str, Any]:
+        """The case part of result.json: ``title`` (:attr:`display_title`), the title as
+        written (``case_title``), ``overrides`` (key, given, source) and ``inputs``
+        (:attr:`inputs`, each ``{"key", "value", "unit", "given", "source"}``, SI values)."""
+        return {
+            "title": self.display_title,
+            "case_title": self.title,
+            "overrides": [{"key": k, "given": v, "source": src} for k, v, src in self._overrides],
+            "inputs": [v.to_dict() for v in self.inputs],
+        }
+
+    def source_of(self, key: str) -> str:
+        """Where the value of dotted ``key`` came from: ``case file``, ``preset NAME``,
+        ``--set``, ``web form`` or ``default``. A table (``web.radial_modulus``) takes the
+        source of an override inside it, else of its first given entry."""
+        for k, _, source in reversed(self._overrides):
+            if k == key or k.startswith(key + ".") or key.startswith(k + "."):
+                return source
+        if key in self._sources:
+            return self._sources[key]
+        inside = [src for k, src in self._sources.items() if k.startswith(key + ".")]
+        return inside[0] if inside else FROM_DEFAULT
+
+    @property
+    def inputs(self) -> list[InputValue]:
+        """Every input value the run uses: each value given (case file, preset, ``--set``,
+        web form) as written and in SI, and the defaults of the web, core, winding and (with a
+        tester) contact keys not given. result.json writes them as ``inputs``."""
+        out = [
+            _input_value(key, value, self._sources.get(key, FROM_CASE_FILE))
+            for key, value in self._given.items()
+            if key != "title"
+        ]
+        sections: list[tuple[str, BaseModel]] = [
+            ("web", self.web),
+            ("core", self.core),
+            ("winding", self.winding),
+        ]
+        if self.tester is not None:
+            sections.append(("contact", self.contact))
+        for name, spec in sections:
+            out += _defaults(name, spec, self._given)
+        order = {name: i for i, name in enumerate(type(self).model_fields)}
+        return sorted(out, key=lambda v: order.get(v.key.split(".")[0], len(order)))
 
     @property
     def base_dir(self) -> Path | None:
@@ -585,6 +654,166 @@ class Case(_Section):
         return tester_from_spec(self.tester, "tester")
 
 
+#: Sources of input values (:attr:`Case.inputs`, result.json, the report): the value came
+#: from the case file (or a bundled case), a material preset (``"preset PET1"``), an
+#: override on the command line, the web page's form, or the model's default.
+FROM_CASE_FILE = "case file"
+FROM_SET = "--set"
+FROM_WEB_FORM = "web form"
+FROM_DEFAULT = "default"
+
+
+@dataclass(frozen=True)
+class InputValue:
+    """One input of a run: dotted ``key``, the value as ``given`` (None for a default),
+    its ``value`` in SI (a number; text or a flag as given) with ``unit`` (SI, ``""`` for a
+    pure number or text), and its ``source`` (:data:`FROM_CASE_FILE` ...)."""
+
+    key: str
+    given: Any
+    value: Any
+    unit: str
+    source: str
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready: ``{"key", "value", "unit", "given", "source"}``."""
+        return {
+            "key": self.key,
+            "value": self.value,
+            "unit": self.unit,
+            "given": self.given,
+            "source": self.source,
+        }
+
+
+def _given_text(value: Any) -> str:
+    """A value as the user wrote it (TOML-like: text bare, tables inline)."""
+    if isinstance(value, bool):
+        return str(value).lower()
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{k} = {_given_text(v)}" for k, v in value.items()) + "}"
+    if isinstance(value, list):
+        return "[" + ", ".join(_given_text(v) for v in value) + "]"
+    return str(value)
+
+
+def _leaves(data: Any, prefix: str = "") -> dict[str, Any]:
+    """``{"web.thickness": "50 um", ...}``: the leaf values of nested tables (lists are
+    leaves)."""
+    if not isinstance(data, dict):
+        return {prefix: data} if prefix else {}
+    out: dict[str, Any] = {}
+    for k, v in data.items():
+        key = f"{prefix}.{k}" if prefix else str(k)
+        if isinstance(v, dict) and v:
+            out.update(_leaves(v, key))
+        else:
+            out[key] = v
+    return out
+
+
+def _field_kind(annotation: Any) -> str | None:
+    """The quantity kind of a field made by :func:`Q` (also inside ``X | None``, lists)."""
+    import typing
+
+    for meta in getattr(annotation, "__metadata__", ()):
+        func = getattr(meta, "func", None)
+        if isinstance(func, partial) and func.func is _quantity:
+            return str(func.args[0])
+    for arg in typing.get_args(annotation):
+        kind = _field_kind(arg)
+        if kind is not None:
+            return kind
+    return None
+
+
+def _kind_of_field(f: Any) -> str | None:
+    """The quantity kind of a pydantic field (its metadata, or inside its annotation)."""
+    for meta in f.metadata:
+        func = getattr(meta, "func", None)
+        if isinstance(func, partial) and func.func is _quantity:
+            return str(func.args[0])
+    return _field_kind(f.annotation)
+
+
+def _kind_of(key: str) -> str | None:
+    """The quantity kind of the case key ``key`` when its section declares one."""
+    model: Any = Case
+    parts = key.split(".")
+    for i, part in enumerate(parts):
+        fields = getattr(model, "model_fields", None)
+        if not fields or part not in fields:
+            return None
+        ann = fields[part].annotation
+        if i == len(parts) - 1:
+            return _kind_of_field(fields[part])
+        import typing
+
+        nested = [a for a in (ann, *typing.get_args(ann)) if hasattr(a, "model_fields")]
+        if not nested:
+            return None
+        model = nested[0]
+    return None
+
+
+def _input_value(key: str, given: Any, source: str) -> InputValue:
+    from woundroll.units import si_value
+
+    si = si_value(given, _kind_of(key))
+    if si is None:
+        return InputValue(key, given, given, "", source)
+    return InputValue(key, given, si[0], si[1], source)
+
+
+def _defaults(prefix: str, spec: BaseModel, given: dict[str, Any]) -> list[InputValue]:
+    """The scalar values of ``spec`` that nobody gave (its defaults), nested sections too."""
+    from woundroll.units import SI_UNITS
+
+    out = []
+    for name, f in type(spec).model_fields.items():
+        key = f"{prefix}.{name}"
+        if key in given or any(k.startswith(key + ".") for k in given):
+            continue
+        value = getattr(spec, name)
+        if isinstance(value, BaseModel):
+            out += _defaults(key, value, given)
+        elif isinstance(value, bool | str) or (
+            isinstance(value, int | float) and math.isfinite(value)
+        ):
+            kind = _kind_of_field(f)
+            unit = SI_UNITS.get(kind, "") if kind and not isinstance(value, bool | str) else ""
+            out.append(InputValue(key, None, value, unit, FROM_DEFAULT))
+    return out
+
+
+def _sources_of(
+    data: dict[str, Any], overrides: list[tuple[str, Any, str]], file_source: str
+) -> tuple[dict[str, Any], dict[str, str]]:
+    """The given leaves of a case (``data`` with the overrides already set, the web preset
+    merged in) and the source of each."""
+    leaves = _leaves(data)
+    sources = {}
+    for key in leaves:
+        src = file_source
+        for k, _, source in overrides:
+            if key == k or key.startswith(k + "."):
+                src = source
+        sources[key] = src
+    web = data.get("web")
+    if isinstance(web, dict) and isinstance(web.get("preset"), str):
+        try:
+            preset = material_preset(web["preset"])
+        except InputError:
+            preset = None
+        if preset is not None:
+            label = f"preset {web['preset'].upper()}"
+            for key, v in _leaves(_merge(preset, web), "web").items():
+                if key not in leaves:
+                    leaves[key] = v
+                    sources[key] = label
+    return leaves, sources
+
+
 class _BaseDir:
     """Directory of the case file being read, for relative paths inside it."""
 
@@ -614,13 +843,33 @@ def _error_from_validation(exc: ValidationError) -> InputError:
     return InputError(msg, field)
 
 
-def case_from_dict(data: dict[str, Any], base_dir: Path | None = None) -> Case:
-    """Validate a case given as nested dicts (TOML structure) and return a :class:`Case`."""
+def case_from_dict(
+    data: dict[str, Any],
+    base_dir: Path | None = None,
+    *,
+    overrides: Sequence[tuple[str, Any] | tuple[str, Any, str]] | None = None,
+    override_source: str = FROM_SET,
+    source: str = FROM_CASE_FILE,
+) -> Case:
+    """Validate a case given as nested dicts (TOML structure) and return a :class:`Case`.
+
+    ``overrides``: ``(dotted key, value)`` pairs set over ``data`` (not modified), each
+    recorded with ``override_source`` (``"--set"``, ``"web form"``), or ``(key, value,
+    source)`` with its own; the values of ``data`` are recorded with ``source``
+    (:attr:`Case.inputs`, :attr:`Case.display_title`).
+    """
     from woundroll import limits
     from woundroll.winding.hakiel import WindingOptions
 
     if not isinstance(data, dict):
         raise InputError("a case must be a table of tables ([web], [core], [winding])", "CASE")
+    # (key, value, source): an override may name its own source (a CLI flag such as
+    # --no-update that sets a key), else it is override_source's
+    given = [(o[0], o[1], o[2] if len(o) > 2 else override_source) for o in overrides or []]
+    if given:
+        data = _deepcopy(data)
+        for key, value, _ in given:
+            set_dotted(data, key, value)
     _BASE_DIR.value = base_dir
     try:
         case = Case.model_validate(data)
@@ -631,7 +880,8 @@ def case_from_dict(data: dict[str, Any], base_dir: Path | None = None) -> Case:
         r_out = case.winding.final_radius(web, core)
         schedule = case.winding.schedule(web)
         options = WindingOptions.from_dict(case.winding.options, "winding.options")
-        warnings += limits.check_built(web, core, r_out, schedule, options)
+        size = "winding.length" if case.winding.length is not None else "winding.outer_radius"
+        warnings += limits.check_built(web, core, r_out, schedule, options, size)
         _check_options(case)
         slow = limits.contact_time_warning(case, web)
         if slow:
@@ -641,6 +891,8 @@ def case_from_dict(data: dict[str, Any], base_dir: Path | None = None) -> Case:
     finally:
         _BASE_DIR.value = None
     case._warnings = tuple(warnings)
+    case._given, case._sources = _sources_of(data, given, source)
+    case._overrides = tuple(given)
     return case
 
 
@@ -753,8 +1005,15 @@ def parse_override(text: str) -> tuple[str, Any]:
     return key.strip(), value
 
 
-def load_case(source: str | Path | dict[str, Any], overrides: list[str] | None = None) -> Case:
-    """Read a case from a TOML file, a bundled case name, or a dict, with ``--set`` overrides.
+def load_case(
+    source: str | Path | dict[str, Any],
+    overrides: Sequence[str | tuple[str, str]] | None = None,
+    *,
+    override_source: str = FROM_SET,
+) -> Case:
+    """Read a case from a TOML file, a bundled case name, or a dict, with ``--set`` overrides
+    (``"dotted.key=value"``, recorded as coming from ``override_source``; or
+    ``("dotted.key=value", source)`` with a source of its own).
 
     Raises
     ------
@@ -768,11 +1027,13 @@ def load_case(source: str | Path | dict[str, Any], overrides: list[str] | None =
         path = resolve_case_path(source)
         data = _read_toml(path)
         base_dir = path.parent
-    data = _deepcopy(data)
-    for text in overrides or []:
-        key, value = parse_override(text)
-        set_dotted(data, key, value)
-    return case_from_dict(data, base_dir)
+    pairs = [
+        (*parse_override(o), override_source)
+        if isinstance(o, str)
+        else (*parse_override(o[0]), o[1])
+        for o in overrides or []
+    ]
+    return case_from_dict(data, base_dir, overrides=pairs, override_source=override_source)
 
 
 def _read_toml(path: Path) -> dict[str, Any]:

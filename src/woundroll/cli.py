@@ -8,6 +8,7 @@ and exit with status 2; a solver that does not converge exits with status 1.
 
 from __future__ import annotations
 
+import json
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
@@ -70,8 +71,9 @@ app = typer.Typer(
     no_args_is_help=True,
     help="Wound-roll stresses from winder settings, and the hardness readings they cause.",
 )
-err = Console(stderr=True)
-out = Console()
+# emoji=False: ":x:" in a user file name or a CSV header stays text, never an emoji
+err = Console(stderr=True, emoji=False)
+out = Console(emoji=False)
 
 
 def _fail(exc: Exception, status: int) -> None:
@@ -153,13 +155,17 @@ def run(
         try:
             if report and out_dir is None:
                 raise InputError("the report goes into the --out directory: give --out", "--report")
-            c = load_case(case, [*(set_ or []), *(["contact.no_update=true"] if no_update else [])])
+            flags = [("contact.no_update=true", "--no-update")] if no_update else []
+            c = load_case(case, [*(set_ or []), *flags])
             if out_dir is not None:
                 from woundroll._output import check_out_dir
 
                 check_out_dir(out_dir)  # a bad --out fails now, not after the run
+            # the estimate of a long run is for the wait: now; the other warnings follow a
+            # run that succeeded (a case that fails prints its error alone)
             for w in c.warnings:
-                _warn(w)
+                if w.startswith("long run:"):
+                    _warn(w)
             if quiet or as_json or not sys.stderr.isatty():
                 result = run_case(c)
             else:
@@ -182,6 +188,9 @@ def run(
         except Interrupted as exc:
             err.print(f"stopped by {exc}: workers ended, no output written", highlight=False)
             raise typer.Exit(128 + exc.signum) from None
+    for w in c.warnings:
+        if not w.startswith("long run:"):
+            _warn(w)
     for w in result.warnings:
         if w not in c.warnings:
             _warn(w)
@@ -192,7 +201,7 @@ def run(
         _summary(result)
         _cli_diagnose.print_uncertainty(uq)
         for p in written:
-            out.print(f"wrote {p}")
+            out.print(f"wrote {escape(str(p))}")
 
 
 def _with_progress(job):  # type: ignore[no-untyped-def]
@@ -217,8 +226,29 @@ def _with_progress(job):  # type: ignore[no-untyped-def]
         return job(progress)
 
 
+def _inputs(case) -> None:  # type: ignore[no-untyped-def]
+    """The inputs the run used as given, with their source (defaults counted, listed in
+    result.json)."""
+    t = Table("input", "value", "source", title="inputs", show_header=True)
+    defaults = 0
+    for v in case.inputs:
+        if v.source == "default":
+            defaults += 1
+            continue
+        given = v.given if isinstance(v.given, str) else json.dumps(v.given)
+        t.add_row(escape(v.key), escape(given), escape(v.source))
+    out.print(t)
+    if defaults:
+        out.print(
+            f"{defaults} more keys at their defaults (docs/case-files.md; listed in "
+            "result.json 'inputs')",
+            highlight=False,
+        )
+
+
 def _summary(result) -> None:  # type: ignore[no-untyped-def]
-    t = Table(title=result.case.title or "result", show_header=True)
+    _inputs(result.case)
+    t = Table(title=escape(result.case.display_title or "result"), show_header=True)
     t.add_column("quantity")
     t.add_column("value", justify="right")
     for name, value in result_summary(result):
@@ -231,6 +261,15 @@ def _summary(result) -> None:  # type: ignore[no-untyped-def]
         out.print(f"[bold yellow]flags:[/] {escape(', '.join(raised))}", highlight=False)
 
 
+def _num(x: float, spec: str) -> str:
+    """``format(x, spec)`` without a minus sign on a value that rounds to zero ("-0.0 kPa"
+    at zero tension is a rounding artefact, not a tensile pressure)."""
+    text = format(x, spec)
+    if text.startswith("-") and not any(c in "123456789" for c in text.split("e")[0]):
+        text = text[1:]
+    return text
+
+
 def result_summary(result: RunResult) -> list[tuple[str, str]]:
     """Headline numbers of a run, as (label, formatted value) rows."""
     rows: list[tuple[str, str]] = []
@@ -238,47 +277,53 @@ def result_summary(result: RunResult) -> list[tuple[str, str]]:
     if w is not None:
         rows += [
             ("layers", f"{w.n_layers}"),
-            ("outer radius", f"{w.radius[-1] * 100:.3f} cm"),
-            ("core pressure", f"{w.core_pressure / 1e3:.1f} kPa"),
-            ("max pressure", f"{-w.sigma_r.min() / 1e3:.1f} kPa"),
+            ("outer radius", f"{_num(w.radius[-1] * 100, '.3f')} cm"),
+            ("core pressure", f"{_num(w.core_pressure / 1e3, '.1f')} kPa"),
+            ("max pressure", f"{_num(-w.sigma_r.min() / 1e3, '.1f')} kPa"),
         ]
     h = result.hardness
     if h is not None:
         d = h.to_dict()
         model = d.get("roll_model") or (c.model if (c := result.contact) else "")
-        shown = f"{d['reading']:.1f}"
+        shown = _num(d["reading"], ".1f")
         if d["saturated"]:
             shown += f" (saturated: the model reads {d['reading_model']:.1f}, off the scale)"
         rows += [
             (f"{d['readout']} reading ({d['instrument']}, roll model {model})", shown),
-            ("Rho (finite difference / energy)", f"{d['rho_fd']:.1f} / {d['rho_energy']:.1f}"),
-            ("impulse", f"{d['impulse_Ns']:.4f} N s"),
-            ("max depth", f"{d['delta_max_m'] * 1e3:.3f} mm"),
-            ("contact time", f"{d['contact_time_s'] * 1e3:.2f} ms"),
+            (
+                "Rho (finite difference / energy)",
+                f"{_num(d['rho_fd'], '.1f')} / {_num(d['rho_energy'], '.1f')}",
+            ),
+            ("impulse", f"{_num(d['impulse_Ns'], '.4f')} N s"),
+            ("max depth", f"{_num(d['delta_max_m'] * 1e3, '.3f')} mm"),
+            ("contact time", f"{_num(d['contact_time_s'] * 1e3, '.2f')} ms"),
         ]
     c = result.contact
     if c is not None:
         rows += [
-            ("roll spring alpha", f"{c.alpha:.4g} N/m^2"),
-            ("roll spring beta", f"{c.beta:.4g} N/m"),
+            ("roll spring alpha", f"{_num(c.alpha, '.4g')} N/m^2"),
+            ("roll spring beta", f"{_num(c.beta, '.4g')} N/m"),
             ("roll spring extrapolated", "yes" if c.extrapolated else "no"),
-            ("semi-contact width at max depth", f"{c.semi_contact_width * 1e3:.3f} mm"),
+            ("semi-contact width at max depth", f"{_num(c.semi_contact_width * 1e3, '.3f')} mm"),
         ]
     nu = result.no_update
     if nu is not None:
         d = nu.to_dict()
         rows.append(
-            ("Rho, no E_r update (FD / energy)", f"{d['rho_fd']:.1f} / {d['rho_energy']:.1f}")
+            (
+                "Rho, no E_r update (FD / energy)",
+                f"{_num(d['rho_fd'], '.1f')} / {_num(d['rho_energy'], '.1f')}",
+            )
         )
     dy = getattr(result, "dynamic", None)
     if dy is not None:
         rows += [
-            ("Rho, FE impact in time", f"{dy.rho:.1f}"),
+            ("Rho, FE impact in time", f"{_num(dy.rho, '.1f')}"),
             (
                 "impulse / contact time (FE)",
-                f"{dy.impulse:.4f} N s / {dy.contact_time * 1e3:.2f} ms",
+                f"{_num(dy.impulse, '.4f')} N s / {_num(dy.contact_time * 1e3, '.2f')} ms",
             ),
-            ("restitution (FE, elastic material)", f"{dy.restitution:.3f}"),
+            ("restitution (FE, elastic material)", f"{_num(dy.restitution, '.3f')}"),
         ]
     p = result.profile
     if p is not None:
@@ -287,7 +332,10 @@ def result_summary(result: RunResult) -> list[tuple[str, str]]:
         rows += [
             ("CMD sectors", f"{p.z.size}"),
             ("roll model / reading", f"{p.roll_model} / FD (energy model beside it)"),
-            ("thickness mean / CoV", f"{th.mean * 1e6:.2f} um / {100 * th.cov:.2f} %"),
+            (
+                "thickness mean / CoV",
+                f"{_num(th.mean * 1e6, '.2f')} um / {_num(100 * th.cov, '.2f')} %",
+            ),
         ]
         if n_sat:
             rows.append(("saturated sectors (off the scale, excluded)", f"{n_sat}"))
@@ -295,11 +343,12 @@ def result_summary(result: RunResult) -> list[tuple[str, str]]:
             rows.append(("Rho statistics", "fewer than two readings on the scale"))
         else:
             rows += [
-                ("Rho mean / SD (on the scale)", f"{st.mean:.1f} / {st.sd:.1f}"),
-                ("Rho CoV", f"{100 * st.cov:.1f} % ({st.band})"),
+                ("Rho mean / SD (on the scale)", f"{_num(st.mean, '.1f')} / {_num(st.sd, '.1f')}"),
+                ("Rho CoV", f"{_num(100 * st.cov, '.1f')} % ({st.band})"),
                 (
                     "Rho min / max / peak-to-peak",
-                    f"{st.min:.1f} / {st.max:.1f} / {st.peak_to_peak:.1f}",
+                    f"{_num(st.min, '.1f')} / {_num(st.max, '.1f')} / "
+                    f"{_num(st.peak_to_peak, '.1f')}",
                 ),
             ]
         n_slack = int(p.slack.sum())
@@ -308,11 +357,17 @@ def result_summary(result: RunResult) -> list[tuple[str, str]]:
         c = p.comparison
         if c is not None:
             ms = c.measured_stats
-            r = "n/a" if c.correlation is None else f"{c.correlation:.2f}"
+            r = "n/a" if c.correlation is None else f"{_num(c.correlation, '.2f')}"
             rows += [
-                ("measured Rho mean / CoV", f"{ms.mean:.1f} / {100 * ms.cov:.1f} % ({ms.band})"),
-                ("predicted - measured: bias / RMS", f"{c.bias:+.1f} / {c.rms:.1f}"),
-                ("RMS after bias / correlation", f"{c.rms_shape:.1f} / {r}"),
+                (
+                    "measured Rho mean / CoV",
+                    f"{_num(ms.mean, '.1f')} / {_num(100 * ms.cov, '.1f')} % ({ms.band})",
+                ),
+                (
+                    "predicted - measured: bias / RMS",
+                    f"{_num(c.bias, '+.1f')} / {_num(c.rms, '.1f')}",
+                ),
+                ("RMS after bias / correlation", f"{_num(c.rms_shape, '.1f')} / {r}"),
             ]
     return rows
 
@@ -372,7 +427,7 @@ def study(
     if as_json:
         sys.stdout.write(strict_json(result.to_dict()) + "\n")
         return
-    wide = out if out.is_terminal else Console(width=160)
+    wide = out if out.is_terminal else Console(width=160, emoji=False)
     for title, header, rows in result.summary():
         t = Table(*[escape(h) for h in header], title=escape(title))
         for row in rows:
@@ -381,7 +436,7 @@ def study(
     for note in result.notes():
         out.print(f"note: {escape(note)}", highlight=False)
     for p in written:
-        out.print(f"wrote {p}")
+        out.print(f"wrote {escape(str(p))}")
 
 
 @app.command()
@@ -391,7 +446,7 @@ def cases() -> None:
 
     t = Table("name", "title")
     for name, title in bundled_cases().items():
-        t.add_row(name, title)
+        t.add_row(escape(name), escape(title))
     out.print(t)
 
 
@@ -402,7 +457,11 @@ def materials() -> None:
 
     t = Table("preset", "description", "source")
     for name, table in list_materials().items():
-        t.add_row(name, str(table.get("description", "")), str(table.get("source", "")))
+        t.add_row(
+            escape(name),
+            escape(str(table.get("description", ""))),
+            escape(str(table.get("source", ""))),
+        )
     out.print(t)
 
 
@@ -470,7 +529,13 @@ def fit_stack_cmd(
         return
     t = Table("law", "R^2", "RMS rel. error", "max rel. error", "case-file table")
     for name, f in fits.items():
-        t.add_row(name, f"{f.r2:.5f}", f"{f.rms_rel_error:.2%}", f"{f.max_rel_error:.2%}", f.toml())
+        t.add_row(
+            name,
+            f"{f.r2:.5f}",
+            f"{f.rms_rel_error:.2%}",
+            f"{f.max_rel_error:.2%}",
+            escape(f.toml()),
+        )
     out.print(t)
     for name, f in fits.items():  # the fit's covariance, ready for the case's [uncertainty]
         if f.uncertainty_toml():

@@ -31,12 +31,14 @@ def _length(text: str | None, field: str) -> float | None:
 
 
 def readings_cmd(
-    csv_file: Annotated[
-        str,
+    csv_files: Annotated[
+        list[str],
         typer.Argument(
-            help="Readings file: a CSV 'position [in],reading [Rho]' (or [R], [L], [g]; lane "
-            "numbers with --lane-width; several value columns or repeated positions are "
-            "passes), a TAPPI T 834 sheet or a dense profile export (see --format)."
+            help="Readings file(s): a CSV 'position [in],reading [Rho]' (or [R], [L], [g]; "
+            "lane numbers with --lane-width; several value columns or repeated positions are "
+            "passes), a TAPPI T 834 sheet or a dense profile export (see --format). Several "
+            "files (or a sheet of several rolls with --trend): the roll-to-roll trend.",
+            metavar="CSV_FILE",
         ),
     ],
     width: Annotated[
@@ -56,24 +58,68 @@ def readings_cmd(
     roll: Annotated[
         str | None, typer.Option("--roll", help="Roll id on a TAPPI sheet with several rolls.")
     ] = None,
+    trend: Annotated[
+        bool,
+        typer.Option(
+            "--trend",
+            help="Roll-to-roll trend of every roll in the files (production order): mean, "
+            "CoV, faults per roll and X-mR control charts of mean and CoV.",
+        ),
+    ] = False,
+    band: Annotated[
+        str | None,
+        typer.Option(
+            "--band",
+            help="Fault threshold: a position more than this far from the roll mean is in a "
+            "hard or soft band ('5 %', or a fraction '0.05'; default 5 %).",
+        ),
+    ] = None,
+    unit: Annotated[
+        str | None,
+        typer.Option(
+            "--unit",
+            help="Length unit of the positions shown: in, cm, mm, m (default: the file's).",
+        ),
+    ] = None,
+    out_dir: Annotated[
+        Path | None,
+        typer.Option(
+            "--out",
+            help="Write readings.json and readings.png (profile.png), or with a trend trend.json, "
+            "trend.csv and trend.png, here.",
+        ),
+    ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print the readings as JSON.")] = False,
 ) -> None:
-    """Read a sheet of hardness readings; print the mean and scatter per position."""
+    """Read a sheet of hardness readings; print the mean and scatter per position, the
+    profile's CoV, peak-to-peak, band verdict and hard/soft bands; with several rolls the
+    roll-to-roll trend."""
     from woundroll.cli import _fail, out
+    from woundroll.profile_check import FAULT_BAND
+    from woundroll.readings import DISPLAY_UNITS
     from woundroll.tester_files import FORMATS, detect_format, read_tester_file
 
     try:
         if fmt not in FORMATS:
             raise InputError(f"unknown format {fmt!r}; one of {', '.join(FORMATS)}", "--format")
+        if unit is not None and unit not in DISPLAY_UNITS:
+            raise InputError(
+                f"unknown length unit {unit!r} (use {', '.join(DISPLAY_UNITS)})", "--unit"
+            )
+        frac = FAULT_BAND if band is None else _band(band)
+        w, lw = _length(width, "--width"), _length(lane_width, "--lane-width")
+        if trend or len(csv_files) > 1:
+            if roll is not None:
+                raise InputError(
+                    "--roll picks one roll; a trend takes every roll of the files", "--roll"
+                )
+            _readings_trend(csv_files, fmt, w, lw, frac, unit, out_dir, as_json)
+            return
+        csv_file = csv_files[0]
         layout = detect_format(csv_file, "CSV_FILE") if fmt == "auto" else fmt
         try:
             r = read_tester_file(
-                csv_file,
-                format=layout,
-                roll=roll,
-                width=_length(width, "--width"),
-                lane_width=_length(lane_width, "--lane-width"),
-                field="CSV_FILE",
+                csv_file, format=layout, roll=roll, width=w, lane_width=lw, field="CSV_FILE"
             )
         except InputError as exc:
             # a missing or unknown roll id is the --roll option's error
@@ -82,29 +128,194 @@ def readings_cmd(
             ):
                 raise InputError(exc.message, "--roll") from None
             raise
+        check = _check_one(csv_file, layout, r, frac)
+        if out_dir is not None:
+            _write_readings(out_dir, r, check, unit)
     except InputError as exc:
         _fail(exc, 2)
     except ConvergenceError as exc:  # pragma: no cover - nothing iterative here
         _fail(exc, 1)
     if as_json:
-        sys.stdout.write(strict_json(r.to_dict()) + "\n")
+        payload = r.to_dict()
+        payload["profile_check"] = None if check is None else check.to_dict()
+        sys.stdout.write(strict_json(payload) + "\n")
         return
-    t = Table(
-        "position [in]",
-        "position [m]",
-        f"mean [{r.scale}]",
-        f"SD [{r.scale}]",
-        "count",
-        title=escape(f"{r.source}: {r.passes} pass(es), scale {r.scale}"),
+    u = unit or r.position_unit or "in"
+    f = DISPLAY_UNITS[u]
+    cols = [f"position [{u}]"] + ([] if u == "m" else ["position [m]"])
+    shown = (
+        {}
+        if check is None
+        else {k: v for k, v in check.ids.items() if not (k == "roll" and f"roll {v}" in r.source)}
     )
-    for x, m, s, n in zip(r.position, r.mean, r.sd, r.count, strict=True):
-        t.add_row(f"{x / 0.0254:.2f}", f"{x:.4f}", f"{m:.2f}", f"{s:.2f}" if n > 1 else "-", f"{n}")
+    ids = " (" + _ids_text(shown) + ")" if shown else ""
+    t = Table(
+        *(escape(c) for c in cols),
+        escape(f"mean [{r.scale}]"),
+        escape(f"SD [{r.scale}]"),
+        "count",
+        title=escape(f"{r.source}{ids}: {r.passes} pass(es), scale {r.scale}"),
+    )
+    for x, m, s_, n in zip(r.position, r.mean, r.sd, r.count, strict=True):
+        pos = [f"{x / f:.4g}"] + ([] if u == "m" else [f"{x:.4f}"])
+        t.add_row(*pos, f"{m:.2f}", f"{s_:.2f}" if n > 1 else "-", f"{n}")
     out.print(t)
     pooled = r.pooled_sd
     if pooled is not None:
         out.print(f"pooled repeatability (SD): {pooled:.2f} {r.scale}", highlight=False)
     else:
         out.print("no repeated readings: the scatter must come from the instrument's repeatability")
+    if check is None:
+        out.print("no profile statistics: they need readings at 2 positions or more")
+        return
+    out.print(
+        escape(
+            f"profile: mean {check.mean:.2f} {r.scale}, SD {check.sd:.2f}, "
+            f"min {check.min:.2f}, max {check.max:.2f}; {check.verdict}"
+        ),
+        highlight=False,
+    )
+    rows = check.fault_rows(u)
+    if rows:
+        ft = Table(*(escape(k) for k in rows[0]), title="hard and soft bands")
+        for row in rows:
+            ft.add_row(*(escape(v) for v in row.values()))
+        out.print(ft)
+    if out_dir is not None:
+        out.print(f"wrote {out_dir / 'readings.json'}, readings.png, profile.png")
+
+
+def _band(text: str) -> float:
+    """``"5 %"``, ``"5%"`` or ``"0.05"`` -> 0.05; one-line error naming --band otherwise."""
+    t = text.strip()
+    pct = t.endswith("%")
+    try:
+        v = float(t.rstrip("%").strip())
+    except ValueError:
+        raise InputError(f"{text!r} is not a number ('5 %' or 0.05)", "--band") from None
+    if pct:
+        v /= 100.0
+    if not (math.isfinite(v) and 0 < v < 1):
+        raise InputError(f"must lie between 0 and 100 % (got {text!r})", "--band")
+    return v
+
+
+def _ids_text(ids: dict[str, str]) -> str:
+    return ", ".join(f"{k} {v}" for k, v in ids.items())
+
+
+def _check_one(path: str, layout: str, r, frac: float):  # type: ignore[no-untyped-def]
+    """The profile check of one roll (None below 2 positions or with a zero mean), with the
+    ids of its file."""
+    from woundroll.profile_check import check_profile, file_ids
+    from woundroll.tester_files import read_profile_export
+
+    if r.n_positions < 2 or not float(r.mean.mean()) > 0:
+        return None
+    ids = file_ids(path)
+    if layout == "profile":
+        ids = file_ids(path, read_profile_export(path, field="CSV_FILE").metadata)
+    elif layout == "tappi":
+        ids["roll"] = r.source.split(": roll ", 1)[-1]
+    return check_profile(r, band=frac, ids=ids)
+
+
+def _write_readings(out_dir: Path, r, check, unit) -> None:  # type: ignore[no-untyped-def]
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    payload = r.to_dict()
+    payload["profile_check"] = None if check is None else check.to_dict()
+    u = unit or r.position_unit or "in"
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+        (out_dir / "readings.json").write_text(strict_json(payload, indent=1), encoding="utf-8")
+        plt.close(r.plot(out_dir / "readings.png", unit=u))
+        if check is not None:
+            plt.close(check.plot(out_dir / "profile.png", unit=u))
+    except OSError as exc:
+        raise InputError(f"cannot write to {out_dir}: {exc.strerror or exc}", "--out") from None
+
+
+def _readings_trend(  # type: ignore[no-untyped-def]
+    files: list[str], fmt, width, lane_width, frac, unit, out_dir, as_json
+) -> None:
+    from woundroll.cli import out
+    from woundroll.profile_check import TREND_MIN_ROLLS, check_profile, read_rolls, roll_trend
+
+    rolls = read_rolls(files, format=fmt, width=width, lane_width=lane_width, field="CSV_FILE")
+    checks = []
+    for r, ids in rolls:
+        if r.n_positions < 2:
+            raise InputError(
+                f"{r.source}: a roll in a trend needs readings at 2 positions or more", "CSV_FILE"
+            )
+        checks.append(check_profile(r, band=frac, ids=ids))
+    tr = roll_trend(checks)
+    if out_dir is not None:
+        import matplotlib
+
+        matplotlib.use("Agg", force=False)
+        import matplotlib.pyplot as plt
+
+        try:
+            out_dir.mkdir(parents=True, exist_ok=True)
+            (out_dir / "trend.json").write_text(
+                strict_json(tr.to_dict(), indent=1), encoding="utf-8"
+            )
+            (out_dir / "trend.csv").write_text(tr.to_csv(), encoding="utf-8")
+            plt.close(tr.plot(out_dir / "trend.png"))
+        except OSError as exc:
+            raise InputError(f"cannot write to {out_dir}: {exc.strerror or exc}", "--out") from None
+    if as_json:
+        sys.stdout.write(strict_json(tr.to_dict()) + "\n")
+        return
+    s = tr.scale
+    lots = any("lot" in c.ids for c in checks)
+    t = Table(title=f"roll-to-roll trend: {len(checks)} rolls, scale {s}")
+    t.add_column("#", justify="right")
+    t.add_column("roll", no_wrap=True)
+    if lots:
+        t.add_column("lot", no_wrap=True)
+    for name in (f"mean [{s}]", "CoV [%]", f"p2p [{s}]"):
+        t.add_column(escape(name), justify="right")
+    t.add_column("band", no_wrap=True)
+    t.add_column("hard/soft", justify="right")
+    t.add_column("limits", no_wrap=True)
+    mc, cc = tr.mean_chart, tr.cov_chart
+    for i, c in enumerate(checks):
+        flag = [n for n, ch in (("mean", mc), ("CoV", cc)) if i in ch.out_of_control]
+        nh = sum(b.kind == "hard" for b in c.faults)
+        cells = [f"{i + 1}", escape(c.label)]
+        if lots:
+            cells.append(escape(c.ids.get("lot", "")))
+        cells += [
+            f"{c.mean:.2f}",
+            f"{100 * c.cov:.2f}",
+            f"{c.peak_to_peak:.3g}",
+            c.band,
+            f"{nh}/{len(c.faults) - nh}",
+            "out: " + ", ".join(flag) if flag else "in",
+        ]
+        t.add_row(*cells)
+    out.print(t)
+    out.print(
+        f"X-mR charts (limits = centre +- 2.66 mR-bar): mean centre {mc.center:.2f} {s}, "
+        f"limits {mc.lcl:.2f} to {mc.ucl:.2f}; CoV centre {100 * cc.center:.2f} %, limits "
+        f"{100 * cc.lcl:.2f} to {100 * cc.ucl:.2f} %",
+        highlight=False,
+    )
+    if tr.provisional:
+        out.print(
+            f"limits provisional: {len(checks)} rolls, fewer than {TREND_MIN_ROLLS}",
+            highlight=False,
+        )
+    for line in tr.flagged():
+        out.print(escape(line), highlight=False)
+    if out_dir is not None:
+        out.print(f"wrote {out_dir / 'trend.json'}, trend.csv, trend.png")
 
 
 def diagnose_cmd(
@@ -177,7 +388,7 @@ def diagnose_cmd(
 
         defects = defect_report(c, d)
         payload = {
-            "case": {"title": c.title},
+            "case": {"title": c.display_title},
             "readings": d.readings.to_dict(),
             "diagnosis": {**d.to_dict(), "defects": defects.to_dict()},
         }
@@ -216,7 +427,8 @@ def diagnose_cmd(
         escape(f"P at {d.pressure_depth * 1e3:.1f} mm [kPa]"),
         "status",
         title=escape(
-            f"{c.title or case}: diagnosis ({100 * d.confidence:.0f} % intervals in brackets)"
+            f"{c.display_title or case}: diagnosis "
+            f"({100 * d.confidence:.0f} % intervals in brackets)"
         ),
     )
     for row in d.summary():
@@ -245,7 +457,7 @@ def diagnose_cmd(
         for note in fit.notes:
             out.print(f"note: {escape(note)}", highlight=False)
     for p in written:
-        out.print(f"wrote {p}")
+        out.print(f"wrote {escape(str(p))}")
 
 
 def _print_defects(defects) -> None:  # type: ignore[no-untyped-def]
@@ -255,6 +467,9 @@ def _print_defects(defects) -> None:  # type: ignore[no-untyped-def]
     for name, risk, sentence in defects.summary():
         t.add_row(escape(name), escape(risk), escape(sentence))
     out.print(t)
+    note = defects.needs_note()
+    if note:
+        out.print(escape(note), highlight=False)
 
 
 def defects_cmd(
@@ -478,7 +693,7 @@ def design_cmd(
     if as_json:
         sys.stdout.write(strict_json({"design": d.to_dict()}) + "\n")
         return
-    tb = Table("quantity", "value", title=escape(f"{c.title or case}: setpoint design"))
+    tb = Table("quantity", "value", title=escape(f"{c.display_title or case}: setpoint design"))
     for name, value in d.summary():
         tb.add_row(escape(name), escape(value))
     out.print(tb)
@@ -486,7 +701,7 @@ def design_cmd(
         out.print(f"note: {escape(note)}", highlight=False)
     out.print("case file lines:\n" + escape(d.case_snippet()), highlight=False)
     if out_dir is not None:
-        out.print(f"wrote {out_dir / 'design.json'}\nwrote {out_dir / 'design.png'}")
+        out.print(escape(f"wrote {out_dir / 'design.json'}\nwrote {out_dir / 'design.png'}"))
 
 
 def register(app: typer.Typer) -> None:

@@ -59,6 +59,8 @@ def sweep_cmd(
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar.")] = False,
 ) -> None:
     """Run a case over a grid, random or Latin-hypercube design of inputs; write one table."""
+    from rich.markup import escape
+
     from woundroll.cli import _fail, err, out
     from woundroll.sweep import run_sweep
 
@@ -93,9 +95,9 @@ def sweep_cmd(
         n = len(result.rows)
         out.print(f"{n} rolls, {n - result.n_failed} ran, {result.n_failed} failed")
         for note in result.notes:
-            err.print(f"note: {note}", highlight=False)
+            err.print(f"note: {escape(note)}", highlight=False)
         for p in written:
-            out.print(f"wrote {p}")
+            out.print(f"wrote {escape(str(p))}")
 
 
 def register(app: typer.Typer) -> None:

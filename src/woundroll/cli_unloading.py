@@ -16,6 +16,7 @@ def fit_cycle_cmd(
 ) -> None:
     """Fit :func:`woundroll.materials.unloading.fit_stack_cycle` and print the case-file
     tables (``radial_modulus`` and ``radial_unloading``) with the fit quality."""
+    from rich.markup import escape
     from rich.table import Table
 
     from woundroll.materials.radial_modulus import read_stack_csv
@@ -38,13 +39,13 @@ def fit_cycle_cmd(
         "loading (pfeiffer)",
         str(fit.n_loading),
         f"{fit.loading.rms_rel_error:.2%}",
-        f"radial_modulus = {fit.loading.toml()}",
+        escape(f"radial_modulus = {fit.loading.toml()}"),
     )
     t.add_row(
         "unloading",
         str(fit.n_unloading),
         f"{fit.unloading_rms_rel_error:.2%}",
-        f"radial_unloading = {fit.unloading.toml()}",
+        escape(f"radial_unloading = {fit.unloading.toml()}"),
     )
     out.print(t)
     out.print(

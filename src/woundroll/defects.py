@@ -108,6 +108,9 @@ class Criterion:
     where_m: float | None
     sentence: str
     source: str
+    #: Dotted case key the criterion needs and the case does not give ("n/a" criteria), e.g.
+    #: ``defects.core_strength``; None when the criterion was checked.
+    needs: str | None = None
 
     def to_dict(self) -> dict[str, Any]:
         def num(v: float | None) -> float | None:
@@ -123,6 +126,7 @@ class Criterion:
             "where_radius_m": num(self.where_m),
             "sentence": self.sentence,
             "source": self.source,
+            "needs": self.needs,
         }
 
 
@@ -154,7 +158,9 @@ def assess_roll(
     out: list[Criterion] = []
     r = winding.radius
     P = -winding.sigma_r
-    # starring / buckling: the smooth (layer-mean) hoop stress
+    # starring (practical rule) and buckling (wrinkling estimate): the smooth (layer-mean)
+    # hoop stress. Two criteria, so that each risk agrees with its own margin: the rule has
+    # none (any compression is "watch"), the estimate's risk follows its margin.
     rm, st = winding.layer_mean_hoop_stress()
     i = int(np.argmin(st))
     smin = float(st[i])
@@ -178,21 +184,33 @@ def assess_roll(
         G = web.G_r_theta if web.G_r_theta is not None else 2.0 * E_r
         s_cr = buckling_stress(web.E_theta, E_r, G)
         margin = s_cr / -smin
-        risk = "high" if margin < 1 else "watch"
         depth = (rm[i] - core.outer_radius) / (r[-1] - core.outer_radius)
         out.append(
             Criterion(
                 "starring",
-                risk,
+                "watch",
+                None,
+                -smin,
+                None,
+                "Pa",
+                float(rm[i]),
+                f"negative hoop stress {smin / 1e3:.3g} kPa at r = {rm[i] * 100:.2f} cm "
+                f"({100 * depth:.0f} % of the wound thickness from the core): a starring risk "
+                "if layers slip (practical rule: any compression is watched; no margin)",
+                src_star,
+            )
+        )
+        out.append(
+            Criterion(
+                "buckling",
+                _risk(margin),
                 margin,
                 -smin,
                 s_cr,
                 "Pa",
                 float(rm[i]),
-                f"negative hoop stress {smin / 1e3:.3g} kPa at r = {rm[i] * 100:.2f} cm "
-                f"({100 * depth:.0f} % of the wound thickness from the core): a starring risk "
-                f"if layers slip; wrinkling estimate {s_cr / 1e6:.3g} MPa "
-                f"(margin {margin:.3g})",
+                f"hoop compression {-smin / 1e3:.3g} kPa against the wrinkling estimate "
+                f"{s_cr / 1e6:.3g} MPa of layers that do not slip (margin {margin:.3g})",
                 src_star,
             )
         )
@@ -208,8 +226,9 @@ def assess_roll(
                 None,
                 "Pa",
                 float(r[0]),
-                f"core pressure {pc / 1e3:.3g} kPa (give [defects] core_strength to check)",
+                f"core pressure {pc / 1e3:.3g} kPa; not checked without defects.core_strength",
                 "docs/diagnosis.md#core-crush",
+                needs="defects.core_strength",
             )
         )
     else:
@@ -242,9 +261,10 @@ def assess_roll(
                 None,
                 "Pa",
                 float(r[k]),
-                f"largest interlayer pressure {P[k] / 1e3:.3g} kPa (give [defects] "
-                "blocking_pressure to check)",
+                f"largest interlayer pressure {P[k] / 1e3:.3g} kPa; not checked without "
+                "defects.blocking_pressure",
                 "docs/diagnosis.md#blocking",
+                needs="defects.blocking_pressure",
             )
         )
     else:
@@ -310,8 +330,9 @@ def _slip(winding: WindingResult, web: Web, limits: DefectLimits) -> list[Criter
                     None,
                     "-",
                     None,
-                    f"give [defects] {key} to check",
+                    f"not checked without defects.{key}",
                     src,
+                    needs=f"defects.{key}",
                 )
             )
             continue
@@ -363,6 +384,7 @@ def assess_lanes(diagnosis: Diagnosis, case: Case, limits: DefectLimits) -> list
             continue
         w = wind(web, core, r_out, replace(sched, web_stress=t), options=opts)
         crit = assess_roll(w, web, core, limits, pressure_depth=diagnosis.pressure_depth)
+        crit = [c for c in crit if c.needs is None]  # unchecked: said once, for the roll
         entry["criteria"] = [c.to_dict() for c in crit]
         ratio = float(wot[i] / med) if med > 0 else math.nan
         entry["wot_over_median"] = ratio
@@ -393,9 +415,25 @@ class DefectReport:
     def risk(self) -> str:
         return _worst([c.risk for c in self.roll] + [ln.get("risk", "n/a") for ln in self.lanes])
 
+    @property
+    def unchecked(self) -> list[tuple[str, str]]:
+        """(criterion, case key to set) of every criterion not checked for want of a limit."""
+        return [(c.name, c.needs) for c in self.roll if c.needs is not None]
+
+    def needs_note(self) -> str:
+        """One sentence, said once under the criteria, on how to give the limits that the
+        "n/a" rows name ("" when every criterion was checked)."""
+        if not self.unchecked:
+            return ""
+        return (
+            "n/a: not checked for want of a limit; set the key the finding names in the "
+            "case's [defects] section or with --set KEY=VALUE (docs/diagnosis.md#defect-risk)."
+        )
+
     def to_dict(self) -> dict[str, Any]:
         return {
             "risk": self.risk,
+            "unchecked": [{"name": n, "needs": k} for n, k in self.unchecked],
             "roll": [c.to_dict() for c in self.roll],
             "lanes": self.lanes,
             "limits": {k: v for k, v in self.limits.__dict__.items()},
@@ -456,7 +494,11 @@ class DefectReport:
         ax.set_xlabel("CMD position [in] (red: slack lane)")
         ax.set_ylabel("margin per lane")
         ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7, ncol=3)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=7, ncol=3)
+        else:  # no lane was diagnosed (every reading outside the forward curve)
+            ax.text(0.5, 0.5, "no lane with a diagnosed tension", transform=ax.transAxes,
+                    ha="center", va="center", fontsize=8, color="0.35")  # fmt: skip
 
     def plot(self, path: str | Path | None = None) -> Any:
         """Margins of every roll criterion (log scale, 1 and the watch line marked); with
@@ -478,6 +520,18 @@ class DefectReport:
         ax.set_xlabel("margin = capacity / demand (1: limit, dashed: watch)")
         ax.set_title(f"defect risk: {self.risk}", fontsize=9)
         ax.grid(alpha=0.3, axis="x", which="both")
+        # criteria without a margin are named, not drawn: a bar would put them anywhere
+        rest = [f"{c.name} ({c.risk})" for c in self.roll if c not in crit]
+        if rest:
+            ax.text(
+                0.0,
+                -0.32 if not self.lanes else -0.3,
+                "no margin: " + ", ".join(rest),
+                transform=ax.transAxes,
+                fontsize=7,
+                color="0.35",
+                va="top",
+            )
         fig.tight_layout()
         if path is not None:
             fig.savefig(path, dpi=120)

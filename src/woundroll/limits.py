@@ -259,9 +259,17 @@ def check_case_values(spec: Any) -> list[str]:
     return warnings
 
 
-def check_built(web: Any, core: Any, r_out: float, schedule: Any, options: Any) -> list[str]:
+def check_built(
+    web: Any,
+    core: Any,
+    r_out: float,
+    schedule: Any,
+    options: Any,
+    size_field: str = "winding.outer_radius",
+) -> list[str]:
     """Limits that need the built web, core and schedule: E_r, Poisson ratios, size, tension,
-    and the expected time of the winding solve."""
+    and the expected time of the winding solve. ``size_field``: the key the user gave the
+    roll's size by (``winding.length`` makes ``r_out``; its errors name that key)."""
     warnings: list[str] = []
 
     def add(w: str | None) -> None:
@@ -301,7 +309,9 @@ def check_built(web: Any, core: Any, r_out: float, schedule: Any, options: Any) 
             f"{E_r0 / 1e6:.3g} MPa; the ratios allow E_r up to {e_max / 1e6:.3g} MPa)",
             "web.nu_theta_r",
         )
-    add(check("winding.outer_radius", r_out))
+    by_length = size_field == "winding.length"
+    what = "outer radius (from the length)" if by_length else "value"
+    add(check("winding.outer_radius", r_out, field=size_field, what=what))
     n = int(round((r_out - core.outer_radius) / web.thickness))
     inc = math.ceil(n / options.layers_per_increment)
     if inc > MAX_INCREMENTS:
@@ -310,7 +320,7 @@ def check_built(web: Any, core: Any, r_out: float, schedule: Any, options: Any) 
             f"(about {fmt_seconds(winding_seconds(MAX_INCREMENTS, options.subdivisions))} of "
             "solving): lump layers with winding.options.layers_per_increment, or wind a "
             "smaller roll",
-            "winding.outer_radius" if n else "web.thickness",
+            size_field if n else "web.thickness",
         )
     t = winding_seconds(inc, options.subdivisions)
     if t > LONG_RUN_SECONDS:

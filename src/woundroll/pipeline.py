@@ -96,7 +96,7 @@ class RunResult:
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict: ``{"case": ..., "winding": {...}, "contact": ..., "hardness": ...,
         "flags": {...}, "warnings": [...]}`` (``flags``: :func:`result_flags`)."""
-        out: dict[str, Any] = {"case": {"title": self.case.title}}
+        out: dict[str, Any] = {"case": self.case.record()}
         for name in ("winding", "contact", "hardness", "no_update", "profile"):
             part = getattr(self, name)
             if part is not None:

@@ -28,9 +28,9 @@ File format (CSV, ``#`` starts a comment line, a header row first)::
 * **Passes**: a ``pass`` column numbers the passes of a long sheet; without it, the k-th reading
   at a position belongs to pass k. Repeated readings at one position give its scatter.
 
-Every problem (no header, unknown scale, a value that is not a finite number, a position
-outside the roll, an unreadable file) raises :class:`~woundroll.errors.InputError` whose
-message names the file and the line.
+Every problem (no header, unknown scale, a value that is not a finite number or lies off the
+instrument's scale (:func:`scale_limits`), a position outside the roll, an unreadable file)
+raises :class:`~woundroll.errors.InputError` whose message names the file and the line.
 """
 
 from __future__ import annotations
@@ -38,7 +38,7 @@ from __future__ import annotations
 import csv
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -50,7 +50,16 @@ from woundroll.errors import InputError
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 
-__all__ = ["SCALES", "Readings", "read_readings", "readings_from_arrays"]
+__all__ = [
+    "SCALES",
+    "Readings",
+    "DISPLAY_UNITS",
+    "check_on_scale",
+    "display_unit",
+    "read_readings",
+    "readings_from_arrays",
+    "scale_limits",
+]
 
 #: Scale (unit of a reading) -> instrument readout kind (woundroll.instruments.readout.READOUTS).
 SCALES: dict[str, str] = {"Rho": "rho", "R": "schmidt-r", "L": "parotester-l", "g": "g"}
@@ -68,6 +77,13 @@ _SCALE_ALIASES: dict[str, str] = {
     "g": "g",
     "peak_g": "g",
     "tapper_g": "g",
+}
+#: What each scale's instrument is called in an error message.
+_SCALE_INSTRUMENT: dict[str, str] = {
+    "Rho": "Rho-meter",
+    "R": "Schmidt hammer",
+    "L": "Parotester",
+    "g": "tapper",
 }
 _POSITION_NAMES = ("position", "pos", "x", "z", "cmd", "cmd_position")
 _LANE_NAMES = ("lane", "lane_number", "lane_no")
@@ -87,6 +103,39 @@ def _scale_of(text: str) -> str | None:
     if text.strip() in SCALES:
         return text.strip()
     return _SCALE_ALIASES.get(_key(text))
+
+
+def scale_limits(scale: str) -> tuple[float, float]:
+    """Lowest and highest value the instrument of ``scale`` can show (its dial or display).
+
+    The ranges are the instruments' own (:data:`woundroll.instruments.definitions.READING_RANGES`:
+    Rho-meter dial 0-100 Rho, Schmidt hammer rebound number R 10-100, Parotester L 0-1000);
+    a tapper's peak deceleration in g has no upper end but cannot be negative (it is a
+    magnitude). A measured value outside these limits is a typing or export error, never a
+    reading (docs/tester-files.md, "Values off the scale").
+    """
+    from woundroll.instruments.definitions import READING_RANGES
+
+    sc = _scale_of(scale)
+    if sc is None:
+        raise InputError(f"unknown scale {scale!r} (known: {', '.join(SCALES)})", "readings.scale")
+    rng = READING_RANGES.get(SCALES[sc])
+    return (0.0, math.inf) if rng is None else (float(rng[0]), float(rng[1]))
+
+
+def check_on_scale(value: float, scale: str, where: str, field: str = "readings") -> None:
+    """Raise :class:`InputError` naming ``where`` (file and line) and the value when
+    ``value`` lies outside the instrument's scale (:func:`scale_limits`)."""
+    lo, hi = scale_limits(scale)
+    if lo <= value <= hi:
+        return
+    sc = _scale_of(scale) or scale
+    span = f"{lo:g} to {hi:g} {sc}" if math.isfinite(hi) else f"{lo:g} {sc} or more"
+    raise InputError(
+        f"{where}: {value:g} {sc} is off the {_SCALE_INSTRUMENT[sc]}'s scale "
+        f"({span}); a typing or export error?",
+        field,
+    )
 
 
 @dataclass(frozen=True)
@@ -116,6 +165,10 @@ class Readings:
         Lane width when the file gives lane numbers.
     source : str
         File name (or a label).
+    position_unit : str
+        Length unit the file wrote its positions in (``"in"``, ``"cm"``, ``"mm"``, ``"m"``;
+        ``"in"`` for a TAPPI sheet's 6 in lanes), for showing positions back in the user's
+        unit; ``""`` when unknown (arrays, lane numbers of a generic file).
     """
 
     position: FloatArray
@@ -129,6 +182,7 @@ class Readings:
     raw_line: IntArray
     lane_width: float | None = None
     source: str = ""
+    position_unit: str = ""
 
     # -- derived ---------------------------------------------------------------------
     @property
@@ -292,6 +346,10 @@ def readings_from_arrays(
         )
     if not (np.all(np.isfinite(x)) and np.all(np.isfinite(v))):
         raise InputError("positions and values must be finite numbers", "readings")
+    for i, val in enumerate(v):
+        check_on_scale(
+            float(val), sc, f"{source}, reading {i + 1}" if source else f"reading {i + 1}"
+        )
     if width is not None:
         _check_inside(x, width, lambda i: f"{source or 'readings'} reading {i + 1}")
     p = None if passes is None else np.asarray(passes, dtype=int).ravel()
@@ -431,6 +489,7 @@ def read_readings(
         )
     where = f"{name} line {hline}"
     pos_col, pos_factor, is_lane = None, 1.0, False
+    written_unit = ""
     pass_col = None
     value_cols: list[int] = []
     scales: set[str] = set()
@@ -447,6 +506,7 @@ def read_readings(
                 is_lane = True
             else:
                 pos_factor = _length_scale(unit, where)
+                written_unit = display_unit(unit)
             pos_col = j
         elif base in _LANE_NAMES and pos_col is None:
             pos_col, is_lane = j, True
@@ -527,6 +587,7 @@ def read_readings(
             if len(value_cols) > 1 and (j >= len(row) or row[j] == ""):
                 continue  # a wide sheet may leave a pass empty at a position
             v = _number(row, j, header, at, field)
+            check_on_scale(v, next(iter(scales)), f"{at}, column {header[j]!r}", field)
             xs.append(pos)
             vs.append(v)
             ps.append(pass_no if pass_no is not None else k + 1)
@@ -537,7 +598,7 @@ def read_readings(
     passes = np.asarray(ps, dtype=np.int64)
     # a long sheet without a pass column: the k-th reading at a position is pass k
     implicit = pass_col is None and len(value_cols) == 1
-    return _assemble(
+    r = _assemble(
         x_arr,
         np.asarray(vs),
         None if implicit else passes,
@@ -546,6 +607,18 @@ def read_readings(
         lane_width if is_lane else None,
         name,
     )
+    return replace(r, position_unit=written_unit)
+
+
+#: Length units positions are shown in, and their size [m].
+DISPLAY_UNITS: dict[str, float] = {"in": 0.0254, "cm": 0.01, "mm": 0.001, "m": 1.0}
+
+
+def display_unit(unit: str) -> str:
+    """``"in"``, ``"cm"``, ``"mm"`` or ``"m"`` for a spelling of one of them, else ``""``."""
+    u = unit.strip().lower()
+    u = {"inch": "in", "inches": "in", '"': "in"}.get(u, u)
+    return u if u in DISPLAY_UNITS else ""
 
 
 def _delimiter(text: str) -> str:

@@ -276,7 +276,7 @@ def result_columns(d: dict[str, Any]) -> dict[str, Any]:
 def _column_name(key: str, readout: str | None) -> str:
     head, _, last = key.rpartition(".")
     prefix = f"{head}." if head else ""
-    if last == "reading" and readout:
+    if last in ("reading", "reading_model") and readout:
         return f"{key} [{readout}]"
     if last in _SCALE_KEYS:
         return f"{key} [{_SCALE_KEYS[last]}]"
@@ -355,13 +355,28 @@ def uncertainty_columns(uq: Any, readout: str | None = None) -> dict[str, float]
     return out
 
 
+@dataclass(frozen=True)
+class CaseData:
+    """A case file read where the sweep starts: its TOML table and the directory relative
+    paths inside it are resolved against. Sent to Dask workers instead of the path, so a
+    worker on another machine does not need the case file (files the case names, such as a
+    thickness profile, still have to be readable there under the same path)."""
+
+    data: dict[str, Any]
+    base_dir: str | None = None
+
+
 def _load_point(case: Any, overrides: dict[str, Any]) -> Any:
-    """The case (path, bundled name or dict) with the point's values set, validated."""
+    """The case (path, bundled name, dict or :class:`CaseData`) with the point's values set,
+    validated."""
     import copy
 
     from woundroll.case import case_from_dict, resolve_case_path, set_dotted
 
-    if isinstance(case, dict):
+    if isinstance(case, CaseData):
+        data = copy.deepcopy(case.data)
+        base = Path(case.base_dir) if case.base_dir is not None else None
+    elif isinstance(case, dict):
         data, base = copy.deepcopy(case), None
     else:
         path = resolve_case_path(case)
@@ -653,6 +668,10 @@ def _run_local(
     return out + results  # type: ignore[operator]
 
 
+#: How long ``--scheduler`` waits for the scheduler to answer before it gives up.
+SCHEDULER_TIMEOUT = "10s"
+
+
 def _run_dask(
     case: Any,
     overrides: list[dict[str, Any]],
@@ -668,13 +687,16 @@ def _run_dask(
     own = not isinstance(scheduler, Client)
     if own:
         try:
-            client = Client(str(scheduler), timeout="10s", set_as_default=False)
+            client = Client(str(scheduler), timeout=SCHEDULER_TIMEOUT, set_as_default=False)
         except (OSError, TimeoutError, ValueError) as exc:
             raise InputError(
                 f"cannot reach the Dask scheduler at {scheduler!r}: {exc}", "--scheduler"
             ) from None
     else:
         client = scheduler
+    if isinstance(case, str | Path):  # the workers get the case's table, not its path
+        path = Path(case).resolve()
+        case = CaseData(tomllib.loads(path.read_text(encoding="utf-8")), str(path.parent))
     try:
         n = len(overrides)
         futs = client.map(
@@ -682,9 +704,24 @@ def _run_dask(
         )
         index = {f.key: i for i, f in enumerate(futs)}
         results: list[dict[str, Any] | None] = [None] * len(futs)
-        for done, fut in enumerate(as_completed(futs), 1):
-            results[index[fut.key]] = fut.result()
+        # the client's own loop: this client is not the process's default client (a
+        # command-line run has no other), and as_completed would look for that one
+        done = 0
+        for fut in as_completed(futs, loop=client.loop):
+            try:
+                results[index[fut.key]] = fut.result()
+            except Exception as exc:  # a worker lost or killed: that roll's error, not a crash
+                msg = " ".join(f"{type(exc).__name__}: {exc}".split())
+                results[index[fut.key]] = {"error": f"cluster: {msg}"}
+            done += 1
             tick(done)
+        if all(str(r.get("error", "")).startswith("cluster: ") for r in results if r):
+            # no roll reached woundroll: the cluster is the problem (workers that cannot
+            # import woundroll, another Python environment), not the rolls
+            first = str(results[0]["error"]).removeprefix("cluster: ")  # type: ignore[index]
+            raise InputError(
+                f"no roll ran on the cluster at {client.scheduler.address}: {first}", "--scheduler"
+            )
         return results  # type: ignore[return-value]
     finally:
         if own:

@@ -43,12 +43,18 @@ import csv
 import io
 import math
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 from woundroll.errors import InputError
-from woundroll.readings import SCALES, Readings, read_readings, readings_from_arrays
+from woundroll.readings import (
+    SCALES,
+    Readings,
+    check_on_scale,
+    read_readings,
+    readings_from_arrays,
+)
 
 __all__ = [
     "FORMATS",
@@ -239,11 +245,14 @@ def read_tappi_sheet(
                 v = math.nan
             if not math.isfinite(v):
                 raise InputError(f"{where}: {header[j]} = {cell!r} is not a number", field)
+            check_on_scale(v, sc, f"{where}, {header[j]}", field)
             d["x"].append(x)
             d["v"].append(v)
             d["p"].append(p or d["n"][0])
     if not data:
         raise InputError(f"{path.name}: no readings under the header", field)
+    units = {m.group(2) for h in header if (m := _AT.match(h))}
+    pos_unit = "in" if not units else (units.pop() if len(units) == 1 else "")
     out = {}
     for roll, d in data.items():
         if not d["v"]:
@@ -258,6 +267,7 @@ def read_tappi_sheet(
             source=f"{path.name}: roll {roll}",
             lane_width=lw,
         )
+        out[roll] = replace(out[roll], position_unit=pos_unit)
     return out
 
 
@@ -387,13 +397,14 @@ def read_profile_export(
                 raise InputError(
                     f"{where}: {header[k]} = {cell!r} is not a number", field
                 ) from None
+            check_on_scale(v, sc, f"{where}, {header[k]}", field)
             xs.append(x)
             vs.append(v)
             ps.append(k)
     if not vs:
         raise InputError(f"{path.name}: no readings under the header", field)
     r = _arrays(field, xs, vs, scale=sc, passes=ps, width=width, source=path.name)
-    return ProfileExport(r, meta)
+    return ProfileExport(replace(r, position_unit=unit), meta)
 
 
 def _num(text: str, decimal_comma: bool) -> float:
@@ -487,7 +498,7 @@ def read_tester_file(
     r = rolls[roll]
     if width is None:
         return r
-    return _arrays(
+    checked = _arrays(
         field,
         r.raw_position,
         r.raw_value,
@@ -497,3 +508,4 @@ def read_tester_file(
         source=r.source,
         lane_width=r.lane_width,
     )
+    return replace(checked, position_unit=r.position_unit)

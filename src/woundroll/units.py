@@ -364,3 +364,45 @@ def check_positive(value: float, field: str, *, allow_zero: bool = False) -> flo
 def unit_scale(unit: str, kind: str, field: str | None = None) -> float:
     """SI value of one ``unit`` (``"mil"`` -> 2.54e-5), checked against ``kind``."""
     return to_si(f"1 {unit}", kind, field)
+
+
+#: The SI unit a value of each kind is reported in (result.json ``inputs``, the report).
+SI_UNITS: dict[str, str] = {
+    "length": "m",
+    "mass": "kg",
+    "time": "s",
+    "force": "N",
+    "pressure": "Pa",
+    "force_per_length": "N/m",
+    "stiffness": "N/m",
+    "force_per_area": "Pa",
+    "density": "kg/m^3",
+    "velocity": "m/s",
+    "acceleration": "m/s^2",
+    "energy": "J",
+    "frequency": "1/s",
+    "bending_stiffness": "N m^2",
+    "dimensionless": "",
+}
+
+
+def si_value(value: Any, kind: str | None = None) -> tuple[float, str] | None:
+    """``value`` in SI and its SI unit (:data:`SI_UNITS`): of dimension ``kind`` when known,
+    else of whichever kind its unit has (a bare number is SI, unit ``kind``'s or ``""``).
+
+    None when ``value`` is not a quantity (text, a flag, a list) or not of ``kind``.
+    """
+    if isinstance(value, bool) or not isinstance(value, int | float | str):
+        return None
+    if kind is not None:
+        try:
+            return to_si(value, kind), SI_UNITS[kind]
+        except InputError:
+            return None
+    for k in SI_UNITS:
+        try:
+            v = to_si(value, k, bare_is_si=False)
+        except InputError:
+            continue
+        return v, SI_UNITS[k]
+    return None

@@ -347,9 +347,9 @@ def test_model_dispatch_errors_name_the_field() -> None:
 
     r, s = pet_profile()
     sn = get_instrument("schmidt-n")
-    with pytest.raises(InputError) as e:  # the 2D model cannot take a sphere
+    with pytest.raises(InputError, match="takes a cylinder head") as e:  # 2D: no sphere
         roll_stiffness(PET1, RIGID, r, s, sn, model="2d")
-    assert e.value.field == "tester.instrument"
+    assert e.value.field == "contact.model"
     with pytest.raises(InputError) as e:
         roll_stiffness(PET1, RIGID, r, s, sn, model="4d")
     assert e.value.field == "contact.model"

@@ -28,7 +28,7 @@ def test_default_is_sharp_and_the_case_key_reaches_the_head() -> None:
     assert np.all(head.lift(y, z) >= sharp.lift(y, z))
     assert head.lift(0.5e-3, 0.0) == sharp.lift(0.5e-3, 0.0)
     with pytest.raises(Exception) as e:  # larger than the head radius: refused, named
-        Head.from_instrument(rho.with_overrides("tester", head_edge_radius="7 mm"))
+        Head.from_instrument(rho.with_overrides("tester", head_edge_radius="9 mm"))
     assert getattr(e.value, "field", None) == "tester.instrument"
 
 

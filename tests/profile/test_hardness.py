@@ -102,9 +102,12 @@ def test_to_dict_and_plot(tmp_path: Path) -> None:
         workers=1,
     )
     d = res.to_dict()
-    for key in ("z_m", "rho", "thickness_m", "wot_Pa", "sigma_r_outer_Pa", "sigma_r_core_Pa"):
+    keys = ("z_m", "reading", "reading_model", "thickness_m", "wot_Pa", "sigma_r_outer_Pa")
+    for key in (*keys, "sigma_r_core_Pa"):
         assert len(d[key]) == 11 and all(np.isfinite(d[key]))
-    assert set(d["stats"]["rho"]) >= {"mean", "sd", "cov", "min", "max", "peak_to_peak", "band"}
+    # a readout callable has no scale: nothing saturates, the reading is the model's
+    assert d["scale"] is None and not any(d["saturated"]) and d["reading"] == d["reading_model"]
+    assert set(d["stats"]["reading"]) >= {"mean", "sd", "cov", "min", "max", "peak_to_peak"}
     figs = res.plot(tmp_path / "case")
     assert len(figs) == 2
     assert (tmp_path / "case_cmd.png").stat().st_size > 1000

@@ -39,15 +39,28 @@ if TYPE_CHECKING:
     from woundroll.pipeline import RunResult
 
 __all__ = [
+    "ID_FIELDS",
     "Row",
     "build_report",
     "case_hash",
     "defects_section",
     "diagnosis_section",
     "input_sections",
+    "profile_check_section",
     "readings_section",
+    "summary_section",
+    "trend_section",
     "write_report",
 ]
+
+#: Identification fields of the report header, in display order: key -> label.
+ID_FIELDS: dict[str, str] = {"roll": "Roll ID", "lot": "Lot", "customer": "Customer"}
+#: Equation references in captions and assumptions, explained once in the report.
+EQUATION_NOTE = (
+    "Numbers in braces, such as {3}, are the equation numbers of the reference paper the "
+    'models follow ("The Coupling of Winding Models and Roll Quality Instruments"; '
+    "woundroll's docs/assumptions.md)."
+)
 
 
 @dataclass(frozen=True)
@@ -133,7 +146,7 @@ def input_sections(case: Case) -> list[tuple[str, list[Row]]]:
     ``case file`` when the case sets it, ``default`` when neither does. The instrument's
     values carry the preset's own ``[sources]`` entry per field.
     """
-    from woundroll.case import WebSpec
+    from woundroll.case import FROM_SET, FROM_WEB_FORM, WebSpec
     from woundroll.materials.presets import list_materials
 
     sections: list[tuple[str, list[Row]]] = []
@@ -222,7 +235,17 @@ def input_sections(case: Case) -> list[tuple[str, list[Row]]]:
         rows.append(_row("contact.depth_max", c.depth_max, "length", "case file"))
     if setup is not None:
         sections.append(("Contact model", rows))
+    # where each value came from, as the case recorded it: a value set over the case (--set,
+    # the web form) says so, and "case file or default" becomes the one that applies
+    for _, rows in sections:
+        for i, row in enumerate(rows):
+            src = case.source_of(row.key)
+            if src in (FROM_SET, FROM_WEB_FORM) or row.source in ("case file", _EITHER):
+                rows[i] = Row(row.key, row.value, row.unit, src)
     return sections
+
+
+_EITHER = "case file or default"
 
 
 def _law_text(law: Any) -> str:
@@ -294,6 +317,34 @@ def _png(fig: Any, dpi: int = 110) -> str:
     return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
 
 
+def _legible(fig: Any) -> None:
+    """Log axes for a printed page: labels as plain numbers (0.2, 0.5, 1, 2), the minor ones
+    only at 2 and 5 and only on an axis of less than 3 decades; matplotlib's default
+    ``3 x 10^-1``-style minor labels run into each other at print size."""
+    from matplotlib.ticker import FuncFormatter, NullFormatter
+
+    def plain(v: float, _pos: Any = None) -> str:
+        return f"{v:g}"
+
+    def two_five(v: float, _pos: Any = None) -> str:
+        if v <= 0:
+            return ""
+        mant = v / 10 ** math.floor(math.log10(v) + 1e-9)
+        return f"{v:g}" if round(mant, 6) in (2.0, 5.0) else ""
+
+    for ax in fig.axes:
+        for axis, scale in ((ax.xaxis, ax.get_xscale()), (ax.yaxis, ax.get_yscale())):
+            if scale != "log":
+                continue
+            lo, hi = sorted(axis.get_view_interval())
+            decades = math.log10(hi / lo) if lo > 0 and hi > lo else 99.0
+            if decades < 3:
+                axis.set_major_formatter(FuncFormatter(plain))
+                axis.set_minor_formatter(FuncFormatter(two_five))
+            else:
+                axis.set_minor_formatter(NullFormatter())
+
+
 # pyplot keeps one global figure registry and current-figure state, which is not safe when
 # two threads draw at once (the web server renders reports from its worker threads): every
 # figure of a report is drawn, saved and released under this lock.
@@ -306,6 +357,7 @@ def _figures(part: Any, captions: list[str]) -> list[dict[str, str]]:
         figs = part.plot()
         figs = list(figs) if isinstance(figs, list | tuple) else [figs]
         for i, fig in enumerate(figs):
+            _legible(fig)
             cap = captions[i] if i < len(captions) else ""
             out.append({"src": _png(fig), "caption": cap})
     return out
@@ -432,11 +484,188 @@ def defects_section(defects: Any) -> dict[str, Any]:
     figs = []
     if hasattr(defects, "plot"):
         figs = _figures(defects, ["Margins (capacity / demand) of the defect criteria."])
+    note = defects.needs_note() if hasattr(defects, "needs_note") else ""
     return {
         "risk": defects.risk,
         "rows": [{"name": n, "level": r, "reason": f} for n, r, f in defects.summary()],
+        "note": note,
         "figures": figs,
     }
+
+
+def profile_check_section(check: Any) -> dict[str, Any]:
+    """The hardness profiler's view of the measured profile
+    (:class:`woundroll.profile_check.ProfileCheck`): verdict, statistics rows, the fault table
+    with positions in the file's length unit, and the profile figure with the bands."""
+    unit = check.position_unit or "in"
+    stats = [
+        ("mean", f"{check.mean:.2f} {check.scale}"),
+        ("SD (sample)", f"{check.sd:.2f} {check.scale}"),
+        ("CoV", f"{100 * check.cov:.2f} %"),
+        ("min / max", f"{check.min:.2f} / {check.max:.2f} {check.scale}"),
+        ("peak-to-peak", f"{check.peak_to_peak:.2f} {check.scale}"),
+        ("CoV band", f"{check.band} (very good < 3 %, acceptable < 6 %)"),
+        ("fault threshold", f"+-{100 * check.fault_band:g} % of the roll mean"),
+    ]
+    rows = check.fault_rows(unit)
+    with _PLOT_LOCK:
+        fig = check.plot(unit=unit)
+        figs = [
+            {
+                "src": _png(fig),
+                "caption": "Mean reading per position; shaded: hard (red) and soft (blue) "
+                "bands beyond the fault threshold (dashed).",
+            }
+        ]
+    return {
+        "verdict": check.verdict,
+        "band": check.band,
+        "stats": stats,
+        "fault_header": list(rows[0].keys()) if rows else [],
+        "faults": [list(r.values()) for r in rows],
+        "figures": figs,
+    }
+
+
+def trend_section(trend: Any) -> dict[str, Any]:
+    """Roll-to-roll trend (:class:`woundroll.profile_check.Trend`): one row per roll, the
+    X-mR limits, the rolls beyond a limit and the control-chart figure."""
+    s = trend.scale
+    mc, cc = trend.mean_chart, trend.cov_chart
+    rows = []
+    for i, c in enumerate(trend.rolls):
+        flag = [n for n, ch in (("mean", mc), ("CoV", cc)) if i in ch.out_of_control]
+        nh = sum(b.kind == "hard" for b in c.faults)
+        rows.append(
+            [
+                str(i + 1),
+                c.label,
+                c.ids.get("lot", ""),
+                f"{c.mean:.2f}",
+                f"{100 * c.cov:.2f}",
+                f"{c.peak_to_peak:.3g}",
+                c.band,
+                f"{nh} / {len(c.faults) - nh}",
+                ("beyond " + ", ".join(flag)) if flag else "in control",
+            ]
+        )
+    header = [
+        "#",
+        "roll",
+        "lot",
+        f"mean [{s}]",
+        "CoV [%]",
+        f"p2p [{s}]",
+        "CoV band",
+        "hard / soft bands",
+        "control limits",
+    ]
+    limits = (
+        f"X-mR charts, limits = centre +- 2.66 mR-bar (Montgomery, Introduction to Statistical "
+        f"Quality Control, section 6.4): mean centre {mc.center:.2f} {s}, limits "
+        f"{mc.lcl:.2f} to {mc.ucl:.2f} {s}; CoV centre {100 * cc.center:.2f} %, limits "
+        f"{100 * cc.lcl:.2f} to {100 * cc.ucl:.2f} %."
+    )
+    if trend.provisional:
+        from woundroll.profile_check import TREND_MIN_ROLLS
+
+        limits += (
+            f" Provisional: {len(trend.rolls)} rolls, limits settle after about {TREND_MIN_ROLLS}."
+        )
+    return {
+        "header": header,
+        "rows": rows,
+        "limits": limits,
+        "flagged": trend.flagged(),
+        "figures": _figures(trend, ["Roll means and CoVs in production order, with limits."]),
+    }
+
+
+def summary_section(
+    result: RunResult,
+    *,
+    defects: Any = None,
+    check: Any = None,
+    readings: Any = None,
+    diagnosis: Any = None,
+    trend: Any = None,
+    n_warnings: int = 0,
+) -> dict[str, Any]:
+    """The verdict first: overall defect risk and the measured profile's band as the headline,
+    then one line per finding (criteria at risk, the profile's faults, predicted against
+    measured reading, the diagnosed tension, the trend, warnings)."""
+    import numpy as np
+
+    head: list[dict[str, str]] = []
+    lines: list[str] = []
+    if defects is not None:
+        head.append({"label": "defect risk", "value": defects.risk, "level": defects.risk})
+        risky = [(n, r) for n, r, _ in defects.summary() if r in ("high", "watch")]
+        if risky:
+            lines.append(
+                "Defect criteria at risk: " + ", ".join(f"{n} ({r})" for n, r in risky) + "."
+            )
+        else:
+            lines.append("No defect criterion at risk among those checked.")
+        todo = getattr(defects, "unchecked", [])
+        if todo:
+            lines.append(f"{len(todo)} criteria not checked for want of a limit (see Defect risk).")
+    if check is not None:
+        level = {"very good": "low", "acceptable": "low", "bad": "high"}.get(check.band, "")
+        head.append(
+            {
+                "label": "measured profile",
+                "value": f"{check.band} (CoV {100 * check.cov:.1f} %)",
+                "level": level,
+            }
+        )
+        lines.append(f"Measured profile: {check.verdict}.")
+    h = result.hardness
+    if h is not None:
+        d = h.to_dict()
+        from woundroll.readings import SCALES
+
+        unit = {readout: sc for sc, readout in SCALES.items()}.get(d["readout"], "")
+        value = f"{d['reading']:.1f} {unit}"
+        if d.get("saturated"):
+            value += f" (saturated: the model reads {d['reading_model']:.1f})"
+        head.append({"label": "predicted reading", "value": value, "level": ""})
+        model = result.contact.model if result.contact is not None else "tester.roll_spring"
+        lines.append(
+            f"Predicted reading read through the {model!r} roll model; the "
+            "head calibrated on its block in the "
+            f"{d['head_calibration']['calibrated_in'] or 'uncalibrated'!r} model "
+            f"(head radius {d['head_calibration']['head_radius_m'] * 1e3:.3f} mm)."
+        )
+    if h is not None and readings is not None:
+        try:
+            rd = readings.to_dict()
+            measured = float(np.mean(rd["mean"]))
+            d = h.to_dict()
+            unit = rd.get("scale") or d["readout"]
+            lines.append(
+                f"Predicted reading {d['reading']:.1f} {unit}, measured mean "
+                f"{measured:.1f} {unit} (predicted - measured {d['reading'] - measured:+.1f})."
+            )
+        except (KeyError, TypeError, ValueError):
+            pass
+    if diagnosis is not None and hasattr(diagnosis, "wound_on_tension"):
+        wot = np.asarray(diagnosis.wound_on_tension, dtype=float)
+        ok = wot[np.isfinite(wot)]
+        if ok.size:
+            lines.append(
+                f"Diagnosed effective wound-on tension {ok.min() / 1e6:.3g} to "
+                f"{ok.max() / 1e6:.3g} MPa across the CMD (see Diagnosis)."
+            )
+    if trend is not None:
+        flagged = trend.flagged()
+        lines.append(
+            f"Trend over {len(trend.rolls)} rolls: "
+            + (f"{len(flagged)} point(s) beyond a control limit." if flagged else "in control.")
+        )
+    if n_warnings:
+        lines.append(f"{n_warnings} warning(s) below.")
+    return {"head": head, "lines": lines}
 
 
 def _assumptions(result: RunResult) -> list[str]:
@@ -447,10 +676,14 @@ def _assumptions(result: RunResult) -> list[str]:
         "Nip in the 1D model acts only through the wound-on tension WOT = T_w + mu N / h.",
     ]
     if result.contact is not None:
+        from woundroll.contact.models import ROLL_MODELS
+
+        entry = ROLL_MODELS.get(result.contact.model)
+        title = entry.title if entry is not None else result.contact.model
         out.append(
-            "Contact (2D): plane strain in the CMD, frictionless rigid cylindrical head, "
+            f"Roll model {result.contact.model!r} ({title}): frictionless rigid head, "
             "quasi-static F(d), no interlayer slip in the solution (the slip factor {23} "
-            "only flags it)."
+            "only flags it); docs/trust.md says how far to trust it."
         )
     if result.hardness is not None:
         out.append(
@@ -482,6 +715,22 @@ def _warnings(result: RunResult) -> list[str]:
     return w
 
 
+def _check_of(readings: Any, ids: dict[str, Any] | None = None) -> Any:
+    """The profile check of measured readings, labelled with the report's ids (None for
+    fewer than 2 positions, a zero mean or an object that is not
+    :class:`woundroll.readings.Readings`)."""
+    from woundroll.profile_check import check_profile
+    from woundroll.readings import Readings
+
+    if not isinstance(readings, Readings) or readings.n_positions < 2:
+        return None
+    plain = {k: (v if isinstance(v, str) else str(v[0])) for k, v in (ids or {}).items() if v}
+    try:
+        return check_profile(readings, ids=plain)
+    except InputError:
+        return None
+
+
 def build_report(
     result: RunResult,
     *,
@@ -489,12 +738,22 @@ def build_report(
     diagnosis: Any = None,
     defects: Any = None,
     generated: datetime | None = None,
+    ids: dict[str, str] | None = None,
+    title: str | None = None,
+    profile_check: Any = None,
+    trend: Any = None,
+    warnings: list[str] | None = None,
 ) -> str:
     """The report as one HTML string (no external resources).
 
     ``readings``: :class:`woundroll.readings.Readings` (or any object with its ``to_dict()``);
     ``diagnosis``: :class:`woundroll.diagnosis.Diagnosis` (or a dict-like, rendered
-    generically); ``defects``: :class:`woundroll.defects.DefectReport`.
+    generically); ``defects``: :class:`woundroll.defects.DefectReport`. ``ids``: roll, lot and
+    customer (:data:`ID_FIELDS`) shown in the header, each value plain text or a
+    ``(value, provenance)`` pair; ``title`` replaces the case's title. ``profile_check``:
+    :class:`woundroll.profile_check.ProfileCheck` of the readings (computed from ``readings``
+    when not given); ``trend``: :class:`woundroll.profile_check.Trend` of several rolls;
+    ``warnings``: more warnings to list with the run's.
     """
     import jinja2
 
@@ -517,7 +776,7 @@ def build_report(
         ],
     }
     sections = []
-    for name, title in (
+    for name, sec_title in (
         ("winding", "Stresses in the roll"),
         ("contact", "Roll stiffness under the striker"),
         ("hardness", "Predicted hardness"),
@@ -526,7 +785,16 @@ def build_report(
         part = getattr(result, name)
         if part is None or not hasattr(part, "plot"):
             continue
-        sections.append({"title": title, "figures": _figures(part, captions[name])})
+        sections.append({"title": sec_title, "figures": _figures(part, captions[name])})
+    check = profile_check if profile_check is not None else _check_of(readings, ids)
+    id_rows = []
+    for key, label in ID_FIELDS.items():
+        v = (ids or {}).get(key)
+        if v is None or (isinstance(v, str) and not v.strip()):
+            continue
+        value, origin = (v, "") if isinstance(v, str) else (str(v[0]), str(v[1]))
+        id_rows.append({"label": label, "value": value, "origin": origin})
+    all_warnings = _warnings(result) + list(warnings or [])
     env = jinja2.Environment(
         loader=jinja2.PackageLoader("woundroll.report", "templates"),
         autoescape=True,
@@ -534,18 +802,31 @@ def build_report(
     )
     when = generated or datetime.now(UTC)
     return env.get_template("report.html").render(
-        title=case.title or "woundroll run",
+        title=title or case.display_title or "woundroll run",
         version=__version__,
         case_hash=case_hash(case),
         generated=when.strftime("%Y-%m-%d %H:%M UTC"),
+        ids=id_rows,
+        overview=summary_section(
+            result,
+            defects=defects,
+            check=check,
+            readings=readings,
+            diagnosis=diagnosis,
+            trend=trend,
+            n_warnings=len(all_warnings),
+        ),
+        equation_note=EQUATION_NOTE,
         inputs=input_sections(case),
         summary=result_summary(result),
         sections=sections,
         figures=figures,
         readings=None if readings is None else readings_section(readings),
+        profile_check=None if check is None else profile_check_section(check),
+        trend=None if trend is None else trend_section(trend),
         diagnosis=None if diagnosis is None else diagnosis_section(diagnosis),
         defects=None if defects is None else defects_section(defects),
-        warnings=_warnings(result),
+        warnings=all_warnings,
         assumptions=_assumptions(result),
     )
 
@@ -557,15 +838,17 @@ def write_report(
     readings: Any = None,
     diagnosis: Any = None,
     defects: Any = None,
+    **extra: Any,
 ) -> Path:
-    """Write ``out_dir/report.html`` and return its path.
+    """Write ``out_dir/report.html`` and return its path; ``extra``: the keywords of
+    :func:`build_report` (``ids``, ``title``, ``profile_check``, ``trend``).
 
     Raises
     ------
     InputError
         ``out_dir`` cannot be created or written (field ``--out``).
     """
-    html = build_report(result, readings=readings, diagnosis=diagnosis, defects=defects)
+    html = build_report(result, readings=readings, diagnosis=diagnosis, defects=defects, **extra)
     out = Path(out_dir)
     path = out / "report.html"
     try:
