@@ -286,16 +286,43 @@ def test_every_field_error_at_once(client):
 
 
 def test_readings_outside_the_scale_are_refused_with_line_and_value(client):
-    body = {"case": FAST_TOML, "readings": "position [in],rho\n1,-50\n2,5000\n3,55\n"}
+    # the readers reject a value off the instrument's scale (woundroll.tester_files); the
+    # page names the sheet, the line and the value, never the server's temporary path
+    body = {"case": FAST_TOML, "readings": "position [in],rho\n1,55\n2,-50\n3,5000\n"}
     r = client.post("/api/run", json=body)
     assert r.status_code == 422
     err = r.json()["error"]
-    assert err["field"] == "readings" and "\n" not in err["line"]
-    assert "line 2: -50" in err["line"] and "line 3: 5000" in err["line"]
-    assert "0-100" in err["line"] and "line 4" not in err["line"]
+    assert err["field"] == "readings" and "\n" not in err["line"] and "/tmp" not in err["line"]
+    assert err["line"].startswith("readings: readings.csv line 3, column 'rho': -50 Rho is off")
+    assert "(0 to 100 Rho)" in err["line"]
+    body["readings"] = "position [in],rho\n1,55\n3,5000\n"
+    err = client.post("/api/run", json=body).json()["error"]
+    assert "line 3, column 'rho': 5000 Rho is off" in err["line"]
     # the scale's ends are readings the dial shows: accepted
     body["readings"] = "position [in],rho\n1,0\n2,100\n"
     assert client.post("/api/run", json=body).status_code == 200
+
+
+def test_measured_profile_check_on_the_page(client):
+    # item 9: the profiler's view of the measured profile (woundroll.profile_check)
+    from woundroll.profile_check import check_profile
+    from woundroll.web import readings_from_text
+
+    rows = [50, 50, 51, 50, 58, 59, 50, 49, 50, 51, 50]
+    text = "position [in],rho\n" + "".join(f"{0.5 * (i + 1)},{v}\n" for i, v in enumerate(rows))
+    body = {"case": FAST_TOML, "readings": text, "overrides": {"winding.tension": "2 pli"}}
+    s = wait(client, client.post("/api/run", json=body).json()["job"])
+    pc = s["result"]["profile_check"]
+    want = check_profile(readings_from_text(text, _fast_case("2 pli")))
+    assert pc["verdict"] == want.verdict and pc["cov"] == want.cov
+    assert pc["band"] == want.band and pc["peak_to_peak"] == 10.0  # 59 - 49
+    # one hard band (58, 59 Rho) and one soft (49 Rho), positions in inches (pli typed)
+    assert [f[0] for f in pc["faults"]] == ["hard", "soft"]
+    assert pc["header"][1] == "start [in]" and pc["faults"][0][5] == "59"
+    # one position: no profile
+    body["readings"] = "position [in],rho\n1,50\n"
+    s = wait(client, client.post("/api/run", json=body).json()["job"])
+    assert s["result"]["profile_check"] is None
 
 
 def test_inputs_used_and_their_sources(client):

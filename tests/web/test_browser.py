@@ -169,6 +169,14 @@ def test_run_matches_cli_and_renders(server, browser, cli_json, tmp_path):
     assert drv.find_element(By.ID, "defect-risk").text.startswith("defect risk: ")
     # measured readings beside the prediction
     assert drv.find_element(By.CSS_SELECTOR, '[data-key="measured.n"]').text == "3"
+    # the profiler's view of the measured profile (issue 22 item 9)
+    from woundroll.case import load_case
+    from woundroll.profile_check import check_profile
+    from woundroll.web import readings_from_text
+
+    pet1 = load_case("pet1-26.7N")
+    want = check_profile(readings_from_text("position [in],rho\n1,50\n3,52\n5,51\n", pet1))
+    assert drv.find_element(By.ID, "profile-verdict").text == want.verdict
     # the inputs used and where each came from (issue 22 item 2)
     src = {
         tr.get_attribute("data-key"): tr.find_elements(By.TAG_NAME, "td")
@@ -234,7 +242,7 @@ BAD = [
         "readings-text",
         "position [in],rho\n1,-50\n2,5000\n",
         "err-readings",
-        "readings: line 2: -50, line 3: 5000 Rho lie outside the Rho scale 0-100",
+        "readings: readings.csv line 2, column 'rho': -50 Rho is off the Rho-meter's scale",
     ),
 ]
 

@@ -111,11 +111,18 @@ def _parse_case_text(text: str) -> dict[str, Any]:
         raise InputError(f"not valid TOML: {exc}", "case") from None
 
 
-def _case_from_data(data: dict[str, Any]) -> Any:
-    from woundroll.case import case_from_dict
+def _case_from_data(data: dict[str, Any], overrides: dict[str, Any] | None = None) -> Any:
+    """The case of ``data`` with the form's values over it, each recorded as coming from
+    the ``web form`` (:meth:`woundroll.case.Case.source_of`, the report's inputs)."""
+    import copy
 
+    from woundroll.case import FROM_WEB_FORM, case_from_dict, set_dotted
+
+    merged = copy.deepcopy(data)
+    for key, value in (overrides or {}).items():
+        set_dotted(merged, key, value)
     for key in _FILE_KEYS:
-        v = _get(data, key)
+        v = _get(merged, key)
         if v is not None and (key, v) not in BUNDLED_FILE_REFS:
             raise InputError(
                 "the web page takes no file paths (only the bundled cases' files); "
@@ -123,7 +130,12 @@ def _case_from_data(data: dict[str, Any]) -> Any:
                 key,
             )
     # relative references resolve against the bundled cases (the only ones allowed)
-    return case_from_dict(data, _cases_dir())
+    return case_from_dict(
+        data,
+        _cases_dir(),
+        overrides=list((overrides or {}).items()),
+        override_source=FROM_WEB_FORM,
+    )
 
 
 def check_inputs(
@@ -144,9 +156,7 @@ def check_inputs(
     InputError
         ``case``: too large or not TOML (nothing else can be checked).
     """
-    import copy
-
-    from woundroll.case import parse_override, set_dotted
+    from woundroll.case import parse_override
 
     data = _parse_case_text(text)  # nothing else can be checked without the case
     errors: list[InputError] = []
@@ -158,9 +168,7 @@ def check_inputs(
         if value is None or not str(value).strip():
             continue
         try:
-            trial = copy.deepcopy(data)
-            set_dotted(trial, key, parse_override(f"{key}={value}")[1])
-            _case_from_data(trial)
+            _case_from_data(data, {key: parse_override(f"{key}={value}")[1]})
         except InputError as exc:
             if exc.field == key:
                 errors.append(exc)
@@ -180,7 +188,6 @@ def inputs_used(text: str, overrides: dict[str, str], case: Any) -> list[dict[st
     preset) or ``"default"``. ``value`` is what the user wrote (or the SI value of a default),
     ``si`` the SI value the run used, with its unit."""
     data = tomllib.loads(text)
-    preset = _get(data, "web.preset")
     kind, v = case.winding.tension
     # how a value the user did not write is shown: (unit, SI value of one unit)
     shown_in = {
@@ -207,14 +214,14 @@ def inputs_used(text: str, overrides: dict[str, str], case: Any) -> list[dict[st
         value, unit = si[key]
         u, f = shown_in.get(key, (unit, 1.0))
         nice = f"{value / f:.6g} {u}".strip()
+        # the case records where each value came from (woundroll.case: provenance)
+        source = case.source_of(key)
         if given is not None and str(given).strip():
-            source, shown = "web form", str(given).strip()
+            shown = str(given).strip()
         elif _get(data, key) is not None:
-            source, shown = "case file", str(_get(data, key))
-        elif key.startswith("web.") and preset:
-            source, shown = f"preset {preset}", nice
+            shown = str(_get(data, key))
         else:
-            source, shown = "default", nice
+            shown = nice
         rows.append(
             {
                 "key": key,
@@ -228,38 +235,6 @@ def inputs_used(text: str, overrides: dict[str, str], case: Any) -> list[dict[st
     return rows
 
 
-def check_scale(readings: Any) -> None:
-    """Reject readings outside their instrument scale's range (Rho 0-100, R 10-100,
-    L 0-1000: :data:`woundroll.instruments.definitions.READING_RANGES`), naming each line
-    and value. A stand-in at the web entry until the readers do it themselves.
-
-    Raises
-    ------
-    InputError
-        field ``readings``.
-    """
-    from woundroll.instruments.definitions import READING_RANGES
-    from woundroll.readings import SCALES
-
-    rng = READING_RANGES.get(SCALES.get(readings.scale, ""))
-    if rng is None:
-        return
-    lo, hi = rng
-    bad = [
-        (int(ln), float(v))
-        for ln, v in zip(readings.raw_line, readings.raw_value, strict=True)
-        if not lo <= v <= hi
-    ]
-    if bad:
-        where = ", ".join(f"line {ln}: {v:g}" if ln else f"{v:g}" for ln, v in bad[:5])
-        more = f" and {len(bad) - 5} more" if len(bad) > 5 else ""
-        raise InputError(
-            f"{where}{more} {readings.scale} lie outside the {readings.scale} scale "
-            f"{lo:g}-{hi:g} (a reading the instrument cannot show: a typo or another scale?)",
-            "readings",
-        )
-
-
 def case_from_text(text: str, overrides: dict[str, str] | None = None) -> Any:
     """Validate a case given as TOML text plus form overrides, as the CLI would.
 
@@ -269,15 +244,16 @@ def case_from_text(text: str, overrides: dict[str, str] | None = None) -> Any:
         ``case``: too large or not TOML; ``<key>``: a file path that is not one of the
         bundled cases' files; any error of :func:`woundroll.case.case_from_dict`.
     """
-    from woundroll.case import parse_override, set_dotted
+    from woundroll.case import parse_override
 
     data = _parse_case_text(text)
+    given: dict[str, Any] = {}
     for key, value in (overrides or {}).items():
         if key not in FORM_FIELDS:
             raise InputError("not a field of this form", key)
         if value is not None and str(value).strip():
-            set_dotted(data, key, parse_override(f"{key}={value}")[1])
-    return _case_from_data(data)
+            given[key] = parse_override(f"{key}={value}")[1]
+    return _case_from_data(data, given)
 
 
 def readings_from_text(text: str, case: Any, lane_width: str = "", roll: str = "") -> Any:
@@ -320,7 +296,6 @@ def readings_from_text(text: str, case: Any, lane_width: str = "", roll: str = "
             # the temporary directory is nobody's business: name the sheet, not the path
             msg = exc.message.replace(str(path), "readings.csv").replace(tmp, "")
             raise InputError(msg, exc.field or "readings") from None
-    check_scale(r)
     from dataclasses import replace
 
     return replace(r, source="readings pasted on the web page")
@@ -468,6 +443,7 @@ class JobStore:
             job.payload = result_payload(
                 result, measured, job.diagnosis, job.defects, job.inputs, job.units
             )
+            job.payload["profile_check"] = profile_check_payload(job.readings, job.units)
             job.stage, job.fraction, job.indeterminate = "", 1.0, False
             job.state = "done"
         except Cancelled:
@@ -690,6 +666,32 @@ def result_payload(
         "plots": plots,
         "measured": measured_rows,
         "inputs": inputs or [],
+    }
+
+
+def profile_check_payload(readings: Any, units: str | None = None) -> dict[str, Any] | None:
+    """The measured profile as a hardness profiler reports it
+    (:func:`woundroll.profile_check.check_profile`): CoV, peak-to-peak, band verdict and the
+    hard/soft bands, positions in inches (US) or millimetres; None with fewer than two
+    positions (no profile) or no readings."""
+    if readings is None or readings.n_positions < 2:
+        return None
+    from woundroll.profile_check import check_profile
+
+    try:
+        c = check_profile(readings)
+    except InputError as exc:  # e.g. a mean reading of 0: no CoV
+        return {"verdict": exc.message, "faults": [], "header": []}
+    rows = c.fault_rows("in" if units == "us" else "mm")
+    return {
+        "verdict": c.verdict,
+        "band": c.band,
+        "cov": c.cov,
+        "peak_to_peak": c.peak_to_peak,
+        "mean": c.mean,
+        "scale": c.scale,
+        "header": list(rows[0]) if rows else [],
+        "faults": [list(r.values()) for r in rows],
     }
 
 
