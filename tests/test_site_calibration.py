@@ -148,3 +148,28 @@ def test_two_parameters_need_three_rolls(tmp_path):
     with pytest.raises(InputError, match="at least 3 rolls") as exc:
         calibrate_site(f, paths, ["head_length", "K2_scale"])
     assert exc.value.field == "--cases"
+
+
+def test_a_parameter_the_readings_do_not_see_is_not_identifiable(tmp_path, monkeypatch):
+    # a model whose readings do not depend on the parameter (each roll its own constant):
+    # the fit must refuse with "not identifiable", not return a number with a huge error
+    from woundroll import site_calibration as sc
+
+    paths = _cases(tmp_path)[:3]
+    f = tmp_path / "r.csv"
+    f.write_text("case,reading\na,40\na,41\nb,60\nb,61\nc,30\nc,31\n")
+    flat = {0: 40.2, 1: 60.9, 2: 30.1}
+    monkeypatch.setattr(sc._Model, "reading", lambda self, k, x: flat[k])
+    with pytest.raises(InputError, match="not identifiable") as exc:
+        calibrate_site(f, paths, ["head_length"])
+    assert exc.value.field == "--fit"
+
+
+def test_a_reading_at_the_scale_end_is_left_out(tmp_path):
+    from woundroll.site_calibration import read_calibration_readings
+
+    f = tmp_path / "r.csv"
+    f.write_text("case,reading [Rho]\na,100\na,98\nb,0\nb,3\n")
+    ys, notes = read_calibration_readings(f, ["a", "b"], (0.0, 100.0))
+    assert [y.tolist() for y in ys] == [[98.0], [3.0]]
+    assert notes and "2 reading(s) at the scale's end" in notes[0]

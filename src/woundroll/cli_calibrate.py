@@ -105,7 +105,11 @@ def calibrate_head_cmd(
 
     try:
         inst = get_instrument(instrument, "--instrument")
-        cal = calibrate_head_in_model(inst, model=model, unknown=unknown, target=target)
+        try:
+            cal = calibrate_head_in_model(inst, model=model, unknown=unknown, target=target)
+        except InputError as exc:  # name the option the user wrote
+            fld = (exc.field or "").replace("calibration.", "--")
+            raise InputError(exc.message, fld) from None
         text = None
         if write is not None:
             from woundroll.instruments.definitions import _data_dir
@@ -148,6 +152,14 @@ def calibrate_head_cmd(
         ),
         highlight=False,
     )
+    if not 0.25 <= cal.value / cal.before <= 4.0:
+        out.print(
+            escape(
+                f"warning: the calibrated {unknown} is {cal.value / cal.before:.2g} x the file's: "
+                "this model is unlikely to represent this head on its block"
+            ),
+            highlight=False,
+        )
     out.print(
         "note: the block does not pin a roll's reading: on the Table 2 rolls the head radius "
         "moves the reading by about 0.4 % (docs/instruments.md).",
@@ -169,8 +181,7 @@ def calibrate_cmd(
         list[str],
         typer.Option(
             "--cases",
-            help="The rolls' case files (known winding settings), one --cases per roll, or "
-            "several after one --cases.",
+            help="The rolls' case files (known winding settings), one --cases per roll.",
         ),
     ],
     fit: Annotated[
@@ -184,6 +195,14 @@ def calibrate_cmd(
         Path | None,
         typer.Option("--out", help="Write the fitted values (TOML, with standard errors) here."),
     ] = None,
+    roll_scatter: Annotated[
+        float,
+        typer.Option(
+            "--roll-scatter",
+            help="SD of the mean reading between rolls wound alike, in the reading's unit "
+            "(default 0: the leave-one-out test allows the tester's repeatability only).",
+        ),
+    ] = 0.0,
     as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress.")] = False,
 ) -> None:
@@ -203,7 +222,7 @@ def calibrate_cmd(
             err.print(f"\r{stage}: {runs} full model runs", end="", highlight=False)
 
     try:
-        cal = calibrate_site(readings, cases, fit, progress=progress)
+        cal = calibrate_site(readings, cases, fit, roll_scatter=roll_scatter, progress=progress)
         if out_file is not None:
             try:
                 out_file.write_text(cal.to_toml(), encoding="utf-8")

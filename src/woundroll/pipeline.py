@@ -219,8 +219,9 @@ def result_flags(
         out = (r < rng[0]) | (r > rng[1]) | ~np.isfinite(r)
         if out.any():
             flags["reading_outside_range"] = True
-            bad = r[out]
-            far = bad[np.nanargmax(np.abs(bad - 0.5 * (rng[0] + rng[1])))]
+            bad = r[out & np.isfinite(r)]
+            mid = 0.5 * (rng[0] + rng[1])
+            far = bad[np.argmax(np.abs(bad - mid))] if bad.size else math.nan
             where = (
                 f" in {int(out.sum())} of {r.size} sectors (excluded from the statistics)"
                 if r.size > 1

@@ -20,16 +20,22 @@ Parameters that can be fitted (:data:`PARAMETERS`), each positive and searched o
 ``mu``
     the interlayer friction [-] (``contact.friction``) with the slip emulation on.
 
-Statistics (stated assumptions, docs/calibration.md): every reading has the same scatter
-sigma (the tester's repeatability plus roll-to-roll variation), estimated from the residuals
-as ``s^2 = RSS / (n - p)``; standard errors from ``s^2 (J^T J)^-1`` at the optimum (J: the
-readings' sensitivity to the log-parameters, by finite differences of full model runs).
+Statistics (stated assumptions, docs/calibration.md): the readings of one roll share that
+roll's own deviation (roll-to-roll variation and what the model misses), so the fit is on the
+K roll means, each counted once; their scatter about the fit, ``s^2 = sum (ybar_k -
+m_k)^2 / (K - p)``, gives the standard errors ``s^2 (J^T J)^-1`` at the optimum (J: the mean
+readings' sensitivity to the log-parameters, by central differences of full model runs).
 Leave-one-out: every roll in turn is left out, the parameters refitted on the others, and
-the left-out roll's mean reading predicted; its error is compared with the scatter of that
-roll's mean, ``sqrt(s^2 / n_k + sigma_pred^2)``. A parameter the readings cannot identify
-(its relative standard error beyond :data:`MAX_RELATIVE_SE`, or no reading that moves by
-more than the scatter across the parameter's range) is refused with a "not identifiable"
-verdict.
+the left-out roll's mean predicted; its allowance is three standard deviations of what a
+roll mean scatters about a *correct* model, ``sqrt(s_rep^2 / n_k + tau^2 + J_k C J_k^T)``:
+the tester's repeatability ``s_rep`` (pooled over repeated readings of a roll; the fit's
+``s`` when every roll was read once), the roll-to-roll scatter ``tau`` the user states
+(``--roll-scatter``, default 0) and the uncertainty of the refitted parameters. A model that
+misses an effect predicts the rolls it did not see worse than that, and the verdict says so.
+A parameter the readings cannot identify (its relative standard error beyond
+:data:`MAX_RELATIVE_SE`, no reading that moves by more than the scatter across the
+parameter's range, or the other rolls unable to pin it when one is left out) is refused with a
+"not identifiable" verdict. A parameter that ends on the bound of its range is noted.
 """
 
 from __future__ import annotations
@@ -234,6 +240,15 @@ class _Model:
         return J
 
 
+def _log_bounds(params: Sequence[Parameter]) -> tuple[FloatArray, FloatArray]:
+    """The search range of the log-parameters: each parameter's bounds, less one
+    finite-difference step, so that the sensitivities are taken inside the bounds (a
+    slip fraction of 1.02 is not a case a user could write)."""
+    lo = np.log([p.bounds[0] for p in params]) + FD_STEP
+    hi = np.log([p.bounds[1] for p in params]) - FD_STEP
+    return lo, hi
+
+
 #: Convergence of the fit: the largest step of a log-parameter (1e-3: 0.1 % of the value,
 #: far below any standard error the readings of a mill support).
 STEP_TOL = 1e-3
@@ -247,12 +262,11 @@ def _gauss_newton(
     x0: FloatArray,
     J: FloatArray | None = None,
 ) -> tuple[FloatArray, FloatArray]:
-    """Log-parameters minimising sum_k n_k (ybar_k - m_k(x))^2 (the sum of squares over the
-    individual readings, up to a constant), within the parameters' bounds, by Gauss-Newton
+    """Log-parameters minimising sum_k n_k (ybar_k - m_k(x))^2 (weights ``n``: ones for the
+    roll means counted once), within the parameters' bounds, by Gauss-Newton
     with the sensitivities kept while the steps are small (a chord method: each full-model
     run is expensive). Returns ``(x, J)``, J the last sensitivities of the rolls ``ks``."""
-    lo = np.log([p.bounds[0] for p in model.params])
-    hi = np.log([p.bounds[1] for p in model.params])
+    lo, hi = _log_bounds(model.params)
     x = np.clip(np.asarray(x0, dtype=float), lo, hi)
     if J is None:
         J = model.jacobian(ks, x)
@@ -415,11 +429,14 @@ def calibrate_site(
     cases: Sequence[str],
     fit: Sequence[str],
     *,
+    roll_scatter: float = 0.0,
     progress: Callable[[str, int], None] | None = None,
 ) -> SiteCalibration:
     """Fit the parameters named in ``fit`` (keys of :data:`PARAMETERS`) to the readings of
     rolls of known winding settings (``cases``: case files or bundled names, all with a
     ``[tester]`` read through the contact model), and leave each roll out in turn.
+    ``roll_scatter``: the SD of the mean reading between rolls wound alike [reading units]
+    (0: the rolls differ only by the tester's repeatability), used by the leave-one-out test.
 
     Raises
     ------
@@ -458,6 +475,20 @@ def calibrate_site(
             "--cases",
         )
     inst = loaded[0].tester_setup.instrument
+    for lab, c in zip(labels[1:], loaded[1:], strict=True):
+        other = c.tester_setup.instrument
+        if (other.name, other.readout) != (inst.name, inst.readout):
+            raise InputError(
+                f"case {lab!r} is read with {other.name!r}, {labels[0]!r} with {inst.name!r}: "
+                "calibrate one instrument at a time",
+                "--cases",
+            )
+        if "head_length" in names and other.head_length != inst.head_length:
+            raise InputError(
+                f"case {lab!r} gives another head length than {labels[0]!r}: the fit of "
+                "head_length needs one head",
+                "--cases",
+            )
     scale = inst.reading_range
     scale_name = {"rho": "Rho", "schmidt-r": "R", "parotester-l": "L", "g": "g"}[inst.readout]
     ys, notes = read_calibration_readings(readings, labels, scale)
@@ -465,38 +496,56 @@ def calibrate_site(
     p = len(params)
     n_k = np.array([y.size for y in ys], dtype=float)
     ybar = np.array([y.mean() for y in ys])
-    if n_k.sum() < p + 1 or len(labels) < p + 1:
+    K = len(labels)
+    if K < p + 1:
         raise InputError(
-            f"{p} parameter(s) need at least {p + 1} rolls and readings; got {len(labels)} "
-            f"rolls, {int(n_k.sum())} readings",
+            f"{p} parameter(s) need at least {p + 1} rolls; got {K}",
             "--cases",
         )
+    if roll_scatter < 0 or not math.isfinite(roll_scatter):
+        raise InputError(f"must be a reading SD >= 0, got {roll_scatter!r}", "--roll-scatter")
 
     def tick(stage: str) -> Callable[[int], None] | None:
         return None if progress is None else (lambda runs: progress(stage, runs))
 
     model = _Model(srcs, loaded, params, tick("fit"))
     x0 = np.log([pm.base(loaded[0]) for pm in params])
-    ks = list(range(len(labels)))
+    for pm in params:
+        if pm.name in ("slip_fraction", "mu") and loaded[0].contact.slip == "none":
+            notes.append(
+                f"fitting {pm.name} switches the slip emulation on "
+                "(contact.slip = 'reduced-shear'): 'model before' is read with it"
+            )
+    ks = list(range(K))
+    ones = np.ones(K)
     before = model.means(ks, x0)
-    x, _ = _gauss_newton(model, ks, ybar, n_k, x0)
+    # each roll counts once: its readings share the roll's own deviation (roll-to-roll
+    # variation, what the model misses), so the information is in the K roll means
+    x, _ = _gauss_newton(model, ks, ybar, ones, x0)
     fitted = model.means(ks, x)
     J = model.jacobian(ks, x)  # central differences at the optimum, for the errors
-    rss = float(sum(np.sum((y - m) ** 2) for y, m in zip(ys, fitted, strict=True)))
-    dof = n_k.sum() - p
-    s2 = rss / dof
-    JtWJ = J.T @ (n_k[:, None] * J)
-    if np.linalg.cond(JtWJ) > 1e12:
+    resid = ybar - fitted
+    dof = K - p
+    s2 = float(resid @ resid) / dof if dof > 0 else math.nan
+    JtJ = J.T @ J
+    if np.linalg.cond(JtJ) > 1e12:
         raise InputError(
             f"not identifiable: the readings do not change with "
             f"{' and '.join(names)} (or not independently); choose other parameters or rolls",
             "--fit",
         )
-    cov = s2 * np.linalg.inv(JtWJ)
+    within = [np.sum((y - y.mean()) ** 2) for y in ys]
+    dof_rep = float(np.sum(n_k - 1))
+    s_rep = math.sqrt(float(np.sum(within)) / dof_rep) if dof_rep > 0 else None
+    if not math.isfinite(s2):  # as many rolls as parameters + 1 would leave no freedom
+        s2 = (s_rep or 0.0) ** 2 / float(np.mean(n_k)) + roll_scatter**2
+        notes.append(
+            "no degree of freedom about the fit: the standard errors use the repeatability"
+        )
+    cov = s2 * np.linalg.inv(JtJ)
     se_log = np.sqrt(np.diag(cov))
-    moves = np.max(np.abs(J), axis=0) * np.log(
-        np.array([pm.bounds[1] / pm.bounds[0] for pm in params])
-    )
+    lo_b, hi_b = _log_bounds(params)
+    moves = np.max(np.abs(J), axis=0) * (hi_b - lo_b)
     spread = math.sqrt(s2) if s2 > 0 else 0.0
     for pm, se, mv in zip(params, se_log, moves, strict=True):
         if se > MAX_RELATIVE_SE or mv <= spread:
@@ -506,26 +555,38 @@ def calibrate_site(
                 f"range, the scatter is {spread:.2g}); choose rolls that differ in it",
                 "--fit",
             )
-    within = [np.sum((y - y.mean()) ** 2) for y in ys]
-    dof_rep = float(np.sum(n_k - 1))
-    s_rep = math.sqrt(float(np.sum(within)) / dof_rep) if dof_rep > 0 else None
+    for pm, v, lo, hi in zip(params, x, lo_b, hi_b, strict=True):
+        if v <= lo + 1e-6 or v >= hi - 1e-6:
+            notes.append(
+                f"{pm.name} ended on the bound of its range ({math.exp(v):.4g}): the readings "
+                "ask for more than the parameter can give; the model may lack another effect"
+            )
     if s_rep is None:
         notes.append("one reading per roll: the repeatability is taken from the fit's residuals")
-    s_ref = s_rep if s_rep is not None and s_rep > 0 else math.sqrt(s2)
+    rep = s_rep if s_rep is not None else math.sqrt(s2) if s2 > 0 else 0.0
+    # what a roll mean scatters about a correct model: repeatability / n_k plus the
+    # roll-to-roll scatter the user states (--roll-scatter; 0: the rolls alike but for it)
+    var_k = rep**2 / n_k + roll_scatter**2
     # leave one out: refit on the others, predict the left-out roll's mean
-    loo_pred = np.empty(len(ks))
-    loo_allow = np.empty(len(ks))
+    loo_pred = np.empty(K)
+    loo_allow = np.empty(K)
     model.progress = tick("leave-one-out")
     for k in ks:
         rest = [j for j in ks if j != k]
-        xk, _ = _gauss_newton(model, rest, ybar[rest], n_k[rest], x, J[rest])
+        A = J[rest].T @ J[rest]
+        if np.linalg.cond(A) > 1e12:
+            raise InputError(
+                f"not identifiable without roll {labels[k]!r}: the other rolls cannot pin "
+                f"{' and '.join(names)}; calibrate on more rolls that differ in it",
+                "--cases",
+            )
+        xk, _ = _gauss_newton(model, rest, ybar[rest], np.ones(len(rest)), x, J[rest])
         loo_pred[k] = model.reading(k, xk)
-        # the prediction's variance from the full fit's sensitivities (no more runs)
-        A = J[rest].T @ (n_k[rest][:, None] * J[rest])
-        var_pred = 0.0
-        if np.linalg.cond(A) < 1e12:
-            var_pred = float(J[k] @ (s_ref**2 * np.linalg.inv(A)) @ J[k])
-        loo_allow[k] = 3.0 * math.sqrt(s_ref**2 / n_k[k] + var_pred)
+        # the prediction's variance under a correct model, from the full fit's sensitivities
+        W = 1.0 / np.maximum(var_k[rest], 1e-300)
+        Ck = np.linalg.inv(J[rest].T @ (W[:, None] * J[rest]))
+        var_pred = float(J[k] @ Ck @ J[k])
+        loo_allow[k] = 3.0 * math.sqrt(var_k[k] + var_pred)
     values = np.exp(x)
     return SiteCalibration(
         params=params,

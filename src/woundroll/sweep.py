@@ -448,7 +448,7 @@ class SweepResult:
         """Up to three headline result columns for the main-effects plot."""
         prefer = (
             "hardness.reading",
-            "profile.rho_stats.mean",
+            "profile.stats.reading.mean",
             "winding.core_pressure",
             "winding.max_pressure",
         )

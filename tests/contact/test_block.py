@@ -95,4 +95,4 @@ def test_cli_bad_model_one_line_exit_2():
     res = CliRunner().invoke(app, ["calibrate-head", "--model", "2.5d"])
     assert res.exit_code == 2
     lines = [ln for ln in res.output.splitlines() if ln.strip()]
-    assert len(lines) == 1 and "calibration.model" in lines[0]
+    assert len(lines) == 1 and lines[0].startswith("error: --model:"), res.output

@@ -73,7 +73,7 @@ def test_table3_profile_through_the_cli(tmp_path):
 
     res = CliRunner().invoke(app, ["run", "pet3-2.3MPa", "--json", "--out", str(tmp_path)])
     assert res.exit_code == 0, res.output
-    p = json.loads(res.output)["profile"]
+    p = json.loads(res.stdout)["profile"]
     sat = np.array(p["saturated"])
     shown, model = np.array(p["reading"]), np.array(p["reading_model"])
     assert p["roll_model"] == "2d" and p["scale"] == [0.0, 100.0]

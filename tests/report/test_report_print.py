@@ -72,7 +72,10 @@ def test_header_ids_from_file_and_options(report):
     assert "<th>Lot</th><td>L-2611-B</td>" in ids
     assert "<th>Customer</th><td>Nordfilm AB</td>" in ids
     assert "lot given as &#39;L-2611-B&#39; on the command line" in html
-    assert "<title>PET1 wound at 26.7 N (reference paper, Table 2) - roll 2611-07A" in html
+    # the title names the override the report was run with, then the roll
+    title = re.search(r"<title>(.*?)</title>", html, re.S).group(1)
+    assert title.startswith("PET1 wound at 26.7 N (reference paper, Table 2)")
+    assert "by --set" in title and title.endswith(" - roll 2611-07A - woundroll report")
 
 
 def test_verdict_first_inputs_before_results(report):

@@ -5,7 +5,8 @@ Every entry point (``woundroll.run`` and the case file's ``contact.model``,
 :func:`woundroll.contact.roll_stiffness`, the CMD profile's per-sector contact, the reverse
 road, the studies, sweeps, the CLI and the web page) resolves the model here, with
 :func:`resolve_model`; the name of the model that read a roll is written beside every
-reading (``contact.model`` and ``hardness.model`` in result.json).
+reading (``contact.model``, ``hardness.roll_model`` and ``profile.roll_model`` in
+result.json).
 
 The default is the reference paper's own validated setting, plane strain (``"2d"``), for the
 cylindrical head it represents: its measured facts (PET1 model and tests approaching each

@@ -385,6 +385,7 @@ class HardnessResult:
                 "head_length_m": self.instrument.head_length,
                 "calibrated_in": self.instrument.calibration_model or None,
                 "source": self.instrument.sources.get("head_radius"),
+                "head_length_source": self.instrument.sources.get("head_length"),
             },
             "rho_energy": float(self.energy.rho),
             "rho_fd": float(fd.rho),

@@ -374,7 +374,7 @@ class ProfileResult:
         ax.set_xlabel("CMD position [cm]")
         ax.set_ylabel("thickness (MD average) [um]", color="tab:blue")
         ax2 = ax.twinx()
-        unit = "Rho" if self.scale == (0.0, 100.0) or self.scale is None else "reading"
+        unit = "Rho" if self.scale == (0.0, 100.0) else "reading"
         ax2.plot(zc, self.shown, color="tab:red", marker="o", ms=3, label=f"{unit} (FD model)")
         if self.rho_energy is not None:
             ax2.plot(
