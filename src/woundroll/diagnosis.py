@@ -113,6 +113,7 @@ class RollModel:
     semi_contact_width_given: bool = False
     winding_options: Any = None
     contact_model: str | None = None  # a registry name; None: the default
+    contact3d_options: Any = None  # the case's [contact.options3d] for the 3D model
 
     @classmethod
     def from_case(cls, case: Case, scale: str | None = None) -> RollModel:
@@ -154,7 +155,15 @@ class RollModel:
             semi_contact_width_given="semi_contact_width" in (case.tester or {}),
             winding_options=WindingOptions.from_dict(case.winding.options, "winding.options"),
             contact_model=case.contact.model,
+            contact3d_options=case.contact.contact3d_options(),
         )
+
+    @property
+    def roll_model(self) -> str:
+        """The registry name of the roll model that reads this roll."""
+        from woundroll.contact.models import resolve_model
+
+        return resolve_model(self.contact_model, self.setup.instrument.head_shape).name
 
     @property
     def tension(self) -> float:
@@ -181,6 +190,7 @@ class RollModel:
             friction=self.friction,
             options=self.contact_options,
             model=self.contact_model,
+            options3d=self.contact3d_options,
         )
         H = self.outer_radius - self.core.outer_radius
         h = hardness_on_roll(
@@ -221,6 +231,8 @@ class ForwardCurve:
 
     points: tuple[ForwardPoint, ...]
     scale: str
+    #: the roll model that read every point (registry name, woundroll.contact.models)
+    roll_model: str = ""
 
     @property
     def web_stress(self) -> FloatArray:
@@ -391,7 +403,7 @@ def forward_curve(
                 step()
     if progress is not None:
         progress(1.0)
-    return ForwardCurve(tuple(pts[t] for t in sorted(pts)), model.scale)
+    return ForwardCurve(tuple(pts[t] for t in sorted(pts)), model.scale, model.roll_model)
 
 
 @dataclass(frozen=True)
@@ -486,6 +498,7 @@ class Diagnosis:
             "verification": self.verification,
             "notes": list(self.notes),
             "summary": self.sentence(),
+            "roll_model": self.curve.roll_model,
         }
 
     def roll_level(self) -> tuple[float, float, float]:

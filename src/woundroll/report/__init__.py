@@ -425,8 +425,8 @@ def diagnosis_section(diagnosis: Any) -> dict[str, Any]:
             "status",
         )
         text = (
-            f"Each position's mean reading inverted through the forward chain; "
-            f"{100 * d.confidence:.0f} % intervals in brackets."
+            f"{d.sentence().capitalize()}. Each position's mean reading inverted through the "
+            f"forward chain; {100 * d.confidence:.0f} % intervals in brackets."
         )
         v = d.verification
         if v:
@@ -649,6 +649,8 @@ def summary_section(
             )
         except (KeyError, TypeError, ValueError):
             pass
+    if diagnosis is not None and hasattr(diagnosis, "sentence"):
+        lines.append(f"Diagnosis: {diagnosis.sentence()}.")
     if diagnosis is not None and hasattr(diagnosis, "wound_on_tension"):
         wot = np.asarray(diagnosis.wound_on_tension, dtype=float)
         ok = wot[np.isfinite(wot)]
