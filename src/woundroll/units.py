@@ -386,6 +386,10 @@ SI_UNITS: dict[str, str] = {
 }
 
 
+#: A quantity's text starts with its number ("26.7 N", "-3e-2 m", ".5 mm").
+_NUMBER_START = re.compile(r"\s*[-+]?(\d|\.\d)")
+
+
 def si_value(value: Any, kind: str | None = None) -> tuple[float, str] | None:
     """``value`` in SI and its SI unit (:data:`SI_UNITS`): of dimension ``kind`` when known,
     else of whichever kind its unit has (a bare number is SI, unit ``kind``'s or ``""``).
@@ -394,11 +398,21 @@ def si_value(value: Any, kind: str | None = None) -> tuple[float, str] | None:
     """
     if isinstance(value, bool) or not isinstance(value, int | float | str):
         return None
+    if isinstance(value, str) and not _NUMBER_START.match(value):
+        return None  # text (a preset's or an instrument's name): no pint parse
     if kind is not None:
         try:
             return to_si(value, kind), SI_UNITS[kind]
         except InputError:
             return None
+    fast = _fast_parse(value)
+    if fast is not None:  # a plain number or a unit of the table: no pint (start-up time)
+        mag, dims = fast
+        if not isinstance(value, str) or not _FAST.fullmatch(value)[2]:
+            return mag, ""
+        for k, unit in SI_UNITS.items():
+            if _KIND_DIMS.get(k) == dims:
+                return mag, unit
     for k in SI_UNITS:
         try:
             v = to_si(value, k, bare_is_si=False)
