@@ -490,7 +490,9 @@ def calibrate_site(
                 "--cases",
             )
     scale = inst.reading_range
-    scale_name = {"rho": "Rho", "schmidt-r": "R", "parotester-l": "L", "g": "g"}[inst.readout]
+    from woundroll.readings import SCALES
+
+    scale_name = {readout: name for name, readout in SCALES.items()}[inst.readout]
     ys, notes = read_calibration_readings(readings, labels, scale)
     params = [PARAMETERS[nm] for nm in names]
     p = len(params)
