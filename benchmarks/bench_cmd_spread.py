@@ -1,4 +1,5 @@
-"""Benchmark of the fast path's CMD-spreading correction (woundroll.contact.cmd_spread); not a test.
+"""Benchmark of the fast path's CMD-spreading correction
+(woundroll.contact.plane_strain.cmd_spread); not a test.
 
 Prints, in one run (so that both see the same machine load):
 
@@ -28,7 +29,7 @@ from pathlib import Path  # noqa: E402
 def main() -> None:
     from woundroll.case import load_case
     from woundroll.contact import indent, roll_stiffness
-    from woundroll.contact.cmd_spread import apply_cmd_spread
+    from woundroll.contact.plane_strain.cmd_spread import apply_cmd_spread
     from woundroll.pipeline import run
 
     case = load_case("pet2-53.4N", ["contact.model='2d'", "contact.no_update=false"])

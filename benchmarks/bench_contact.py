@@ -43,9 +43,9 @@ import numpy as np  # noqa: E402
 import scipy.sparse as sp  # noqa: E402
 
 from woundroll.contact import ContactOptions, indent  # noqa: E402
-from woundroll.contact.fem import plane_strain_moduli  # noqa: E402
-from woundroll.contact.mesh import build_mesh  # noqa: E402
-from woundroll.contact.solver import _Roll  # noqa: E402
+from woundroll.contact.plane_strain.fem import plane_strain_moduli  # noqa: E402
+from woundroll.contact.plane_strain.mesh import build_mesh  # noqa: E402
+from woundroll.contact.plane_strain.solver import _Roll  # noqa: E402
 from woundroll.materials import Core, Pfeiffer, Web  # noqa: E402
 
 R_CORE, R_OUT, H = 0.0445, 0.1334, 1e-4

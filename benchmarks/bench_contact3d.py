@@ -1,4 +1,4 @@
-"""Benchmark of the 3D contact model (woundroll.contact.solver3d).
+"""Benchmark of the 3D contact model (woundroll.contact.solid3d.solver).
 
 1. The linear solvers on the stiffness of the default mesh (PET2 26.7 N, Rho-meter head,
    2.1 mm): numeric factorisation + one solve + 50 right-hand sides, for MKL PARDISO
@@ -49,8 +49,8 @@ def main() -> None:
     args = ap.parse_args()
 
     from woundroll.contact.heads import Head
-    from woundroll.contact.linsolve import make_solver
-    from woundroll.contact.solver3d import build_roll3d, indent3d
+    from woundroll.contact.solid3d.linsolve import make_solver
+    from woundroll.contact.solid3d.solver import build_roll3d, indent3d
     from woundroll.instruments import get_instrument
 
     web, core, radius, sigma_r = real_roll(args.case)
@@ -58,7 +58,7 @@ def main() -> None:
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
 
     if not args.skip_solvers:
-        from woundroll.contact.solver3d import Contact3DOptions
+        from woundroll.contact.solid3d.solver import Contact3DOptions
 
         opts = Contact3DOptions(n_fine=args.solver_n_fine)
         model = build_roll3d(

@@ -1,4 +1,4 @@
-"""Benchmark of the inverse (woundroll.diagnosis.diagnose); not a test.
+"""Benchmark of the inverse (woundroll.inverse.diagnosis.diagnose); not a test.
 
 The straightforward inverse root-finds the tension of every reading position on full forward
 runs (Brent in ln T0, bracket 1/4 ... 4 x the case's tension, xtol 1e-3): its cost grows with
@@ -24,8 +24,8 @@ def main() -> None:
     from scipy.optimize import brentq
 
     from woundroll.case import load_case
-    from woundroll.diagnosis import RollModel, diagnose
-    from woundroll.readings import readings_from_arrays
+    from woundroll.inverse.diagnosis import RollModel, diagnose
+    from woundroll.io.readings import readings_from_arrays
 
     n = int(sys.argv[sys.argv.index("--positions") + 1]) if "--positions" in sys.argv else 6
     case = load_case("pet1-26.7N")

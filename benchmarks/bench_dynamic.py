@@ -1,4 +1,5 @@
-"""Benchmark of the dynamic FE impact (woundroll.contact.dynamic.impact_dynamic); not a test.
+"""Benchmark of the dynamic FE impact (woundroll.contact.dynamic.plane_strain.impact_dynamic); not
+a test.
 
 BLAS threads are pinned to one, as in bench_contact.py (banded Cholesky at bandwidth ~55).
 
@@ -34,7 +35,7 @@ import numpy as np  # noqa: E402
 def main() -> None:
     from woundroll.case import load_case
     from woundroll.contact import roll_stiffness
-    from woundroll.contact.dynamic import DynamicOptions, impact_dynamic
+    from woundroll.contact.dynamic.plane_strain import DynamicOptions, impact_dynamic
     from woundroll.pipeline import hardness_on_roll
     from woundroll.winding.hakiel import WindingOptions, wind
 

@@ -1,4 +1,4 @@
-"""Benchmark of the 3D dynamic FE impact (woundroll.contact.dynamic3d); not a test.
+"""Benchmark of the 3D dynamic FE impact (woundroll.contact.dynamic.solid3d); not a test.
 
 PET1 wound at 26.7 N (Hakiel profile), the Rho-meter, the 3D model's default mesh for the
 depth the quasi-static 3D solve reaches. Prints, in one run:
@@ -35,8 +35,8 @@ def main() -> None:
 
     from woundroll.case import load_case
     from woundroll.contact import roll_stiffness
-    from woundroll.contact.dynamic3d import Dynamic3DOptions, impact_dynamic3d
-    from woundroll.contact.solver3d import Contact3DOptions
+    from woundroll.contact.dynamic.solid3d import Dynamic3DOptions, impact_dynamic3d
+    from woundroll.contact.solid3d.solver import Contact3DOptions
     from woundroll.pipeline import hardness_on_roll
     from woundroll.winding.hakiel import WindingOptions, wind
 

@@ -149,7 +149,7 @@ def whole_process(cases: list[str], before: str | None, repeat: int) -> None:
         if before:
             trees[before] = {**env_now, "PYTHONPATH": str(source_of(before, Path(tmp)))}
         for case in cases:
-            args = ["-m", "woundroll.cli", "run", case, "--json"]
+            args = ["-m", "woundroll.app.cli", "run", case, "--json"]
             best: dict[str, tuple] = {}
             loads = [os.getloadavg()[0]]
             for _ in range(repeat):

@@ -6,7 +6,7 @@ Prints the smallest wall time of ``--repeat`` runs (default 5) of
 2. ``woundroll --help`` (bar: 0.3 s),
 3. ``woundroll run pet1-26.7N --json`` (bar: 1 s: winder settings to Rho, one roll),
 
-each as a fresh process (``python -m woundroll.cli``, the console script's entry point).
+each as a fresh process (``python -m woundroll.app.cli``, the console script's entry point).
 With ``--before REF`` the same commands also run on the source tree of git revision REF
 (``git archive`` into a temporary directory, put first on ``PYTHONPATH``), interleaved with
 the current tree so that both see the same machine load; the ratio is printed.
@@ -28,8 +28,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 COMMANDS = {
     "import woundroll": ["-c", "import woundroll"],
-    "woundroll --help": ["-m", "woundroll.cli", "--help"],
-    "woundroll run pet1-26.7N --json": ["-m", "woundroll.cli", "run", "pet1-26.7N", "--json"],
+    "woundroll --help": ["-m", "woundroll.app.cli", "--help"],
+    "woundroll run pet1-26.7N --json": ["-m", "woundroll.app.cli", "run", "pet1-26.7N", "--json"],
 }
 
 

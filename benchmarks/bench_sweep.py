@@ -23,7 +23,7 @@ import os
 import platform
 import time
 
-from woundroll.sweep import run_sweep
+from woundroll.app.sweep import run_sweep
 
 FAST = {
     "title": "fast sweep roll",

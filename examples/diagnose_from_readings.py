@@ -8,10 +8,10 @@ wound-on tension and interlayer pressure do they mean, and is the roll at risk?
 import os
 from pathlib import Path
 
+from woundroll.assess.defects import defect_report
 from woundroll.case import load_case
-from woundroll.defects import defect_report
-from woundroll.diagnosis import diagnose
-from woundroll.readings import read_readings
+from woundroll.inverse.diagnosis import diagnose
+from woundroll.io.readings import read_readings
 
 HERE = Path(__file__).resolve().parent
 

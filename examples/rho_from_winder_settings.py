@@ -14,7 +14,7 @@ from pathlib import Path
 
 import woundroll
 from woundroll.contact import fit_roll_spring, indent
-from woundroll.contact.cmd_spread import apply_cmd_spread
+from woundroll.contact.plane_strain.cmd_spread import apply_cmd_spread
 from woundroll.instruments import get_instrument, impact_energy, impact_fd
 from woundroll.instruments.roll_side import RollSpring
 from woundroll.winding.hakiel import wind

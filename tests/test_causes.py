@@ -4,10 +4,10 @@ import numpy as np
 import pytest
 
 from woundroll.case import load_case
-from woundroll.causes import ProfileModel, fit_causes
-from woundroll.diagnosis import ForwardCurve, ForwardPoint, RollModel
 from woundroll.errors import InputError
-from woundroll.readings import readings_from_arrays
+from woundroll.inverse.causes import ProfileModel, fit_causes
+from woundroll.inverse.diagnosis import ForwardCurve, ForwardPoint, RollModel
+from woundroll.io.readings import readings_from_arrays
 
 
 def small_model(nip=False, k=6):
@@ -51,7 +51,7 @@ def test_round_trip_thickness_bands_and_tension():
     within 0.2 % of h everywhere, tension 108.7 % with SD 1.5 %)."""
     case = load_case("pet2-53.4N", ["web.width='24 in'"])
     roll = RollModel.from_case(case)
-    from woundroll.diagnosis import forward_curve
+    from woundroll.inverse.diagnosis import forward_curve
 
     curve = forward_curve(roll, [15, 40])
     pos = np.linspace(0, case.web.width, 241)
@@ -84,7 +84,7 @@ def test_nip_deflection_on_a_soft_web_is_reported_not_identifiable():
         "pet2-53.4N", ["web.width='24 in'", "winding.nip_load='2 pli'", "winding.friction=0.3"]
     )
     roll = RollModel.from_case(case)
-    from woundroll.diagnosis import forward_curve
+    from woundroll.inverse.diagnosis import forward_curve
 
     curve = forward_curve(roll, [10, 60])
     pos = np.linspace(0, case.web.width, 241)

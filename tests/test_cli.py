@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from woundroll.cli import app
+from woundroll.app.cli import app
 
 runner = CliRunner()
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
@@ -39,7 +39,15 @@ def test_bad_input_is_one_line_exit_2(args, field):
 
 def test_real_process_has_no_traceback():
     proc = subprocess.run(
-        [sys.executable, "-m", "woundroll.cli", "run", "pet1-26.7N", "--set", "web.thickness=0"],
+        [
+            sys.executable,
+            "-m",
+            "woundroll.app.cli",
+            "run",
+            "pet1-26.7N",
+            "--set",
+            "web.thickness=0",
+        ],
         capture_output=True,
         text=True,
         timeout=120,

@@ -7,15 +7,15 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from woundroll.case import load_case
-from woundroll.cli import app
-from woundroll.defects import (
+from woundroll.app.cli import app
+from woundroll.assess.defects import (
     WATCH_MARGIN,
     DefectLimits,
     assess_roll,
     buckling_stress,
     defect_report,
 )
+from woundroll.case import load_case
 from woundroll.winding.hakiel import wind
 
 
@@ -148,8 +148,8 @@ def test_slack_roll():
 
 
 def test_lanes_flag_the_slack_lane():
-    from woundroll.diagnosis import Diagnosis, ForwardCurve, ForwardPoint
-    from woundroll.readings import readings_from_arrays
+    from woundroll.inverse.diagnosis import Diagnosis, ForwardCurve, ForwardPoint
+    from woundroll.io.readings import readings_from_arrays
 
     case = load_case("pet1-26.7N")
     t = np.array([1.8e6, 1.75e6, 0.9e6])

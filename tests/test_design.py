@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
+from woundroll.app.cli import app
 from woundroll.case import load_case
-from woundroll.cli import app
-from woundroll.design import DesignTarget, _constraints, design_setpoints
 from woundroll.errors import InputError
+from woundroll.inverse.design import DesignTarget, _constraints, design_setpoints
 from woundroll.winding.hakiel import wind
 
 
@@ -72,7 +72,7 @@ def test_cli_design_bad_input_one_line(args, field):
 
 @pytest.mark.slow
 def test_design_reads_the_target_and_reports_what_it_cannot_meet():
-    from woundroll.diagnosis import RollModel
+    from woundroll.inverse.diagnosis import RollModel
     from woundroll.winding.tension import Taper
 
     case = load_case("pet1-26.7N")
@@ -115,7 +115,7 @@ def test_design_reads_the_target_and_reports_what_it_cannot_meet():
 def test_table_taper_parameters_round_trip():
     # knot factors <-> the optimiser's unconstrained parameters: monotone tables stay within
     # [1 - taper_max, 1] and never rise; the inverse is exact inside the open interval
-    from woundroll.design import _table_factors, _table_params
+    from woundroll.inverse.design import _table_factors, _table_params
 
     tgt = DesignTarget(reading=50, taper_kind="table", taper_max=0.6, knots=5)
     f = np.array([1.0, 0.9, 0.75, 0.6, 0.55])
@@ -130,7 +130,7 @@ def test_table_taper_parameters_round_trip():
 
 
 def test_slacks_by_hand():
-    from woundroll.design import _slacks
+    from woundroll.inverse.design import _slacks
 
     tgt = DesignTarget(
         reading=50, pressure_min=1e4, pressure_max=2e5, tension_min=1e6, tension_max=4e6,

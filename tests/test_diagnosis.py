@@ -8,9 +8,10 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
+from woundroll.app.cli import app
 from woundroll.case import load_case
-from woundroll.cli import app
-from woundroll.diagnosis import (
+from woundroll.errors import InputError
+from woundroll.inverse.diagnosis import (
     ForwardCurve,
     ForwardPoint,
     RollModel,
@@ -18,8 +19,7 @@ from woundroll.diagnosis import (
     forward_curve,
     near_surface_pressure,
 )
-from woundroll.errors import InputError
-from woundroll.readings import readings_from_arrays
+from woundroll.io.readings import readings_from_arrays
 
 DATA = Path(__file__).resolve().parents[1] / "examples" / "data"
 
@@ -214,7 +214,7 @@ def test_cli_diagnose_json_and_bad_readings(tmp_path):
 
 def _coverage_readings(truths, passes, sd, seed):
     """``passes`` readings per position around each true reading, normal scatter ``sd``."""
-    from woundroll.readings import readings_from_arrays
+    from woundroll.io.readings import readings_from_arrays
 
     rng = np.random.default_rng(seed)
     truths = np.asarray(truths, dtype=float)
@@ -372,7 +372,7 @@ def test_sentence_beyond_the_chain_says_softer(fake_chain):
 
 
 def test_set_point_units_family():
-    from woundroll.diagnosis import set_point_units
+    from woundroll.inverse.diagnosis import set_point_units
 
     pli = 4.4482216152605 / 0.0254
     assert set_point_units("force_per_length", 2 * pli) == "us"
@@ -426,7 +426,7 @@ def test_saturated_reading_bounds_the_tension_from_one_side():
     # three passes at two positions; the first reads the dial's end (100 Rho) once: that
     # position's tension is only a lower bound (no upper end of its interval), the other
     # position keeps a two-sided interval
-    from woundroll.diagnosis import saturated_positions
+    from woundroll.inverse.diagnosis import saturated_positions
 
     x = [0.03, 0.03, 0.03, 0.09, 0.09, 0.09]
     v = [99.0, 100.0, 99.5, 55.0, 56.0, 55.5]

@@ -20,6 +20,6 @@ def test_package_has_modules() -> None:
 
 @pytest.mark.parametrize("name", MODULES)
 def test_module_imports(name: str) -> None:
-    if name.startswith("woundroll.web") or name == "woundroll.cli_serve":
+    if name.startswith("woundroll.app.web") or name == "woundroll.app.cli.serve":
         pytest.importorskip("fastapi")  # the web extra
     importlib.import_module(name)

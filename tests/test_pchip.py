@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from scipy.interpolate import PchipInterpolator
 
-from woundroll._pchip import pchip
+from woundroll.util.pchip import pchip
 
 
 @pytest.mark.parametrize("seed", range(6))

@@ -12,7 +12,7 @@ import pytest
 from typer.testing import CliRunner
 
 import woundroll
-from woundroll.cli import app
+from woundroll.app.cli import app
 from woundroll.errors import InputError
 from woundroll.instruments import get_instrument, impact_energy
 from woundroll.instruments.roll_side import RollSpring
@@ -325,7 +325,7 @@ def test_strict_json_has_no_nan_tokens():
     import json
     import math
 
-    from woundroll._output import strict_json
+    from woundroll.util.output import strict_json
 
     text = strict_json({"a": math.nan, "b": [1.0, math.inf], "c": np.float64("nan")})
     assert json.loads(text) == {"a": None, "b": [1.0, None], "c": None}

@@ -9,9 +9,8 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from woundroll.cli import app
-from woundroll.errors import InputError
-from woundroll.profile_check import (
+from woundroll.app.cli import app
+from woundroll.assess.profile_check import (
     FAULT_BAND,
     XMR_LIMIT,
     check_profile,
@@ -21,7 +20,8 @@ from woundroll.profile_check import (
     read_rolls,
     roll_trend,
 )
-from woundroll.readings import readings_from_arrays
+from woundroll.errors import InputError
+from woundroll.io.readings import readings_from_arrays
 
 DATA = Path(__file__).resolve().parents[1] / "examples" / "data"
 IN = 0.0254

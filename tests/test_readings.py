@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
+from woundroll.app.cli import app
 from woundroll.case import load_case
-from woundroll.cli import app
 from woundroll.errors import InputError
-from woundroll.readings import read_readings, readings_from_arrays
+from woundroll.io.readings import read_readings, readings_from_arrays
 
 DATA = Path(__file__).resolve().parents[1] / "examples" / "data"
 INCH = 0.0254
@@ -235,7 +235,7 @@ def test_web_api_rejects_readings_off_the_scale():
     pytest.importorskip("httpx2")
     from fastapi.testclient import TestClient
 
-    from woundroll.web import create_app
+    from woundroll.app.web import create_app
 
     case = (
         'title = "fast"\n[web]\npreset = "PET1"\n[core]\nouter_radius = "4.45 cm"\nrigid = true\n'

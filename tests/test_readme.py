@@ -102,7 +102,7 @@ def workdir(tmp_path_factory):
 
 
 def _run(args: list[str], workdir: Path):
-    from woundroll.cli import app
+    from woundroll.app.cli import app
 
     old = Path.cwd()
     os.chdir(workdir)
@@ -212,7 +212,7 @@ def test_readme_lists_the_commands():
     # every command of the CLI has a README line
     import typer.main
 
-    from woundroll.cli import app
+    from woundroll.app.cli import app
 
     names = set(typer.main.get_command(app).commands)  # type: ignore[attr-defined]
     listed = {shlex.split(c)[1] for c in COMMANDS}
@@ -236,7 +236,7 @@ def test_readme_serve(tmp_path):
     env = {**os.environ, "PYTHONPATH": os.pathsep.join([src, os.environ.get("PYTHONPATH", "")])}
     args = shlex.split(command)[1:] + ["--port", str(port)]
     proc = subprocess.Popen(
-        [sys.executable, "-m", "woundroll.cli", *args],
+        [sys.executable, "-m", "woundroll.app.cli", *args],
         stdout=subprocess.PIPE,
         stderr=subprocess.STDOUT,
         env=env,

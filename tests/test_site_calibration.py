@@ -14,9 +14,9 @@ import pytest
 from typer.testing import CliRunner
 
 import woundroll
-from woundroll.cli import app
+from woundroll.app.cli import app
 from woundroll.errors import InputError
-from woundroll.site_calibration import calibrate_site
+from woundroll.inverse.site_calibration import calibrate_site
 
 runner = CliRunner()
 
@@ -153,7 +153,7 @@ def test_two_parameters_need_three_rolls(tmp_path):
 def test_a_parameter_the_readings_do_not_see_is_not_identifiable(tmp_path, monkeypatch):
     # a model whose readings do not depend on the parameter (each roll its own constant):
     # the fit must refuse with "not identifiable", not return a number with a huge error
-    from woundroll import site_calibration as sc
+    from woundroll.inverse import site_calibration as sc
 
     paths = _cases(tmp_path)[:3]
     f = tmp_path / "r.csv"
@@ -166,7 +166,7 @@ def test_a_parameter_the_readings_do_not_see_is_not_identifiable(tmp_path, monke
 
 
 def test_a_reading_at_the_scale_end_is_left_out(tmp_path):
-    from woundroll.site_calibration import read_calibration_readings
+    from woundroll.inverse.site_calibration import read_calibration_readings
 
     f = tmp_path / "r.csv"
     f.write_text("case,reading [Rho]\na,100\na,98\nb,0\nb,3\n")

@@ -11,7 +11,7 @@ import json
 import pytest
 from typer.testing import CliRunner
 
-from woundroll.cli import app
+from woundroll.app.cli import app
 from woundroll.errors import InputError
 from woundroll.studies.slip import slip_factor_study
 

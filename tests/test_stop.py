@@ -1,7 +1,7 @@
 """Clean stops: a CMD-profile run killed while its worker pool is busy ends within seconds,
 leaves no process behind (workers, resource tracker) and no file in ``--out``.
 
-A real process is started (``python -m woundroll.cli run``), we wait until it has spawned its
+A real process is started (``python -m woundroll.app.cli run``), we wait until it has spawned its
 pool (two workers and the resource tracker, seen as its children in /proc), send the signal
 and watch. The case is the bundled PET3 profile cut to 12 sectors and an 11 cm roll so the
 pool starts within about 10 s; its contact solutions then run for tens of seconds, far longer
@@ -52,7 +52,7 @@ def _run_and_signal(out: Path, sig: int) -> tuple[subprocess.Popen, set[int], fl
         [
             sys.executable,
             "-m",
-            "woundroll.cli",
+            "woundroll.app.cli",
             "run",
             "pet3-2.3MPa",
             "-q",

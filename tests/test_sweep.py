@@ -9,9 +9,9 @@ import pytest
 from typer.testing import CliRunner
 
 import woundroll
-from woundroll.cli import app
+from woundroll.app.cli import app
+from woundroll.app.sweep import design_points, parse_vary, run_sweep
 from woundroll.errors import InputError
-from woundroll.sweep import design_points, parse_vary, run_sweep
 
 # an explicit roll spring bypasses the contact model: a roll takes milliseconds, so the tests
 # exercise the sweep machinery; the 1D winding still responds to tension and K2
@@ -233,8 +233,8 @@ def test_uncertainty_band_columns_bracket_nominal(uq_serial):
     assert s.n_failed == 2
     # the same seed for every roll (common random numbers): the band of the roll at 20 N
     # equals that of a single propagation of the case at 20 N
+    from woundroll.assess.uncertainty import propagate
     from woundroll.case import load_case
-    from woundroll.uncertainty import propagate
 
     data = {**UQ_CASE, "winding": {**FAST["winding"], "tension": "20.0 N"}}
     uq = propagate(load_case(data), 12)
@@ -367,7 +367,7 @@ def test_cli_scheduler_address_equals_serial(cluster_address, tmp_path):
     case = tmp_path / "fast.toml"
     case.write_text(FAST_TOML, encoding="utf-8")
     vary = ["--vary", VARY[0], "--vary", VARY[1]]
-    cmd = [sys.executable, "-m", "woundroll.cli", "sweep", str(case), *vary, "--quiet"]
+    cmd = [sys.executable, "-m", "woundroll.app.cli", "sweep", str(case), *vary, "--quiet"]
     run = subprocess.run(
         [*cmd, "--scheduler", address, "--out", str(tmp_path / "dask")],
         capture_output=True,
@@ -396,7 +396,7 @@ def test_cli_scheduler_address_equals_serial(cluster_address, tmp_path):
 
 def test_cli_scheduler_unreachable_is_one_line(tmp_path, monkeypatch):
     pytest.importorskip("distributed")
-    monkeypatch.setattr("woundroll.sweep.SCHEDULER_TIMEOUT", "2s")  # nobody listens on port 1
+    monkeypatch.setattr("woundroll.app.sweep.SCHEDULER_TIMEOUT", "2s")  # nobody listens on port 1
     case = tmp_path / "fast.toml"
     case.write_text(FAST_TOML, encoding="utf-8")
     res = CliRunner().invoke(

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from woundroll.errors import InputError
-from woundroll.readings import read_readings, readings_from_arrays
-from woundroll.tester_files import (
+from woundroll.io.readings import read_readings, readings_from_arrays
+from woundroll.io.tester_files import (
     TAPPI_LANE_WIDTH,
     detect_format,
     read_profile_export,
@@ -122,7 +122,7 @@ def test_cli_readings_formats_and_roll():
 
     from typer.testing import CliRunner
 
-    from woundroll.cli import app
+    from woundroll.app.cli import app
 
     runner = CliRunner()
     sheet = str(DATA / "tappi_t834_sheet.csv")

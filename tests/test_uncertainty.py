@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
+from woundroll.app.cli import app
+from woundroll.assess.uncertainty import draw_samples, propagate, uncertain_parameters
 from woundroll.case import load_case
-from woundroll.cli import app
 from woundroll.errors import InputError
-from woundroll.uncertainty import draw_samples, propagate, uncertain_parameters
 
 LINEAR = {
     "title": "linear roll",
@@ -111,8 +111,8 @@ def test_cli_run_uncertainty_json(tmp_path):
 def test_profile_band_against_brute_force_monte_carlo(tmp_path):
     # reduced case: 5 sectors, 20 winding increments; tension 5 % and caliper 2 % (no K1/K2:
     # every sample then uses the same forward curve, so the brute force is cheap)
-    from woundroll.diagnosis import RollModel, forward_curve
-    from woundroll.uncertainty import profile_bands, reduced_profile
+    from woundroll.assess.uncertainty import profile_bands, reduced_profile
+    from woundroll.inverse.diagnosis import RollModel, forward_curve
 
     case = load_case(
         "pet3-2.3MPa",
@@ -174,7 +174,7 @@ def test_tension_calibration_by_hand():
     # the reduced model's curvature relative to its slope; a sector whose reduced change is
     # below the floor (or of the other sign) takes the full change as a linear term; two runs
     # give the full model's own quadratic through -2, 0, +2 SD
-    from woundroll.uncertainty import _apply_calibration
+    from woundroll.assess.uncertainty import _apply_calibration
 
     a = np.array([2.0, 3.0, 0.01, 1.0])
     b = np.array([-0.2, 0.1, 0.0, 0.0])
@@ -211,9 +211,9 @@ def test_profile_band_sensitivity_against_full_profile_runs(name, measured):
     # a uniform roll, a uniform mu N / h) was off by up to 2.5x at the edge sector; one full
     # run at +2 SD calibrates it (exact there by construction), so the check is the central
     # sensitivity and the change at -2 SD (an independent full run)
-    from woundroll.diagnosis import RollModel, forward_curve
+    from woundroll.assess.uncertainty import profile_bands
+    from woundroll.inverse.diagnosis import RollModel, forward_curve
     from woundroll.pipeline import run
-    from woundroll.uncertainty import profile_bands
 
     sets = [
         "profile.sectors=5",

@@ -105,7 +105,7 @@ def test_import_woundroll_is_light():
     import sys
 
     code = (
-        "import sys, woundroll, woundroll.cli; from woundroll.units import to_si;"
+        "import sys, woundroll, woundroll.app.cli; from woundroll.units import to_si;"
         "to_si('2 pli', 'force_per_length');"
         "print(','.join(m for m in ('pint', 'scipy', 'numba', 'matplotlib', 'pydantic')"
         " if m in sys.modules))"

@@ -10,11 +10,15 @@ winder settings (:mod:`woundroll.case`)
 
 ``woundroll.load_case`` reads a case; ``woundroll.run`` runs it and returns a typed
 :class:`~woundroll.pipeline.RunResult`.
+The layout, and the rule that imports flow one way down it: docs/architecture.md.
 """
 
 from typing import TYPE_CHECKING, Any
 
 from woundroll.errors import ConvergenceError, InputError, WoundrollError
+from woundroll.util.moved import install as _install_moved
+
+_install_moved()  # old module paths keep working, with a DeprecationWarning
 
 if TYPE_CHECKING:
     from woundroll.case import Case, load_case

@@ -10,7 +10,7 @@ import tomllib
 import pytest
 from typer.testing import CliRunner
 
-from woundroll.cli import app
+from woundroll.app.cli import app
 from woundroll.contact.block import block_roll, calibrate_head_in_model, read_block
 from woundroll.contact.models import default_model_name
 from woundroll.errors import InputError

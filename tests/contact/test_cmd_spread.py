@@ -17,7 +17,7 @@ import pytest
 
 from woundroll.case import load_case
 from woundroll.contact import indent, roll_stiffness
-from woundroll.contact.cmd_spread import (
+from woundroll.contact.plane_strain.cmd_spread import (
     BASIN_FACTOR,
     END_FACTOR,
     MODEL_NAME,
@@ -210,7 +210,7 @@ def test_cmd_stiffness_scaling_against_3d() -> None:
 def test_study_model_option() -> None:
     from typer.testing import CliRunner
 
-    from woundroll.cli import app
+    from woundroll.app.cli import app
 
     res = CliRunner().invoke(app, ["study", "tension", "--model", "auto"])
     assert res.exit_code == 2 and "--model" in res.output

@@ -21,9 +21,14 @@ from woundroll.contact import (
     plot_slip_factor,
     slip_factor,
 )
-from woundroll.contact.fem import Assembler, element_basis, plane_strain_moduli
-from woundroll.contact.mesh import build_mesh, graded_sizes
-from woundroll.contact.solver import _factorize, _hypoelastic_increment, _Roll, _solve_lcp
+from woundroll.contact.plane_strain.fem import Assembler, element_basis, plane_strain_moduli
+from woundroll.contact.plane_strain.mesh import build_mesh, graded_sizes
+from woundroll.contact.plane_strain.solver import (
+    _factorize,
+    _hypoelastic_increment,
+    _Roll,
+    _solve_lcp,
+)
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.materials import Constant, Core, Pfeiffer, Web
 
@@ -833,7 +838,7 @@ def test_lcp_active_set_matches_nnls() -> None:
     import scipy.linalg as la
     from scipy.optimize import nnls
 
-    from woundroll.contact.solver import _solve_lcp
+    from woundroll.contact.plane_strain.solver import _solve_lcp
 
     rng = np.random.default_rng(7)
     for m in (1, 2, 5, 17, 40):

@@ -1,4 +1,4 @@
-"""The 3D contact model (woundroll.contact.solver3d): element, heads, Hertz, the 2D limit.
+"""The 3D contact model (woundroll.contact.solid3d.solver): element, heads, Hertz, the 2D limit.
 
 Coarse meshes keep the default suite fast; each tolerance says why it is what it is. The
 mesh-refinement study of the real rolls is ``slow`` (docs/contact.md, 3D section).
@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 
 from woundroll.contact import indent
-from woundroll.contact.fem3d import D_PAIRS, lumped_mass, orthotropic_moduli, ring_matrices
 from woundroll.contact.heads import Head
-from woundroll.contact.mesh3d import build_mesh3d
-from woundroll.contact.solver3d import Contact3DOptions, indent3d
+from woundroll.contact.solid3d.fem import D_PAIRS, lumped_mass, orthotropic_moduli, ring_matrices
+from woundroll.contact.solid3d.mesh import build_mesh3d
+from woundroll.contact.solid3d.solver import Contact3DOptions, indent3d
 from woundroll.errors import InputError
 from woundroll.materials import Constant, Core, Pfeiffer, Web
 
@@ -281,7 +281,7 @@ def test_schmidt_hammer_reads_a_roll_through_the_3d_model() -> None:
     model: a reading from winder settings without a hand-given roll spring (coarse mesh:
     this checks the coupling, the mesh study checks the numbers)."""
     import woundroll
-    from woundroll.contact.solver3d import Contact3DResult
+    from woundroll.contact.solid3d.solver import Contact3DResult
 
     res = woundroll.run(
         woundroll.load_case(

@@ -1,4 +1,4 @@
-"""The impact in time on the 2D FE roll (woundroll.contact.dynamic)."""
+"""The impact in time on the 2D FE roll (woundroll.contact.dynamic.plane_strain)."""
 
 from __future__ import annotations
 
@@ -9,8 +9,8 @@ import pytest
 
 from woundroll.case import load_case
 from woundroll.contact import roll_stiffness
-from woundroll.contact.dynamic import DynamicOptions, element_mass, impact_dynamic
-from woundroll.contact.mesh import build_mesh
+from woundroll.contact.dynamic.plane_strain import DynamicOptions, element_mass, impact_dynamic
+from woundroll.contact.plane_strain.mesh import build_mesh
 from woundroll.errors import InputError
 from woundroll.instruments import RollSpring, TabulatedLaw, impact_energy, impact_fd
 from woundroll.materials import Core, Web
@@ -207,7 +207,7 @@ def test_case_errors_name_the_field(overrides, field):
 def test_matching_active_mass_inverts_the_fd_model():
     # the FD reading with m_r = 12 g, handed back, gives 12 g (brentq tolerance 1e-6 rel;
     # the FD reading is smooth and monotone in m_r)
-    from woundroll.contact.dynamic import matching_active_mass
+    from woundroll.contact.dynamic.plane_strain import matching_active_mass
     from woundroll.instruments import get_instrument
 
     inst = get_instrument("rho-meter")
@@ -314,7 +314,7 @@ def test_dynamic_mesh_keeps_its_far_field_grading():
     # 200 and 400 steps per contact on PET1, 0.62 % at 1.15; see test above)
     from woundroll.case import load_case
     from woundroll.contact import ContactOptions
-    from woundroll.contact.dynamic import GROWTH
+    from woundroll.contact.dynamic.plane_strain import GROWTH
 
     assert ContactOptions().tangential_growth == 1.15
     assert GROWTH == 1.1

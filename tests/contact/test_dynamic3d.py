@@ -1,4 +1,4 @@
-"""The impact in time on the 3D FE roll (woundroll.contact.dynamic3d).
+"""The impact in time on the 3D FE roll (woundroll.contact.dynamic.solid3d).
 
 Coarse meshes (a few thousand DOF) so that every run takes seconds on a quiet machine; the
 default mesh is measured in benchmarks/bench_dynamic3d.py and docs/dynamic.md.
@@ -14,9 +14,9 @@ os.environ.setdefault("MKL_NUM_THREADS", "1")  # PARDISO threads only contend un
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
-from woundroll.contact.dynamic3d import Dynamic3DOptions, impact_dynamic3d  # noqa: E402
+from woundroll.contact.dynamic.solid3d import Dynamic3DOptions, impact_dynamic3d  # noqa: E402
 from woundroll.contact.heads import Head  # noqa: E402
-from woundroll.contact.solver3d import Contact3DOptions, indent3d  # noqa: E402
+from woundroll.contact.solid3d.solver import Contact3DOptions, indent3d  # noqa: E402
 from woundroll.errors import InputError  # noqa: E402
 from woundroll.instruments import (  # noqa: E402
     Instrument,
@@ -201,7 +201,7 @@ def test_bad_options_name_the_field() -> None:
     with pytest.raises(InputError) as e:
         Dynamic3DOptions(steps_per_contact=5)
     assert e.value.field == "contact.dynamic_options.steps_per_contact"
-    from woundroll.contact.dynamic import DynamicOptions
+    from woundroll.contact.dynamic.plane_strain import DynamicOptions
 
     with pytest.raises(InputError) as e:
         Dynamic3DOptions.from_2d(DynamicOptions(mass="consistent"))

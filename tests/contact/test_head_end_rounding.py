@@ -9,7 +9,7 @@ import pytest
 
 from woundroll.case import load_case
 from woundroll.contact.heads import Head
-from woundroll.contact.solver3d import Contact3DOptions, indent3d
+from woundroll.contact.solid3d.solver import Contact3DOptions, indent3d
 from woundroll.instruments import get_instrument
 from woundroll.winding.hakiel import wind
 

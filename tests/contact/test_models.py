@@ -91,7 +91,7 @@ def test_run_equals_roll_stiffness_and_hardness(by_run):
 
 def test_cli_equals_run(by_run):
     out = subprocess.run(
-        [sys.executable, "-m", "woundroll.cli", "run", CASE, "--json"],
+        [sys.executable, "-m", "woundroll.app.cli", "run", CASE, "--json"],
         capture_output=True,
         text=True,
         check=True,
@@ -108,7 +108,7 @@ def test_web_api_equals_run(by_run):
 
     from fastapi.testclient import TestClient
 
-    from woundroll.web import create_app
+    from woundroll.app.web import create_app
 
     with TestClient(create_app()) as client:
         text = client.get(f"/api/cases/{CASE}").text
@@ -128,7 +128,7 @@ def test_web_api_equals_run(by_run):
 
 
 def test_sweep_row_equals_run(by_run):
-    from woundroll.sweep import run_sweep
+    from woundroll.app.sweep import run_sweep
 
     res = run_sweep(CASE, ["winding.tension=26.7 N"], workers=1)
     col = next(c for c in res.columns if c.startswith("hardness.reading"))
@@ -143,7 +143,7 @@ def test_profile_refuses_a_model_too_slow_per_sector():
 
 def test_cli_bad_model_is_one_line_exit_2():
     out = subprocess.run(
-        [sys.executable, "-m", "woundroll.cli", "run", CASE, "--set", "contact.model=auto"],
+        [sys.executable, "-m", "woundroll.app.cli", "run", CASE, "--set", "contact.model=auto"],
         capture_output=True,
         text=True,
     )

@@ -4,7 +4,7 @@ With nu_theta_r fixed, the reciprocal nu_r_theta = nu_theta_r E_r / E_theta grow
 radial modulus, and past E_r ~ E_theta / nu_theta_r^2 (11 E_theta at 0.3) the orthotropic
 compliance is indefinite. Pfeiffer's E_r = K2 (K1 - sigma_r) reaches that under the head of
 a hard roll; the contact model holds the couplings nu_ij nu_ji at a bound there
-(``woundroll.contact.fem.plane_strain_moduli``) instead of failing.
+(``woundroll.contact.plane_strain.fem.plane_strain_moduli``) instead of failing.
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from woundroll.contact import ContactOptions, indent
-from woundroll.contact.fem import MAX_RADIAL_COUPLING, plane_strain_moduli
+from woundroll.contact.plane_strain.fem import MAX_RADIAL_COUPLING, plane_strain_moduli
 from woundroll.materials import Core, Pfeiffer, Web
 
 E_T = 5681e6

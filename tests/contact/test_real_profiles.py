@@ -24,7 +24,7 @@ import numpy as np
 import pytest
 
 from woundroll.contact import ContactOptions, ContactResult, indent
-from woundroll.contact.solver import FINE_ZONE
+from woundroll.contact.plane_strain.solver import FINE_ZONE
 
 CASES = {"pet1-26.7N": 1.0e-3, "pet2-26.7N": 2.1e-3}
 MORE_CASES = {"pet2-80N": 1.54e-3, "pet1-46.7N": 0.73e-3}

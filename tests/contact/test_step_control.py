@@ -2,11 +2,12 @@
 
 The default contact solve predicts each increment's mid-step stress from the previous
 increment and solves once at the modulus there, re-solving only where the achieved mid-step
-modulus differs by more than ``step_tol`` (``woundroll.contact.solver._predicted_increment``).
-Its reading must stay within 0.5 % of the 48-step explicit-midpoint answer (two
-factorisations per step) on every Table 2 roll; measured: 0.23 % at most (PET2 80 N),
-0.06 % on the PET1 rolls (docs/contact.md, step control) with the former mid-step tangent
-at step_tol 0.02; with the secant modulus at 0.002 (default) 0.05 % at most.
+modulus differs by more than ``step_tol``
+(``woundroll.contact.plane_strain.solver._predicted_increment``). Its reading must stay within 0.5
+% of the 48-step explicit-midpoint answer (two factorisations per step) on every Table 2 roll;
+measured: 0.23 % at most (PET2 80 N), 0.06 % on the PET1 rolls (docs/contact.md, step control) with
+the former mid-step tangent at step_tol 0.02; with the secant modulus at 0.002 (default) 0.05 % at
+most.
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ import pytest
 
 from woundroll.case import load_case
 from woundroll.contact import ContactOptions, indent, roll_stiffness
-from woundroll.contact import solver as solver_mod
+from woundroll.contact.plane_strain import solver as solver_mod
 from woundroll.contact import spring as spring_mod
 from woundroll.errors import InputError
 from woundroll.instruments import get_instrument, rho_energy
@@ -172,7 +173,8 @@ def test_roll_stiffness_stops_past_the_striker_reach() -> None:
     # (the fit uses only depths inside the window; 1e-9: PCHIP's slopes near the window's
     # end use the neighbouring points, the same in both)
     from woundroll.contact import fit_roll_spring, indent, roll_stiffness
-    from woundroll.contact.spring import FIT_REACH, STOP_MARGIN, head_length_of
+    from woundroll.contact.heads import head_length_of
+    from woundroll.contact.spring import FIT_REACH, STOP_MARGIN
     from woundroll.instruments import get_instrument
 
     web, core, r, s = table3_roll(None)

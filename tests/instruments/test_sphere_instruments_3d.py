@@ -13,7 +13,7 @@ import json
 import pytest
 from typer.testing import CliRunner
 
-from woundroll.cli import app
+from woundroll.app.cli import app
 from woundroll.instruments import get_instrument
 
 COARSE = [

@@ -145,7 +145,7 @@ def test_cli_fit_stack_example_fits_every_law():
 
     from typer.testing import CliRunner
 
-    from woundroll.cli import app
+    from woundroll.app.cli import app
 
     res = CliRunner().invoke(app, ["fit-stack", str(EXAMPLE_CSV), "--json"])
     assert res.exit_code == 0, res.output

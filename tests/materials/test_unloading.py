@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from woundroll.cli import app
+from woundroll.app.cli import app
 from woundroll.errors import InputError
 from woundroll.materials.radial_modulus import Pfeiffer
 from woundroll.materials.unloading import (

@@ -69,7 +69,7 @@ def test_table3_profile_through_the_cli(tmp_path):
 
     from typer.testing import CliRunner
 
-    from woundroll.cli import app
+    from woundroll.app.cli import app
 
     res = CliRunner().invoke(app, ["run", "pet3-2.3MPa", "--json", "--out", str(tmp_path)])
     assert res.exit_code == 0, res.output

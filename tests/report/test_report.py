@@ -8,8 +8,8 @@ import pytest
 from typer.testing import CliRunner
 
 import woundroll
-from woundroll.cli import app
-from woundroll.report import build_report, case_hash, write_report
+from woundroll.app.cli import app
+from woundroll.app.report import build_report, case_hash, write_report
 
 # an explicit roll spring bypasses the contact model: the report's content, not the physics,
 # is under test here, and this run takes milliseconds
@@ -79,7 +79,7 @@ def test_case_hash_follows_values_not_spelling():
 
 
 class _Readings:
-    """A stand-in with the interface of woundroll.readings.Readings.to_dict()."""
+    """A stand-in with the interface of woundroll.io.readings.Readings.to_dict()."""
 
     def to_dict(self):
         return {
@@ -173,8 +173,8 @@ def test_write_report_path(result, tmp_path):
 def test_real_readings_and_defects(result):
     from pathlib import Path
 
-    from woundroll.defects import defect_report
-    from woundroll.readings import read_readings
+    from woundroll.assess.defects import defect_report
+    from woundroll.io.readings import read_readings
 
     sheet = Path(__file__).resolve().parents[2] / "examples" / "data" / "readings_rho_3passes.csv"
     r = read_readings(sheet, width=result.case.web.width)

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from woundroll.cli import app
+from woundroll.app.cli import app
 
 DATA = Path(__file__).resolve().parents[2] / "examples" / "data"
 # explicit roll spring: the report's content is under test, not the physics (milliseconds)

@@ -13,7 +13,7 @@ pytest.importorskip("httpx2")
 from fastapi.testclient import TestClient  # noqa: E402
 
 import woundroll  # noqa: E402
-from woundroll.web import MAX_CASE_BYTES, MAX_READINGS_BYTES, create_app  # noqa: E402
+from woundroll.app.web import MAX_CASE_BYTES, MAX_READINGS_BYTES, create_app  # noqa: E402
 
 # the fast roll of tests/report (explicit roll spring: milliseconds)
 FAST_TOML = """title = "fast"
@@ -124,7 +124,7 @@ def test_bad_input_one_line_like_cli(client, body, field, text):
 def test_cli_message_is_the_same(client):
     from typer.testing import CliRunner
 
-    from woundroll.cli import app
+    from woundroll.app.cli import app
 
     res = CliRunner().invoke(app, ["run", "pet1-26.7N", "--set", "winding.tension='3 furlong'"])
     r = client.post(
@@ -286,7 +286,7 @@ def test_every_field_error_at_once(client):
 
 
 def test_readings_outside_the_scale_are_refused_with_line_and_value(client):
-    # the readers reject a value off the instrument's scale (woundroll.tester_files); the
+    # the readers reject a value off the instrument's scale (woundroll.io.tester_files); the
     # page names the sheet, the line and the value, never the server's temporary path
     body = {"case": FAST_TOML, "readings": "position [in],rho\n1,55\n2,-50\n3,5000\n"}
     r = client.post("/api/run", json=body)
@@ -304,9 +304,9 @@ def test_readings_outside_the_scale_are_refused_with_line_and_value(client):
 
 
 def test_measured_profile_check_on_the_page(client):
-    # item 9: the profiler's view of the measured profile (woundroll.profile_check)
-    from woundroll.profile_check import check_profile
-    from woundroll.web import readings_from_text
+    # item 9: the profiler's view of the measured profile (woundroll.assess.profile_check)
+    from woundroll.app.web import readings_from_text
+    from woundroll.assess.profile_check import check_profile
 
     rows = [50, 50, 51, 50, 58, 59, 50, 49, 50, 51, 50]
     text = "position [in],rho\n" + "".join(f"{0.5 * (i + 1)},{v}\n" for i, v in enumerate(rows))
@@ -382,7 +382,7 @@ def test_plots_hoop_stress_smooth_and_impact_from_contact(client):
 
 
 def test_job_progress_never_claims_100_percent_while_working(client, monkeypatch):
-    from woundroll.web import JobStore
+    from woundroll.app.web import JobStore
 
     store = JobStore()
     seen = []
@@ -417,7 +417,7 @@ def _fake_evaluate(self, web_stress):
     # a stand-in forward chain for the diagnosis (tests/test_diagnosis.py): fast, exact
     import math
 
-    from woundroll.diagnosis import ForwardPoint
+    from woundroll.inverse.diagnosis import ForwardPoint
 
     r = 50.0 + 10.0 * math.log(web_stress / 1e6)
     return ForwardPoint(float(web_stress), float(web_stress), 0.01 * web_stress, r, r, False)
@@ -431,8 +431,8 @@ DIAG_TOML = FAST_TOML.replace('roll_spring = { alpha = "2.6e8 N/m^2", beta = "1.
     ("tension", "units", "pos"), [("2 pli", "us", "in"), ("26.7 N", "si", "mm")]
 )
 def test_diagnosis_sentence_caveat_and_position_units(client, monkeypatch, tension, units, pos):
-    from woundroll.diagnosis import RollModel, diagnose
-    from woundroll.web import readings_from_text
+    from woundroll.app.web import readings_from_text
+    from woundroll.inverse.diagnosis import RollModel, diagnose
 
     monkeypatch.setattr(RollModel, "evaluate", _fake_evaluate)
     readings = "position [in],rho\n1,50\n3,52\n"  # one reading per position

@@ -35,7 +35,7 @@ from selenium.webdriver.common.by import By  # noqa: E402
 from selenium.webdriver.common.print_page_options import PrintOptions  # noqa: E402
 from selenium.webdriver.support.ui import Select, WebDriverWait  # noqa: E402
 
-from woundroll.web import MAX_CASE_BYTES, create_app  # noqa: E402
+from woundroll.app.web import MAX_CASE_BYTES, create_app  # noqa: E402
 
 TENSION = "2 pli"
 
@@ -170,9 +170,9 @@ def test_run_matches_cli_and_renders(server, browser, cli_json, tmp_path):
     # measured readings beside the prediction
     assert drv.find_element(By.CSS_SELECTOR, '[data-key="measured.n"]').text == "3"
     # the profiler's view of the measured profile (issue 22 item 9)
+    from woundroll.app.web import readings_from_text
+    from woundroll.assess.profile_check import check_profile
     from woundroll.case import load_case
-    from woundroll.profile_check import check_profile
-    from woundroll.web import readings_from_text
 
     pet1 = load_case("pet1-26.7N")
     want = check_profile(readings_from_text("position [in],rho\n1,50\n3,52\n5,51\n", pet1))
@@ -310,7 +310,7 @@ def test_every_field_error_shown_at_once(server, browser):
 
 
 def test_oversize_upload_stops_the_run(server, browser, tmp_path):
-    from woundroll.web import MAX_READINGS_BYTES
+    from woundroll.app.web import MAX_READINGS_BYTES
 
     drv = browser
     drv.get(server + "/")
@@ -341,7 +341,7 @@ def _slow_fake_evaluate(self, web_stress):
     # time to show each stage
     import math
 
-    from woundroll.diagnosis import ForwardPoint
+    from woundroll.inverse.diagnosis import ForwardPoint
 
     time.sleep(0.3)
     r = 50.0 + 10.0 * math.log(web_stress / 1e6)
@@ -349,9 +349,9 @@ def _slow_fake_evaluate(self, web_stress):
 
 
 def test_diagnosis_progress_sentence_and_caveat(server, browser, monkeypatch):
+    from woundroll.app.web import readings_from_text
     from woundroll.case import load_case
-    from woundroll.diagnosis import RollModel, diagnose
-    from woundroll.web import readings_from_text
+    from woundroll.inverse.diagnosis import RollModel, diagnose
 
     # the server runs in this process: its jobs use the stand-in chain
     monkeypatch.setattr(RollModel, "evaluate", _slow_fake_evaluate)

@@ -10,6 +10,7 @@ the depths its striker reaches (:mod:`woundroll.contact.spring`).
 See docs/contact.md for the formulation, assumptions and verification.
 """
 
+from woundroll.contact.plane_strain.solver import ContactOptions, indent
 from woundroll.contact.result import (
     ContactResult,
     ContactState,
@@ -17,7 +18,6 @@ from woundroll.contact.result import (
     plot_slip_factor,
     slip_factor,
 )
-from woundroll.contact.solver import ContactOptions, indent
 from woundroll.contact.spring import RollStiffness, SpringFit, fit_roll_spring, roll_stiffness
 
 __all__ = [

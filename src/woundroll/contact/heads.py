@@ -148,3 +148,15 @@ class Head:
             "length_m": self.length,
             "edge_radius_m": self.edge_radius,
         }
+
+
+def head_length_of(instrument: Any) -> float:
+    """The head length [m] of a cylindrical head; other heads are not in the 2D model."""
+    if instrument.head_shape != "cylinder" or instrument.head_length is None:
+        raise InputError(
+            f"the {instrument.name} has a {instrument.head_shape} head, but the 2D "
+            "(plane-strain) contact model takes a cylindrical head with its axis along the "
+            "CMD: give [tester.roll_spring] for this instrument",
+            "tester.instrument",
+        )
+    return float(instrument.head_length)

@@ -30,8 +30,8 @@ from woundroll.errors import InputError
 
 def _plane_strain(web: Any, core: Any, r: Any, sigma_r: Any, instrument: Any, **kw: Any) -> Any:
     """The plane-strain 2D model (:func:`woundroll.contact.indent`): (result, None)."""
-    from woundroll.contact.solver import indent
-    from woundroll.contact.spring import head_length_of
+    from woundroll.contact.plane_strain.solver import indent
+    from woundroll.contact.heads import head_length_of
 
     kw.pop("options3d", None)
     res = indent(
@@ -48,8 +48,9 @@ def _plane_strain(web: Any, core: Any, r: Any, sigma_r: Any, instrument: Any, **
 
 def _cmd_spread(web: Any, core: Any, r: Any, sigma_r: Any, instrument: Any, **kw: Any) -> Any:
     """Plane strain with the CMD-spreading correction
-    (:func:`woundroll.contact.cmd_spread.apply_cmd_spread`): (corrected result, correction)."""
-    from woundroll.contact.cmd_spread import apply_cmd_spread
+    (:func:`woundroll.contact.plane_strain.cmd_spread.apply_cmd_spread`): (corrected result,
+    correction)."""
+    from woundroll.contact.plane_strain.cmd_spread import apply_cmd_spread
 
     res, _ = _plane_strain(web, core, r, sigma_r, instrument, **kw)
     correction = apply_cmd_spread(res)
@@ -57,9 +58,10 @@ def _cmd_spread(web: Any, core: Any, r: Any, sigma_r: Any, instrument: Any, **kw
 
 
 def _solid3d(web: Any, core: Any, r: Any, sigma_r: Any, instrument: Any, **kw: Any) -> Any:
-    """The 3D continuum model (:func:`woundroll.contact.solver3d.indent3d`): (result, None)."""
+    """The 3D continuum model (:func:`woundroll.contact.solid3d.solver.indent3d`): (result,
+    None)."""
     from woundroll.contact.heads import Head
-    from woundroll.contact.solver3d import indent3d
+    from woundroll.contact.solid3d.solver import indent3d
 
     kw.pop("options", None)
     options3d = kw.pop("options3d", None)

@@ -227,7 +227,7 @@ class ContactResult:
     surface_deflection_history : ndarray (n_steps + 1, n_surface_nodes) [m] or None
         Inward radial displacement -u_r of the surface nodes (at ``contact_s``) at every
         computed depth (2D model; the CMD-spreading correction reads the deflection basin
-        from it, :mod:`woundroll.contact.cmd_spread`).
+        from it, :mod:`woundroll.contact.plane_strain.cmd_spread`).
     """
 
     delta: FloatArray

@@ -212,7 +212,7 @@ def fit_roll_spring(
         # fractions of its length, so that the fit -- and the reading -- is a continuous
         # function of d_max: selecting the computed points inside the window made the
         # fit jump whenever a point left it (0.3 Rho on PET1 40 N, docs/contact.md)
-        from woundroll._pchip import pchip  # SciPy's PCHIP without importing scipy.interpolate
+        from woundroll.util.pchip import pchip  # SciPy's PCHIP without importing scipy.interpolate
 
         curve = pchip(np.concatenate([[0.0], d]), np.concatenate([[0.0], f]))
         frac = (np.arange(1, WINDOW_SAMPLES + 1) / WINDOW_SAMPLES) ** 1.5
@@ -308,7 +308,7 @@ class RollStiffness:
     model : str
         The contact model used: ``"2d"`` (plane strain), ``"2d+cmd-spread"`` (plane strain
         corrected for the load carried past the head's ends, the default for cylindrical
-        heads, :mod:`woundroll.contact.cmd_spread`) or ``"3d"``.
+        heads, :mod:`woundroll.contact.plane_strain.cmd_spread`) or ``"3d"``.
     cmd_spread : CmdSpread or None
         The correction on the ``"2d+cmd-spread"`` path (L_eff(d), the plane-strain force).
     """
@@ -380,18 +380,6 @@ class RollStiffness:
         return [self.contact.plot(path), plot_slip_factor(self.at_impact, slip_path)]
 
 
-def head_length_of(instrument: Instrument) -> float:
-    """The head length [m] of a cylindrical head; other heads are not in the 2D model."""
-    if instrument.head_shape != "cylinder" or instrument.head_length is None:
-        raise InputError(
-            f"the {instrument.name} has a {instrument.head_shape} head, but the 2D "
-            "(plane-strain) contact model takes a cylindrical head with its axis along the "
-            "CMD: give [tester.roll_spring] for this instrument",
-            "tester.instrument",
-        )
-    return float(instrument.head_length)
-
-
 def roll_stiffness(
     web: Web,
     core: Core,
@@ -434,8 +422,8 @@ def roll_stiffness(
     model : str, optional
         The roll model by its name in :data:`woundroll.contact.models.ROLL_MODELS`:
         ``"2d"`` (plane strain), ``"2d+cmd-spread"`` (plane strain corrected for the load
-        carried past the head's ends, :mod:`woundroll.contact.cmd_spread`) or ``"3d"``
-        (:func:`woundroll.contact.solver3d.indent3d`, any head). None: the registry's
+        carried past the head's ends, :mod:`woundroll.contact.plane_strain.cmd_spread`) or ``"3d"``
+        (:func:`woundroll.contact.solid3d.solver.indent3d`, any head). None: the registry's
         default for the instrument's head (:data:`~woundroll.contact.models.DEFAULT_ROLL_MODEL`).
     options3d : Contact3DOptions, optional
         Settings of the 3D model.
@@ -447,6 +435,7 @@ def roll_stiffness(
     ConvergenceError
         The striker's depth kept growing past four solutions.
     """
+    from woundroll.contact.heads import head_length_of
     from woundroll.contact.models import resolve_model
 
     entry = resolve_model(model, instrument.head_shape, f"{field}.model")

@@ -266,7 +266,7 @@ def read_stack_csv(path: Path, field_name: str = "file") -> tuple[FloatArray, Fl
     Column names are matched case-insensitively on ``strain`` and ``pressure``; a unit in
     brackets (``pressure [psi]``, ``strain [%]``) is honoured, otherwise SI.
     """
-    from woundroll.io_tables import read_columns
+    from woundroll.util.tables import read_columns
 
     cols = read_columns(path, {"strain": "dimensionless", "pressure": "pressure"}, field_name)
     return cols["strain"], cols["pressure"]

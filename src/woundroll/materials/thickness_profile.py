@@ -8,7 +8,7 @@ Two inputs are accepted.
 CMD profile (CSV)
     Two columns whose header names each column and its unit, e.g. ``position_m,thickness_m``
     or ``position [in],thickness [mil]`` (any length unit pint knows; see
-    :func:`woundroll.io_tables.read_columns`). Lines starting with ``#`` are comments.
+    :func:`woundroll.util.tables.read_columns`). Lines starting with ``#`` are comments.
     One row per CMD position; positions measured from one edge of the web.
 
 Full thickness map (CSV or ``.npy``), CMD x MD, averaged over MD as in Figure 20 of the
@@ -45,8 +45,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from woundroll.errors import InputError
-from woundroll.io_tables import parse_header, read_columns, read_header_row
 from woundroll.units import to_si
+from woundroll.util.tables import parse_header, read_columns, read_header_row
 
 FloatArray = NDArray[np.float64]
 

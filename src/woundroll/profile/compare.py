@@ -26,8 +26,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from woundroll.errors import InputError
-from woundroll.io_tables import parse_header, read_columns, read_header_row
 from woundroll.profile.stats import ProfileStats, profile_stats
+from woundroll.util.tables import parse_header, read_columns, read_header_row
 
 FloatArray = NDArray[np.float64]
 

@@ -526,10 +526,10 @@ WORKER_ENV = {
 
 def sector_pool(workers: int) -> cf.ProcessPoolExecutor:
     """The process pool of the per-sector solves (``spawn``: no inherited state; from
-    :func:`woundroll._pool.process_pool`, so SIGINT/SIGTERM stop it cleanly). The one place
+    :func:`woundroll.util.pool.process_pool`, so SIGINT/SIGTERM stop it cleanly). The one place
     where sector workers are created; they read :data:`WORKER_ENV` when they start
     (:func:`_run_pool` sets it while they do)."""
-    from woundroll._pool import process_pool
+    from woundroll.util.pool import process_pool
 
     return process_pool(workers)
 
@@ -576,7 +576,7 @@ def _run_pool(
 
 def _warm_up() -> int:
     """Import the contact model in a sector worker (run while the roll is wound)."""
-    import woundroll.contact.solver  # noqa: F401
+    import woundroll.contact.plane_strain.solver  # noqa: F401
     import woundroll.contact.spring  # noqa: F401
     import woundroll.instruments  # noqa: F401
 

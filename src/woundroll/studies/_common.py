@@ -149,9 +149,9 @@ def _map(
         return results
     from concurrent.futures import as_completed
 
-    from woundroll._pool import process_pool
+    from woundroll.util.pool import process_pool
 
-    # the pool clean_stop() ends on SIGINT/SIGTERM (woundroll._pool)
+    # the pool clean_stop() ends on SIGINT/SIGTERM (woundroll.util.pool)
     with process_pool(min(workers, n)) as pool:
         futures = {pool.submit(fn, *job): i for i, job in enumerate(jobs)}
         done = 0

@@ -1,13 +1,14 @@
 """Figures 6-10 and 14-15 against the dynamic model: the impact in time on the FE roll
-(:mod:`woundroll.contact.dynamic`, the role of the paper's ABAQUS/Explicit model) beside the
-1.5D FD and energy models, on the seven Table 2 rolls and the calibration block.
+(:mod:`woundroll.contact.dynamic.plane_strain`, the role of the paper's ABAQUS/Explicit model)
+beside the 1.5D FD and energy models, on the seven Table 2 rolls and the calibration block.
 
 Per roll: Rho, impulse, peak time and contact time of the dynamic FE impact and of the FD
 model; the energy model's Rho; the FE's coefficient of restitution and the energy it leaves
 in the roll; the tapered-column active mass {14}-{18} the FD model uses, and the active mass
 the FE roll *shows*: the m_r with which the FD model (same quasi-static spring {3}, plastic
-collision) reads the FE's Rho (:func:`woundroll.contact.dynamic.matching_active_mass`). A
-case can hand that mass to the FD model with ``[tester] active_mass``.
+collision) reads the FE's Rho
+(:func:`woundroll.contact.dynamic.plane_strain.matching_active_mass`). A case can hand that mass to
+the FD model with ``[tester] active_mass``.
 
 The calibration block (Table 1: E = 44.6 MPa, nu = 0.458, 1.4 g/cm^3; thickness 2.54 cm,
 an assumption) is the FE "roll" of an isotropic, linear elastic material 2.54 cm thick on a
@@ -53,7 +54,7 @@ def _measure_roll(name: str, overrides: tuple[str, ...], model: str = "2d") -> d
     from dataclasses import replace
 
     from woundroll.case import load_case
-    from woundroll.contact.dynamic import impact_dynamic, matching_active_mass
+    from woundroll.contact.dynamic.plane_strain import impact_dynamic, matching_active_mass
     from woundroll.instruments import RollSpring
     from woundroll.pipeline import run
 
@@ -169,8 +170,8 @@ def _measure_block(_: str, overrides: tuple[str, ...], model: str = "2d") -> dic
     and the FD/energy models on the FE's quasi-static curve and on the calibrated
     Hertz curve (docs/instruments.md, section 6)."""
     from woundroll.contact import roll_stiffness
-    from woundroll.contact.dynamic import impact_dynamic
-    from woundroll.contact.dynamic3d import impact_dynamic3d
+    from woundroll.contact.dynamic.plane_strain import impact_dynamic
+    from woundroll.contact.dynamic.solid3d import impact_dynamic3d
     from woundroll.instruments import (
         RollSpring,
         TabulatedLaw,

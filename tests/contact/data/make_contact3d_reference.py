@@ -96,8 +96,8 @@ def run_extra(key: str, name: str, length: float, depth: float, overrides=()) ->
     case ``overrides``, e.g. another E_z)."""
     from woundroll.case import load_case
     from woundroll.contact.heads import Head
-    from woundroll.contact.solver import indent
-    from woundroll.contact.solver3d import indent3d
+    from woundroll.contact.plane_strain.solver import indent
+    from woundroll.contact.solid3d.solver import indent3d
     from woundroll.pipeline import run
 
     case = load_case(name, ["contact.no_update=false", "contact.model='2d'", *overrides])

@@ -1,0 +1,5 @@
+"""``python -m woundroll``: the ``woundroll`` command."""
+
+from woundroll.app.cli.entry import main
+
+main()

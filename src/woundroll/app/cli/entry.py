@@ -1,0 +1,105 @@
+"""The ``woundroll`` command line: the command group and its entry point.
+
+Each command group lives in its own module of :mod:`woundroll.app.cli` and adds itself with
+``register(app)``: ``run``, ``study``, ``cases``/``materials``/``fit-stack``, the reverse road
+(``readings``, ``diagnose``, ``defects``, ``design``), ``report``, ``sweep``, ``serve`` and
+``calibrate-head``/``calibrate``. Input errors print one line naming the field and exit with
+status 2; a solver that does not converge exits with status 1 (:mod:`~woundroll.app.cli.console`).
+"""
+
+from __future__ import annotations
+
+import sys
+from typing import Annotated, Any
+
+import typer
+from rich.markup import escape
+
+from woundroll.app.cli import calibrate, diagnose, materials, report, run, serve, study, sweep
+from woundroll.app.cli.console import err, out
+
+
+class _Commands(typer.core.TyperGroup):
+    """The ``woundroll`` command group; a usage error (an option's value out of range, an
+    unknown option, a missing argument) is one line naming the option, exit 2, like every
+    other input error, instead of click's usage block."""
+
+    def main(  # type: ignore[override]
+        self,
+        args: Any = None,
+        prog_name: str | None = None,
+        complete_var: str | None = None,
+        standalone_mode: bool = True,
+        **extra: Any,
+    ) -> Any:
+        try:  # typer >= 0.20 parses with its own copy of click
+            from typer._click import exceptions as click
+        except ImportError:  # pragma: no cover - older typer: click itself
+            from click import exceptions as click  # type: ignore[no-redef]
+
+        if not standalone_mode:
+            return super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
+        try:
+            rv = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
+        except click.NoArgsIsHelpError as exc:  # bare `woundroll CMD`: its help
+            exc.show()
+            sys.exit(exc.exit_code)
+        except click.UsageError as exc:
+            where = exc.ctx.command_path if exc.ctx is not None else "woundroll"
+            msg = f"error: {exc.format_message()} (see '{where} --help')"
+            err.print(escape(msg), highlight=False, soft_wrap=True)
+            sys.exit(exc.exit_code)
+        except click.ClickException as exc:
+            exc.show()
+            sys.exit(exc.exit_code)
+        except typer.Abort:
+            err.print("Aborted!", highlight=False)
+            sys.exit(1)
+        sys.exit(rv if isinstance(rv, int) else 0)
+
+
+app = typer.Typer(
+    cls=_Commands,
+    add_completion=False,
+    # help texts are plain text: "[kPa]", "[readings]" are units and case sections, not markup
+    rich_markup_mode=None,
+    no_args_is_help=True,
+    help="Wound-roll stresses from winder settings, and the hardness readings they cause.",
+)
+
+
+def _version(value: bool) -> None:
+    if value:
+        from importlib.metadata import PackageNotFoundError, version
+
+        try:
+            v = version("woundroll")
+        except PackageNotFoundError:  # running from a source tree without installing
+            v = "unknown"
+        out.print(f"woundroll {v}", highlight=False)
+        raise typer.Exit()
+
+
+@app.callback()
+def _main(
+    _version_flag: Annotated[
+        bool,
+        typer.Option(
+            "--version", callback=_version, is_eager=True, help="Print the version and exit."
+        ),
+    ] = False,
+) -> None:
+    """Wound-roll stresses from winder settings, and the hardness readings they cause."""
+
+
+for _group in (run, study, materials, diagnose, report, sweep, serve, calibrate):
+    _group.register(app)
+
+
+def main() -> None:
+    """Entry point of the ``woundroll`` script."""
+    app()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,597 @@
+"""The impact in time on the 3D finite-element roll: the paper's own dynamic reference model.
+
+The reference paper's dynamic model is 3D (ABAQUS/Explicit, a VUMAT updating E_r with the
+dynamic pressure; Figures 6-10). :mod:`woundroll.contact.dynamic.plane_strain` solves the impact on
+the 2D plane-strain roll; this module solves it on the 3D roll of the quasi-static 3D model
+(:mod:`woundroll.contact.solid3d.solver`), with everything shared: the mesh and the element
+(:func:`~woundroll.contact.solid3d.solver.build_roll3d`,
+:class:`~woundroll.contact.solid3d.solver.Roll3D`, the same defaults for the same depth), the
+cylindrically orthotropic material with the hypoelastic radial modulus at the element's current
+total radial stress, the head of the instrument (:class:`~woundroll.contact.heads.Head`: the
+Rho-meter's cylinder, a sphere), the frictionless small-displacement contact along each surface
+node's radial line, and the linear solver (:mod:`woundroll.contact.solid3d.linsolve`: PARDISO with
+the symbolic analysis done once). What is added is what the 2D dynamic model adds (docs/dynamic.md):
+
+* **Inertia of the roll**: the lumped mass :func:`~woundroll.contact.solid3d.fem.lumped_mass`
+  (each element's mass shared by its 8 nodes), density ``web.density``.
+* **The striker {1}** on one degree of freedom (mass m_s, spring k_s, released at rest at
+  ``-x_in`` {10}-{11}); free flight to ``x_gap`` exact, the integration starts at contact with
+  ``v_c`` and the roll at rest in its wound state. Quarter model (head centred on the roll
+  width, symmetry planes theta = 0 and z = 0): the striker's mass and spring are divided by 4
+  and every force and energy reported is multiplied back.
+* **Contact in time**: the gap of a surface node is measured along its radial line to the
+  head at the striker's new position, as in the quasi-static 3D model:
+  ``g_i = c_i - d / cos(theta_i) - u_r,i`` with ``c_i = (R + lift_i) / cos(theta_i) - R``
+  and d the head's depth. It is linear in d and in u_r, so the contact force ``lam_i >= 0``
+  (radial, inward on the node) acts on the striker as ``lam_i / cos(theta_i)`` (its work
+  conjugate; the quasi-static model reports ``sum f cos``, 1e-4 apart for a Rho-meter
+  footprint). The complementarity problem ``lam >= 0, g >= 0, lam g = 0`` of every step is
+  solved exactly on a candidate set (as in 2D).
+* **Time integration**: implicit Newmark, gamma = 0.6, beta = (gamma + 1/2)^2 / 4 (the 2D
+  model's choice and reasons: average acceleration is unstable with this contact); the
+  internal force integrated incrementally ``f_int,n+1 = f_int,n + K_t du`` with the moduli at
+  the mid-step stress extrapolated from the last increment (the 2D default).
+* **Modified Newton (the factorisation reused over steps)**: the step's system
+  ``A du = b - S^T lam`` with ``A = K_t + c0 M`` (and the contact LCP) is solved by the
+  iteration ``du += A0^-1 (b - S^T lam - A du)`` with a factorisation ``A0`` of an earlier
+  step, the contact forces updated in every pass by the LCP of the cached flexibility
+  columns ``Z = A0^-1 S^T`` (stale columns only slow the iteration: the residual is the
+  exact one), until the correction is below ``newton_rtol`` of the step's increment and the
+  gaps are complementary to ``1e-6`` of the depth scale. A new factorisation is made when a
+  step needs more than ``refactor_after`` passes (the tangent has moved too far); the
+  flexibility columns are recomputed when a step needs more than ``refresh_after``. With
+  ``reuse=False`` every step factorises (the reference the test compares with).
+
+Outputs: :class:`woundroll.contact.dynamic.plane_strain.DynamicImpactResult` (the 2D model's
+result), with the pressure along the contact axis (elements at theta = 0, z = 0) and on the surface
+line z = 0, and ``stats`` (factorisations, solves, passes, seconds).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from woundroll.contact.dynamic.plane_strain import (
+    DynamicImpactResult,
+    DynamicOptions,
+    _lcp,
+    _separation,
+)
+from woundroll.contact.heads import Head
+from woundroll.contact.solid3d.fem import lumped_mass, orthotropic_moduli, stresses
+from woundroll.contact.solid3d.solver import Contact3DOptions, Roll3D, build_roll3d
+from woundroll.errors import ConvergenceError, InputError
+
+if TYPE_CHECKING:
+    from woundroll.instruments import Instrument
+    from woundroll.materials.web import Core, Web
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class Dynamic3DOptions:
+    """Numerical settings of :func:`impact_dynamic3d`.
+
+    Attributes
+    ----------
+    time_step, steps_per_contact, newmark_gamma, rayleigh_mass, rayleigh_stiffness,
+    update_modulus, max_contact_times
+        As :class:`woundroll.contact.dynamic.plane_strain.DynamicOptions` (the mass is lumped).
+    reuse : bool
+        Modified Newton: keep a factorisation over steps (module docstring). False: one
+        factorisation per step.
+    newton_rtol : float
+        Stop the passes of a step when the last correction is below this fraction of the
+        step's displacement increment (max norm).
+    refactor_after, refresh_after : int
+        Passes in a step after which the effective stiffness is factorised anew, and after
+        which the cached flexibility columns are recomputed.
+    mesh : Contact3DOptions or None
+        The quasi-static 3D model's mesh and material settings (its ``n_steps``,
+        ``midpoint``, ``predictor`` and ``slip`` do not apply).
+    """
+
+    time_step: float | None = None
+    steps_per_contact: int = 400
+    newmark_gamma: float = 0.6
+    rayleigh_mass: float = 0.0
+    rayleigh_stiffness: float = 0.0
+    update_modulus: bool = True
+    max_contact_times: float = 8.0
+    reuse: bool = True
+    newton_rtol: float = 1e-4
+    refactor_after: int = 10
+    refresh_after: int = 20
+    mesh: Contact3DOptions | None = None
+
+    def __post_init__(self) -> None:
+        f = "contact.dynamic_options"
+        # the shared settings are checked by the 2D options' rules
+        DynamicOptions(
+            time_step=self.time_step,
+            steps_per_contact=self.steps_per_contact,
+            newmark_gamma=self.newmark_gamma,
+            rayleigh_mass=self.rayleigh_mass,
+            rayleigh_stiffness=self.rayleigh_stiffness,
+            max_contact_times=self.max_contact_times,
+        )
+        if not (math.isfinite(self.newton_rtol) and 0 < self.newton_rtol < 1e-2):
+            raise InputError(f"must lie in (0, 0.01), got {self.newton_rtol!r}", f"{f}.newton_rtol")
+        for name in ("refactor_after", "refresh_after"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, int | np.integer) or v < 1:
+                raise InputError(f"must be a positive integer, got {v!r}", f"{f}.{name}")
+        if self.mesh is not None and not isinstance(self.mesh, Contact3DOptions):
+            raise InputError("must be a Contact3DOptions", "contact.options3d")
+
+    @property
+    def newmark_beta(self) -> float:
+        return 0.25 * (self.newmark_gamma + 0.5) ** 2
+
+    @classmethod
+    def from_2d(
+        cls, opts: DynamicOptions, mesh: Contact3DOptions | None = None
+    ) -> Dynamic3DOptions:
+        """The 3D settings of a case's ``contact.dynamic_options`` (a :class:`DynamicOptions`);
+        a consistent mass is an input error (the 3D model's mass is lumped)."""
+        if opts.mass != "lumped":
+            raise InputError(
+                "the 3D dynamic model has a lumped mass only", "contact.dynamic_options.mass"
+            )
+        if opts.modulus_update != "extrapolated":
+            raise InputError(
+                "the 3D dynamic model takes E_r at the extrapolated mid-step stress only",
+                "contact.dynamic_options.modulus_update",
+            )
+        return cls(
+            time_step=opts.time_step,
+            steps_per_contact=opts.steps_per_contact,
+            newmark_gamma=opts.newmark_gamma,
+            rayleigh_mass=opts.rayleigh_mass,
+            rayleigh_stiffness=opts.rayleigh_stiffness,
+            update_modulus=opts.update_modulus,
+            max_contact_times=opts.max_contact_times,
+            mesh=mesh,
+        )
+
+
+class _Effective:
+    """The step matrix ``A = (1 + c1 a1) K_t + (c0 + c1 a0) M`` of the roll: its values, its
+    products, its (possibly stale) factorisation and the flexibility columns of that
+    factorisation for the surface nodes."""
+
+    def __init__(self, roll: Roll3D, m: FloatArray, c_k: float, c_m: float) -> None:
+        self.roll = roll
+        self.asm = roll.asm
+        self.m = m
+        self.c_k, self.c_m = c_k, c_m
+        self.K = roll.asm.pattern.copy()  # upper triangle, CSR
+        self.A = roll.asm.pattern.copy()
+        self.n = roll.asm.n_free
+        self.col_of: dict[int, int] = {}  # surface node -> column of Z
+        self.Z = np.zeros((self.n, 16))
+        self.col_factor = np.zeros(16, dtype=np.int64)  # factorisation each column is of
+        self.n_cols = 0
+        self.n_factor = self.n_solves = self.n_refresh = 0
+        self.t_factor = self.t_solve = self.t_assembly = 0.0
+        self.factored_D: FloatArray | None = None
+
+    def set_moduli(self, D: FloatArray) -> None:
+        t0 = time.perf_counter()
+        kv = self.asm.values(D)
+        self.K.data = kv
+        av = self.c_k * kv
+        av[self.asm.diag_pos] += self.c_m * self.m
+        self.A.data = av
+        self.D = D
+        self.t_assembly += time.perf_counter() - t0
+
+    def _sym(self, U: Any, x: FloatArray) -> FloatArray:
+        # symmetric product from the upper triangle (U.T is a CSC view, no copy)
+        return U @ x + U.T @ x - U.data[self.asm.diag_pos] * x
+
+    def k_times(self, x: FloatArray) -> FloatArray:
+        return self._sym(self.K, x)
+
+    def a_times(self, x: FloatArray) -> FloatArray:
+        return self._sym(self.A, x)
+
+    def factor(self) -> None:
+        t0 = time.perf_counter()
+        self.roll.solver.factor(self.A.data)
+        self.t_factor += time.perf_counter() - t0
+        self.n_factor += 1
+        self.factored_D = self.D
+
+    @property
+    def exact(self) -> bool:
+        """The factorisation is of the current A."""
+        return self.factored_D is self.D
+
+    def solve(self, b: FloatArray) -> FloatArray:
+        t0 = time.perf_counter()
+        x = self.roll.solver.solve(b)
+        self.t_solve += time.perf_counter() - t0
+        self.n_solves += 1 if b.ndim == 1 else b.shape[1]
+        return x
+
+    def columns(self, nodes: NDArray[np.int64], fresh: bool = False) -> NDArray[np.int64]:
+        """Columns of Z (``A0^-1`` of a unit inward radial force) of the surface nodes
+        ``nodes`` (indices into the surface): computed for those not cached, and with
+        ``fresh`` for those cached from an earlier factorisation; returns the column numbers."""
+        sr = self.roll.sr
+        todo = [
+            int(i)
+            for i in nodes
+            if int(i) not in self.col_of
+            or (fresh and self.col_factor[self.col_of[int(i)]] != self.n_factor)
+        ]
+        if todo:
+            rhs = np.zeros((self.n, len(todo)))
+            rhs[sr[todo], np.arange(len(todo))] = -1.0
+            X = self.solve(rhs).reshape(self.n, len(todo))
+            for c, i in enumerate(todo):
+                if i not in self.col_of:
+                    if self.n_cols == self.Z.shape[1]:
+                        self.Z = np.hstack([self.Z, np.zeros_like(self.Z)])
+                        self.col_factor = np.concatenate(
+                            [self.col_factor, np.zeros_like(self.col_factor)]
+                        )
+                    self.col_of[i] = self.n_cols
+                    self.n_cols += 1
+                self.Z[:, self.col_of[i]] = X[:, c]
+                self.col_factor[self.col_of[i]] = self.n_factor
+            if fresh:
+                self.n_refresh += 1
+        return np.array([self.col_of[int(i)] for i in nodes], dtype=np.int64)
+
+    def columns_exact(self, cols: NDArray[np.int64]) -> bool:
+        return self.exact and bool(np.all(self.col_factor[cols] == self.n_factor))
+
+
+def impact_dynamic3d(
+    web: Web,
+    core: Core,
+    radius: FloatArray,
+    sigma_r: FloatArray,
+    instrument: Instrument,
+    *,
+    head: Head | None = None,
+    contact_time: float | None = None,
+    depth_scale: float | None = None,
+    density: float | None = None,
+    options: Dynamic3DOptions | None = None,
+) -> DynamicImpactResult:
+    """The striker hits the 3D FE roll: the impact solved in time (module docstring).
+
+    Parameters
+    ----------
+    web, core, radius, sigma_r, instrument, density
+        As :func:`woundroll.contact.dynamic.plane_strain.impact_dynamic` (``web.width``: the roll's
+        width, the head centred on it).
+    head : Head, optional
+        Default: the instrument's (:meth:`Head.from_instrument`).
+    contact_time : float, optional [s]
+        Estimated contact duration (sets the time step). Default: from a coarse
+        quasi-static 3D solve, ``pi sqrt(m_s / (k_s + F(d)/d))`` at the energy model's depth.
+    depth_scale : float, optional [m]
+        Expected maximum depth: sizes the mesh as the quasi-static model's ``depth_max``.
+        Default: 1.25 x the energy model's depth on the same coarse solve.
+    options : Dynamic3DOptions, optional
+
+    Raises
+    ------
+    InputError
+        Bad geometry or options (as :func:`woundroll.contact.solid3d.solver.indent3d`).
+    ConvergenceError
+        The striker does not leave within ``max_contact_times`` estimated contact times,
+        the contact set or the modified-Newton passes do not settle.
+    """
+
+    t_start = time.perf_counter()
+    opts = options if options is not None else Dynamic3DOptions()
+    if not isinstance(opts, Dynamic3DOptions):
+        raise InputError("must be a Dynamic3DOptions", "contact.dynamic_options")
+    mesh_opts = opts.mesh if opts.mesh is not None else Contact3DOptions()
+    hd = head if head is not None else Head.from_instrument(instrument)
+    r = np.asarray(radius, dtype=float)
+    s = np.asarray(sigma_r, dtype=float)
+    rho_roll = float(web.density if density is None else density)
+    if not (math.isfinite(rho_roll) and rho_roll > 0):
+        raise InputError(f"must be positive, got {density!r}", "contact.dynamic_density")
+    m_s, k_s = instrument.mass, instrument.spring_stiffness
+    xg = instrument.contact_position
+    r_out = float(r[-1])
+    reach = 0.98 * min(0.5 * hd.radius, 0.25 * (r_out - core.outer_radius))
+    if contact_time is None or depth_scale is None:
+        from woundroll.contact.solid3d.solver import indent3d
+        from woundroll.instruments import TabulatedLaw, impact_energy
+
+        est = indent3d(
+            web,
+            core,
+            r,
+            s,
+            head=hd,
+            depth_max=reach if depth_scale is None else min(float(depth_scale), reach),
+            update_modulus=opts.update_modulus,
+            options=replace(mesh_opts, n_steps=8),
+        )
+        law = TabulatedLaw(est.delta, est.force)
+        d_est = min(impact_energy(instrument, law).max_depth, float(est.delta[-1]))
+        if depth_scale is None:
+            depth_scale = min(1.25 * d_est, reach)
+        if contact_time is None:
+            k_sec = float(np.interp(d_est, est.delta, est.force)) / d_est + k_s
+            contact_time = math.pi * math.sqrt(m_s / k_sec)
+    if not (math.isfinite(contact_time) and contact_time > 0):
+        raise InputError(f"must be positive, got {contact_time!r}", "contact_time")
+    dt = opts.time_step if opts.time_step is not None else contact_time / opts.steps_per_contact
+    if dt > contact_time / 20:
+        raise InputError(
+            f"{dt:.3g} s is too coarse: the contact lasts about {contact_time:.3g} s; use at "
+            f"most {contact_time / 20:.3g} s",
+            "contact.dynamic_options.time_step",
+        )
+    roll = build_roll3d(
+        web, core, r, s, head=hd, depth_max=min(float(depth_scale), reach), options=mesh_opts
+    )
+    mesh = roll.mesh
+    asm = roll.asm
+    n = asm.n_free
+    m = lumped_mass(mesh, rho_roll)[roll.free]
+    sym = 4.0  # quarter model
+    ms, ks = m_s / sym, k_s / sym
+
+    gamma, beta = opts.newmark_gamma, opts.newmark_beta
+    c0 = 1.0 / (beta * dt * dt)
+    c1 = gamma / (beta * dt)
+    a0, a1 = opts.rayleigh_mass, opts.rayleigh_stiffness
+    eff = _Effective(roll, m, 1.0 + c1 * a1, c0 + c1 * a0)
+    s_eff = ks + c0 * ms
+
+    # surface geometry: radial-line gaps g = c - d w - u_r, w = 1 / cos(theta)
+    th, zz = roll.surf_theta, roll.surf_z
+    cos_t = np.cos(th)
+    lift = hd.lift(r_out * np.sin(th), zz)
+    ok = np.isfinite(lift) & (cos_t > 0)
+    w = np.where(ok, 1.0 / np.where(ok, cos_t, 1.0), 0.0)
+    c_gap = np.full(th.size, np.inf)
+    c_gap[ok] = (r_out + lift[ok]) / cos_t[ok] - r_out
+    sr = roll.sr
+    n_t = mesh.theta.size
+    line = np.arange(n_t)  # surface nodes on z = 0 (k = 0)
+    axis_el = np.flatnonzero((mesh.element_index[1] == 0) & (mesh.element_index[2] == 0))
+    axis_el = axis_el[np.argsort(mesh.element_index[0][axis_el])]
+    tol_gap = 1e-6 * max(float(depth_scale), 1e-9)
+
+    u = np.zeros(n)
+    v = np.zeros(n)
+    acc = np.zeros(n)
+    f_int = np.zeros(n)
+    u_all = np.zeros(3 * mesh.n_nodes)
+    sig = np.zeros((mesh.n_elements, 6))
+    dsig_prev_r = np.zeros(mesh.n_elements)
+    v_c = instrument.impact_speed
+    t_c = math.acos(-xg / instrument.release_position) / instrument.omega
+    x, xv, xa = xg, v_c, -k_s * xg / m_s
+    lam = np.zeros(th.size)
+    un = web.radial_unloading
+    # largest pressure each element has seen (the unloading law's memory, as in 2D)
+    p_hist = np.maximum(-roll.sigma_pre, 0.0) if un is not None else None
+
+    def moduli(sigma_r_total: FloatArray) -> FloatArray:
+        """Element moduli at the total radial stress (Roll3D.moduli); with the web's
+        unloading law, elements below the largest pressure they have seen take the
+        unloading modulus (:mod:`woundroll.materials.unloading`, as the 2D model)."""
+        if p_hist is None:
+            return roll.moduli(sigma_r_total)
+        E_r = web.E_r(sigma_r_total)
+        P = -sigma_r_total
+        E_r = np.where(P < p_hist * (1.0 - 1e-9), un.modulus_at_pressure(P), E_r)
+        return orthotropic_moduli(web, np.clip(E_r, roll.E_floor, roll.E_cap))
+
+    frozen = moduli(roll.sigma_pre) if not opts.update_modulus else None
+
+    e_in = 0.5 * m_s * v_c * v_c
+    e_int = 0.0
+    e_damp = 0.0
+    times = [t_c]
+    xs_h, vs_h, acc_h, f_h = [x], [xv], [k_s * x / m_s], [0.0]
+    es_h, ek_h, ei_h = [e_in + 0.5 * k_s * x * x], [0.0], [0.0]
+    peak = -math.inf
+    peak_state: tuple[Any, ...] | None = None
+    max_steps = int(opts.max_contact_times * contact_time / dt) + 10
+    touched = False
+    k_step = 0
+    passes_total = 0
+    max_passes = 0
+
+    def gaps(du: FloatArray, dx: float) -> FloatArray:
+        return c_gap - (x + dx - xg) * w - (u[sr] + du[sr])
+
+    def solve_step() -> tuple[FloatArray, float, FloatArray, int]:
+        """du, dx, lam of the step with the current A (modified Newton, docstring)."""
+        a_pred = v / (beta * dt) + (0.5 / beta - 1.0) * acc
+        v_pred = v + dt * (1.0 - gamma) * acc - dt * gamma * a_pred
+        b = -f_int + m * a_pred
+        if a0 > 0 or a1 > 0:
+            b = b - a0 * m * v_pred - (a1 * eff.k_times(v_pred) if a1 > 0 else 0.0)
+        xa_pred = xv / (beta * dt) + (0.5 / beta - 1.0) * xa
+        dx_free = (-ks * x + ms * xa_pred) / s_eff
+        if not opts.reuse and not eff.exact:
+            eff.factor()
+        du = np.zeros(n)
+        lm = lam.copy()
+        scale_du = 0.0
+        for it in range(1, 61):
+            if it > opts.refactor_after and not eff.exact:
+                eff.factor()
+            fresh = not opts.reuse or it > opts.refresh_after
+            force = np.zeros(n)
+            force[sr] = -lm
+            res = b + force - eff.a_times(du)
+            delta = eff.solve(res)
+            du = du + delta
+            dx = dx_free - float(w @ lm) / s_eff
+            g = gaps(du, dx)
+            cand = roll._widen((g < tol_gap) | (lm > 0), 1) & ok
+            idx = np.flatnonzero(cand)
+            change = delta
+            exact = eff.exact
+            if idx.size:
+                cols = eff.columns(idx, fresh=fresh)
+                exact = eff.columns_exact(cols)
+                W = -eff.Z[sr[idx]][:, cols]
+                W = 0.5 * (W + W.T) + np.outer(w[idx], w[idx]) / s_eff
+                lam_c = _lcp(W, g[idx] - W @ lm[idx])
+                dl = np.zeros(eff.n_cols)
+                dl[cols] = lam_c - lm[idx]
+                corr = eff.Z[:, : eff.n_cols] @ dl
+                change = delta + corr
+                du = du + corr
+                lm = np.zeros(th.size)
+                lm[idx] = lam_c
+                dx = dx_free - float(w @ lm) / s_eff
+                g = gaps(du, dx)
+            scale_du = max(scale_du, float(np.max(np.abs(du))))
+            feasible = bool(np.all(g[ok] >= -tol_gap)) and bool(
+                np.all(np.abs(g[lm > 0]) <= tol_gap)
+            )
+            small = float(np.max(np.abs(change))) <= opts.newton_rtol * max(scale_du, 1e-300)
+            if feasible and (small or (exact and it == 1)):
+                return du, dx, lm, it
+        raise ConvergenceError(
+            "3D dynamic impact: the modified-Newton passes of a step did not converge in 60; "
+            "use a smaller time step"
+        )
+
+    while True:
+        k_step += 1
+        if k_step > max_steps:
+            raise ConvergenceError(
+                f"3D dynamic impact: the striker did not leave the roll within {max_steps} "
+                f"steps ({max_steps * dt:.3g} s)"
+            )
+        if frozen is not None:
+            D = frozen
+        else:
+            D = moduli(roll.sigma_pre + sig[:, 0] + 0.5 * dsig_prev_r)
+        if k_step == 1 or (frozen is None and not np.array_equal(D, eff.D)):
+            eff.set_moduli(D)  # (a linear material keeps its matrix and factorisation)
+        else:
+            D = eff.D
+        if k_step == 1:
+            eff.factor()
+        du, dx, lam_new, passes = solve_step()
+        passes_total += passes
+        max_passes = max(max_passes, passes)
+        acc_new = c0 * du - (v / (beta * dt) + (0.5 / beta - 1.0) * acc)
+        v_new = v + dt * ((1.0 - gamma) * acc + gamma * acc_new)
+        kdu = eff.k_times(du)
+        f_int_new = f_int + kdu
+        if a0 > 0 or a1 > 0:
+            cv_old = a0 * m * v + (a1 * eff.k_times(v) if a1 > 0 else 0.0)
+            cv_new = a0 * m * v_new + (a1 * eff.k_times(v_new) if a1 > 0 else 0.0)
+            e_damp += 0.5 * float((cv_old + cv_new) @ du)
+        e_int += 0.5 * float((f_int + f_int_new) @ du)
+        xa_pred = xv / (beta * dt) + (0.5 / beta - 1.0) * xa
+        xa_new = c0 * dx - xa_pred
+        xv_new = xv + dt * ((1.0 - gamma) * xa + gamma * xa_new)
+        u_all[roll.free] = du
+        dsig = stresses(D, asm.centre_strains(u_all))
+        sig += dsig
+        dsig_prev_r = dsig[:, 0]
+        if p_hist is not None:
+            p_hist = np.maximum(p_hist, -(roll.sigma_pre + sig[:, 0]))
+        u += du
+        v, acc, f_int = v_new, acc_new, f_int_new
+        x, xv, xa = x + dx, xv_new, xa_new
+        lam = lam_new
+        t = t_c + k_step * dt
+        force = sym * float(w @ lam)  # on the striker, pushing it back [N]
+        decel = -xa
+        times.append(t)
+        xs_h.append(x)
+        vs_h.append(xv)
+        acc_h.append(decel)
+        f_h.append(force)
+        es_h.append(0.5 * m_s * xv * xv + 0.5 * k_s * x * x)
+        ek_h.append(sym * 0.5 * float(v @ (m * v)))
+        ei_h.append(sym * e_int)
+        if force > 0:
+            touched = True
+        if decel > peak:
+            peak = decel
+            peak_state = (
+                k_step,
+                -(roll.sigma_pre[axis_el] + sig[axis_el, 0]),
+                lam[line] / roll.surf_area[line],
+            )
+        if touched and force <= 0.0 and xv < 0.0:
+            break
+    assert peak_state is not None
+    sep = _separation(times, xs_h, vs_h, acc_h, f_h, dt, k_s, m_s, xg)
+    ES, EK, EI = np.asarray(es_h), np.asarray(ek_h), np.asarray(ei_h)
+    e_roll = float(EK[-1] + EI[-1])
+    e_damp_tot = sym * e_damp
+    k_pk, p_axis, p_line = peak_state
+    depth_axis = r_out - roll.r_centre[axis_el]
+    s_line = r_out * mesh.theta
+    half = s_line <= 10 * max(float(np.max(sep.x) - xg), 1e-6) + 5 * hd.radius
+    wall = time.perf_counter() - t_start
+    return DynamicImpactResult(
+        **sep.striker_fields(
+            instrument,
+            peak=peak,
+            peak_step=k_pk,
+            dt=dt,
+            t_contact=t_c,
+            v_contact=v_c,
+            contact_position=xg,
+            energy_in=e_in,
+            energy_roll=e_roll,
+            energy_damped=e_damp_tot,
+            elastic=un is None,
+            energies=(ES, EK, EI),
+        ),
+        axis_depth=depth_axis,
+        axis_pressure=p_axis,
+        axis_pressure_pre=-roll.sigma_pre[axis_el],
+        contact_s=s_line[half],
+        contact_pressure=p_line[half],
+        time_step=dt,
+        n_steps=k_step,
+        n_dof=n + 1,
+        density=rho_roll,
+        solve_time_s=wall,
+        options=DynamicOptions(
+            time_step=opts.time_step,
+            steps_per_contact=opts.steps_per_contact,
+            newmark_gamma=opts.newmark_gamma,
+            rayleigh_mass=opts.rayleigh_mass,
+            rayleigh_stiffness=opts.rayleigh_stiffness,
+            update_modulus=opts.update_modulus,
+        ),
+        contact_position=xg,
+        model="3D FE roll (quarter), implicit Newmark, frictionless contact",
+        stats={
+            "factorisations": eff.n_factor,
+            "rhs_solved": eff.n_solves,
+            "column_refreshes": eff.n_refresh,
+            "passes": passes_total,
+            "max_passes_per_step": max_passes,
+            "assembly_s": eff.t_assembly,
+            "factor_s": eff.t_factor,
+            "solve_s": eff.t_solve,
+            "mesh_elements": mesh.n_elements,
+            "reuse": opts.reuse,
+        },
+    )

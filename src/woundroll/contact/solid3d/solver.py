@@ -1,0 +1,715 @@
+"""The paper's 3D model of the roll under the head, quasi-static: hypoelastic, FE, any head.
+
+The reference paper's ABAQUS model ("3D ABAQUS Modeling", its Figure 4): the wound roll as a
+cylindrically orthotropic continuum between a rigid core and the outer surface, E_r from the
+winding model's pre-impact sigma_r and updated with the pressure (its VUMAT, Pfeiffer {2}),
+a graded mesh that resolves the contact; symmetry planes theta = 0 and z = 0. Here
+quasi-static (the head pressed to increasing depths, as the 2D model of
+:mod:`woundroll.contact.plane_strain.solver` does), with the same inputs and the same
+:class:`~woundroll.contact.result.ContactResult` output, so the roll spring {3} is fitted the
+same way. Choices (docs/contact.md, "3D model"):
+
+* quarter model ``0 <= theta <= pi``, ``0 <= z <= W/2`` (head centred on the roll width,
+  free CMD edge at z = W/2, u_theta = 0 on theta = 0 and pi, u_z = 0 on z = 0); the paper's
+  locality cut (u_theta = 0 on theta = pi/2, 1/8 of the roll) with ``locality_cut=True``;
+* hypoelastic E_r at the element-centre total radial stress, mid-step (two passes) as in 2D;
+  G_r_theta, G_r_z from the web (2 E_r by default, Table 2); ``update_modulus=False`` freezes
+  E_r (the paper's "no update");
+* frictionless contact of a rigid head (:class:`woundroll.contact.heads.Head`) on the outer
+  surface nodes, the gap measured along each node's radial line with the head moved by the
+  depth (small-displacement contact: the nodes' tangential motion does not change the gap),
+  solved exactly in every pass by a primal-dual active set (the active nodes' radial
+  displacement prescribed, released where the contact force would pull);
+* core: rigid, or radial Winkler springs E_c / r_c per area with u_theta = u_z = 0.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from woundroll.contact.heads import Head
+from woundroll.contact.plane_strain.solver import (
+    _check_profile,
+    _check_scalar,
+    _half_width,
+    _solve_lcp,
+)
+from woundroll.contact.result import ContactResult, fit_spring, slip_factor
+from woundroll.contact.solid3d.fem import Assembler3D, orthotropic_moduli, stresses
+from woundroll.contact.solid3d.linsolve import SOLVERS, make_solver
+from woundroll.contact.solid3d.mesh import RollMesh3D, build_mesh3d
+from woundroll.errors import ConvergenceError, InputError
+from woundroll.materials.web import Core, Web
+from woundroll.units import to_si
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class Contact3DOptions:
+    """Numerical settings of :func:`indent3d` (defaults: docs/contact.md, 3D mesh study).
+
+    Sizes left at None are set from the head's geometric footprint at ``depth_max``
+    (:meth:`Head.footprint`: half extents a_y along the hoop, a_z along the CMD).
+
+    Attributes
+    ----------
+    n_steps : int
+        Depth increments; ``d_k = depth_max (k / n)^step_exponent``.
+    step_exponent : float
+    surface_size : float or None [m]
+        Radial size of the outer element ring; None -> max(web thickness, a_y / 10).
+    radial_growth : float
+    tangential_size : float or None [m]
+        Arc length of the elements in the fine zone; None -> a_y / ``n_fine``.
+    fine_halfwidth : float or None [m]
+        Arc half-width of the uniform fine zone; None -> a_y.
+    tangential_growth : float
+    axial_size : float or None [m]
+        CMD size of the elements in the fine zone; None -> a_z / ``n_fine`` (sphere, punch)
+        or the smaller of L / 24 and a_y / 2 for a cylinder, refined to a quarter of that
+        at rounded ends.
+    fine_halflength : float or None [m]
+        CMD half-length of the fine zone; None -> a_z (+ a_y for a cylinder).
+    axial_growth : float
+    n_fine : int
+        Elements across the footprint's half extent by default.
+    locality_cut : bool
+        The paper's cut: only 0 <= theta <= pi/2, u_theta = 0 on theta = pi/2.
+    cmd_edges : {"free", "fixed"}
+        The roll's CMD edge faces: free (the real roll), or held at u_z = 0 (a slab in plane
+        strain: with a head as long as the roll this is the 2D model, used to verify it).
+    min_modulus_ratio, max_modulus_ratio : float
+        Floor (and optional cap) of E_r as a fraction of E_theta, as in 2D.
+    midpoint : bool
+        Mid-step modulus (midpoint rule) or forward Euler (start-of-step modulus).
+    predictor : {"rate", "trial"}
+        How the mid-step stress is predicted: from the last increment's stress rate (one
+        factorisation per increment; default) or by a trial solve at the start-of-step
+        modulus (two, as the 2D model does).
+    slip : {"none", "reduced-shear"}
+        Slip emulation (the paper's Figure 19): an element whose interlayer shear
+        sqrt(tau_rt^2 + tau_rz^2) reaches mu P ({23} with the resultant shear) keeps
+        ``slip_shear_fraction`` of its G_r_theta and G_r_z for the rest of the loading
+        (from the next increment on; the increments resolve the spread of the slip zone).
+    slip_shear_fraction : float
+        Fraction of the transverse shear moduli left in a slipped element.
+    solver : {"auto", "pardiso", "splu", "amg"}
+        Linear solver (:mod:`woundroll.contact.solid3d.linsolve`); auto: PARDISO if installed.
+    """
+
+    n_steps: int = 24
+    step_exponent: float = 1.5
+    surface_size: float | None = None
+    radial_growth: float = 1.3
+    tangential_size: float | None = None
+    fine_halfwidth: float | None = None
+    tangential_growth: float = 1.3
+    axial_size: float | None = None
+    fine_halflength: float | None = None
+    axial_growth: float = 1.3
+    n_fine: int = 10
+    locality_cut: bool = False
+    cmd_edges: str = "free"
+    min_modulus_ratio: float = 1e-6
+    max_modulus_ratio: float | None = None
+    midpoint: bool = True
+    predictor: str = "rate"
+    slip: str = "none"
+    slip_shear_fraction: float = 0.01
+    solver: str = "auto"
+
+    def __post_init__(self) -> None:
+        if self.predictor not in ("rate", "trial"):
+            raise InputError(
+                f"must be 'rate' or 'trial', got {self.predictor!r}", "options.predictor"
+            )
+        if self.slip not in ("none", "reduced-shear"):
+            raise InputError(
+                f"must be 'none' or 'reduced-shear', got {self.slip!r}", "options.slip"
+            )
+        if not (math.isfinite(self.slip_shear_fraction) and 0 < self.slip_shear_fraction <= 1):
+            raise InputError(
+                f"must lie in (0, 1], got {self.slip_shear_fraction!r}",
+                "options.slip_shear_fraction",
+            )
+        if self.cmd_edges not in ("free", "fixed"):
+            raise InputError(
+                f"must be 'free' or 'fixed', got {self.cmd_edges!r}", "options.cmd_edges"
+            )
+        if self.solver not in SOLVERS:
+            raise InputError(
+                f"must be one of {', '.join(SOLVERS)}, got {self.solver!r}", "options.solver"
+            )
+        for name in ("n_steps", "n_fine"):
+            v = getattr(self, name)
+            if not isinstance(v, int | np.integer) or isinstance(v, bool) or v < 1:
+                raise InputError(f"must be a positive integer, got {v!r}", f"options.{name}")
+        if self.n_fine < 3:
+            raise InputError(
+                "must be at least 3 (the contact zone would not be resolved)", "options.n_fine"
+            )
+        for name in (
+            "surface_size",
+            "tangential_size",
+            "fine_halfwidth",
+            "axial_size",
+            "fine_halflength",
+        ):
+            v = getattr(self, name)
+            if v is not None and not (math.isfinite(v) and v > 0):
+                raise InputError(f"must be a positive length, got {v!r}", f"options.{name}")
+        for name in ("radial_growth", "tangential_growth", "axial_growth"):
+            v = getattr(self, name)
+            if not (math.isfinite(v) and 1.0 <= v <= 3.0):
+                raise InputError(f"must lie in [1, 3], got {v!r}", f"options.{name}")
+        if not (math.isfinite(self.step_exponent) and 1.0 <= self.step_exponent <= 3.0):
+            raise InputError(
+                f"must lie in [1, 3], got {self.step_exponent!r}", "options.step_exponent"
+            )
+        if not (math.isfinite(self.min_modulus_ratio) and 0 < self.min_modulus_ratio < 1):
+            raise InputError(
+                f"must lie in (0, 1), got {self.min_modulus_ratio!r}", "options.min_modulus_ratio"
+            )
+        if self.max_modulus_ratio is not None and not (
+            math.isfinite(self.max_modulus_ratio)
+            and self.min_modulus_ratio < self.max_modulus_ratio <= 10.0
+        ):
+            raise InputError(
+                f"must lie in (min_modulus_ratio, 10], got {self.max_modulus_ratio!r}",
+                "options.max_modulus_ratio",
+            )
+
+
+# kw_only: the base class ends in defaulted fields (ContactResult.factorisations)
+@dataclass(frozen=True, eq=False, kw_only=True)
+class Contact3DResult(ContactResult):
+    """:class:`ContactResult` of the 3D model, with what only 3D has.
+
+    The inherited per-surface-node arrays (``contact_s``, ``contact_pressure``,
+    ``contact_pressure_history``) are taken on the head's centre line z = 0; ``half_width``
+    is the semi-contact width along the hoop there; ``force_per_length`` is the force divided
+    by ``head_length`` (the cylinder's length, or the head's CMD extent for other shapes).
+    Element fields cover the whole meshed quarter; ``tau_r_theta`` is the r-theta shear, so
+    the inherited slip factor is the in-plane part of {23} as in 2D (``tau_r_z`` beside it).
+
+    Attributes
+    ----------
+    half_length : ndarray [m]
+        Semi-contact extent along the CMD on the line theta = 0, at every depth.
+    element_z : ndarray [m]
+        CMD coordinate of the element centres (0: the head's centre plane).
+    sigma_z, tau_r_z : ndarray [Pa]
+        Contact-induced CMD stress and r-z shear at ``depth_max``.
+    surface_pressure : ndarray (n_theta, n_z) [Pa]
+        Nodal contact pressure over the meshed quarter of the surface at ``depth_max``.
+    surface_theta, surface_z : ndarray [rad], [m]
+        Node coordinates of ``surface_pressure``.
+    head : dict
+        The head's shape and sizes (:meth:`Head.to_dict`).
+    stats : dict
+        Work counters and timings: factorisations, right-hand sides solved, seconds in
+        assembly, factorisation and solves.
+    """
+
+    half_length: FloatArray
+    element_z: FloatArray
+    sigma_z: FloatArray
+    tau_r_z: FloatArray
+    surface_pressure: FloatArray
+    surface_theta: FloatArray
+    surface_z: FloatArray
+    head: dict
+    stats: dict
+
+
+class Roll3D:
+    """The roll under the head as a 3D FE model: mesh, assembler (stiffness for any
+    per-element moduli, :class:`~woundroll.contact.solid3d.fem.Assembler3D`), held DOFs, the
+    pre-impact radial stress at the element centres and the linear solver. Built by
+    :func:`build_roll3d`; :func:`indent3d` presses the head into it, and a dynamic model can
+    reuse it (``asm``, :func:`~woundroll.contact.solid3d.fem.lumped_mass` on ``mesh``)."""
+
+    def __init__(
+        self,
+        web: Web,
+        core: Core,
+        r: FloatArray,
+        s: FloatArray,
+        mesh: RollMesh3D,
+        opts: Contact3DOptions,
+    ) -> None:
+        self.web = web
+        self.mesh = mesh
+        self.opts = opts
+        #: elements whose interlayer shear reached Coulomb's limit (slip emulation)
+        self.slipped: NDArray[np.bool_] | None = None
+        n_r, n_t, n_z = mesh.shape
+        n_dof = 3 * mesh.n_nodes
+        free = np.ones(n_dof, dtype=bool)
+        core_nodes = mesh.nodes_where(i=0)
+        free[3 * core_nodes + 1] = False
+        free[3 * core_nodes + 2] = False
+        free[3 * mesh.nodes_where(j=0) + 1] = False  # symmetry plane theta = 0
+        free[3 * mesh.nodes_where(j=-1) + 1] = False  # theta = pi (symmetry) or the cut
+        free[3 * mesh.nodes_where(k=0) + 2] = False  # symmetry plane z = 0
+        if opts.cmd_edges == "fixed":
+            free[3 * mesh.nodes_where(k=-1) + 2] = False  # plane-strain slab
+        # tributary surface per node of a ring (theta, z), halved on the symmetry planes
+        dth, dz = np.diff(mesh.theta), np.diff(mesh.z)
+        self.trib_t = 0.5 * (np.concatenate([[0.0], dth]) + np.concatenate([dth, [0.0]]))
+        self.trib_z = 0.5 * (np.concatenate([[0.0], dz]) + np.concatenate([dz, [0.0]]))
+        area = np.outer(self.trib_z, self.trib_t).ravel()  # order k * n_t + j
+        diagonal = None
+        if core.rigid:
+            free[3 * core_nodes] = False
+        else:
+            diagonal = np.zeros(n_dof)
+            diagonal[3 * core_nodes] = core.stiffness * area  # E_c / r_c x r_c dtheta dz
+        self.free = free
+        self.asm = Assembler3D(mesh, free, diagonal)
+        fi = self.asm.free_index
+        self.surface = mesh.surface_nodes
+        self.sr = fi[3 * self.surface]  # free index of the surface nodes' u_r
+        if np.any(self.sr < 0):
+            raise InputError("the outer surface must be free", "radius")
+        self.R = float(mesh.r[-1])
+        self.surf_area = self.R * area
+        J, K = np.meshgrid(np.arange(n_t), np.arange(n_z))  # rows k, columns j
+        self.surf_theta = mesh.theta[J.ravel()]
+        self.surf_z = mesh.z[K.ravel()]
+        rc, tc, zc = mesh.element_centres()
+        self.r_centre, self.t_centre, self.z_centre = rc, tc, zc
+        self.sigma_pre = np.interp(rc, r, s)
+        self.E_floor = opts.min_modulus_ratio * web.E_theta
+        self.E_cap = (
+            math.inf if opts.max_modulus_ratio is None else opts.max_modulus_ratio * web.E_theta
+        )
+        self.solver = make_solver(opts.solver, self.asm.pattern)
+        self.n_factor = 0
+        self.n_solves = 0
+        self._D: FloatArray | None = None
+        self._cols = {}
+        self.t_assembly = self.t_factor = self.t_solve = 0.0
+        # neighbours of each surface node in the (theta, z) grid, to widen the candidates
+        g = np.arange(n_t * n_z).reshape(n_z, n_t)
+        self.grid = g
+
+    def moduli(self, sigma_r_total: FloatArray) -> FloatArray:
+        E_r = np.clip(self.web.E_r(sigma_r_total), self.E_floor, self.E_cap)
+        D = orthotropic_moduli(self.web, E_r)
+        if self.slipped is not None and np.any(self.slipped):
+            D[6:8, self.slipped] *= self.opts.slip_shear_fraction  # G_r_theta, G_r_z
+        return D
+
+    def factor(self, D: FloatArray) -> None:
+        """Assemble and factorise K for the material constants ``D`` (kept if unchanged)."""
+        if self._D is not None and np.array_equal(D, self._D):
+            return  # the factorisation and the cached flexibility columns still hold
+        self._D = D.copy()
+        t0 = time.perf_counter()
+        U = self.asm.upper(D)
+        t1 = time.perf_counter()
+        self.solver.factor(U.data)
+        self.t_assembly += t1 - t0
+        self.t_factor += time.perf_counter() - t1
+        self.n_factor += 1
+
+    def _solve(self, b: FloatArray) -> FloatArray:
+        t0 = time.perf_counter()
+        x = self.solver.solve(b)
+        self.t_solve += time.perf_counter() - t0
+        self.n_solves += 1 if b.ndim == 1 else b.shape[1]
+        return x
+
+    def _widen(self, mask: NDArray[np.bool_], width: int = 2) -> NDArray[np.bool_]:
+        m = mask.reshape(self.grid.shape).copy()
+        for _ in range(width):
+            w = m.copy()
+            w[1:] |= m[:-1]
+            w[:-1] |= m[1:]
+            w[:, 1:] |= m[:, :-1]
+            w[:, :-1] |= m[:, 1:]
+            m = w
+        return m.ravel()
+
+    def _columns(self, idx: NDArray[np.int64], refresh: bool = False) -> FloatArray:
+        """Flexibility ``W`` (m, m) of the candidate surface nodes ``idx``: inward radial
+        displacement per unit inward force. Columns are cached; a cached column may come from
+        an earlier stiffness (the moduli change a little per increment), which only slows
+        the fixed-point iteration of :meth:`solve_pass`; ``refresh`` recomputes them all."""
+        n = self.asm.n_free
+        new = [i for i in idx if refresh or i not in self._cols]
+        if new:
+            rhs = np.zeros((n, len(new)))
+            rhs[self.sr[new], np.arange(len(new))] = -1.0  # unit inward radial force
+            X = self._solve(rhs)
+            for c, i in enumerate(new):
+                self._cols[i] = -X[self.sr, c]
+        W = np.stack([self._cols[i][idx] for i in idx], axis=1)
+        return 0.5 * (W + W.T)
+
+    def solve_pass(
+        self,
+        bound: FloatArray,
+        u_surf: FloatArray,
+        f_old: FloatArray,
+        guess: NDArray[np.bool_],
+        tol: float,
+    ) -> tuple[FloatArray, FloatArray]:
+        """Displacement increment (free DOFs) and the new radial contact forces on the
+        surface nodes (<= 0) for the bounds ``u_r <= bound`` with the factorised K.
+
+        Frictionless contact as the linear complementarity problem on a candidate set (the
+        predicted contact widened by one node): ``lam >= 0, g >= 0, lam . g = 0`` with g the
+        gaps after the increment ``K du = f(lam) - f_old``. Solved by a fixed-point
+        iteration on the candidates' flexibility W (cached, :meth:`_columns`): each pass
+        solves the LCP ``g = q + W lam`` with ``q = g_exact - W lam_previous`` (exact
+        :func:`_solve_lcp` as in 2D) and one system with the true K gives the exact gaps;
+        it stops when the exact gaps satisfy the complementarity to ``tol``. With W from the
+        current K one pass is exact; after 6 passes the columns are refreshed. A penetration
+        outside the candidates enlarges the set.
+        """
+        n = self.asm.n_free
+        reachable = np.isfinite(bound)
+        cand = self._widen(guess | (f_old < 0), 1) & reachable
+        lam_all = -f_old.copy()  # inward force magnitudes; du = 0 for the old forces
+        du = np.zeros(n)
+        for _ in range(12):
+            idx = np.flatnonzero(cand)
+            W = self._columns(idx)
+            lam = lam_all[idx]
+            scale, prev = 1.0, None
+            for it in range(16):
+                gap = bound - (u_surf + du[self.sr])
+                g = gap[idx]
+                on = lam > 0
+                if np.all(g >= -tol) and np.all(np.abs(g[on]) <= tol):
+                    break
+                if prev is not None:
+                    # secant scaling of the cached flexibility: the exact gaps' response to
+                    # the last change of the forces (the moduli under the head change by a
+                    # similar factor within a step)
+                    dl, dg = lam - prev[0], g - prev[1]
+                    den = float(dl @ (W @ dl))
+                    if den > 0 and float(dg @ dl) > 0:
+                        scale = float(np.clip(float(dg @ dl) / den, 0.1, 10.0))
+                if it in (8, 12):
+                    W, scale = self._columns(idx, refresh=True), 1.0
+                prev = (lam.copy(), g.copy())
+                Ws = scale * W
+                lam = _solve_lcp(Ws, g - Ws @ lam)
+                load = np.zeros(n)
+                load[self.sr] = -f_old
+                load[self.sr[idx]] -= lam
+                du = self._solve(load)
+            else:
+                raise ConvergenceError("the 3D contact forces did not converge in 16 passes")
+            lam_all = np.zeros(self.sr.size)
+            lam_all[idx] = lam
+            gap = bound - (u_surf + du[self.sr])
+            bad = ~cand & (gap < -tol)
+            if not np.any(bad):
+                return du, -lam_all
+            cand = (cand | self._widen(bad, 1)) & reachable
+        raise ConvergenceError("the 3D contact set did not settle in 12 enlargements")
+
+
+def _edge(coord: FloatArray, active: NDArray[np.bool_], gap: FloatArray) -> float:
+    """Contact extent along one line of surface nodes from its first node, interpolated as
+    in 2D (:func:`woundroll.contact.plane_strain.solver._half_width`: beyond the edge the gap opens
+    as (s - a)^(3/2)); the line's end if the contact reaches it."""
+    if not active[0]:
+        return 0.0
+    j = 0
+    while j + 1 < active.size and active[j + 1]:
+        j += 1
+    if j + 2 >= coord.size:
+        return float(coord[min(j + 1, coord.size - 1)]) if j + 1 < coord.size else float(coord[j])
+    return _half_width(coord, active.astype(float), np.maximum(gap, 0.0), 0, (1,))
+
+
+def build_roll3d(
+    web: Web,
+    core: Core,
+    radius: FloatArray,
+    sigma_r: FloatArray,
+    *,
+    head: Head,
+    depth_max: float,
+    options: Contact3DOptions | None = None,
+) -> Roll3D:
+    """Mesh and assemble the roll for a head pressed to ``depth_max`` (checks as
+    :func:`indent3d`, which calls it)."""
+    if not isinstance(web, Web):
+        raise InputError("must be a woundroll.materials.Web", "web")
+    if not isinstance(core, Core):
+        raise InputError("must be a woundroll.materials.Core", "core")
+    if not isinstance(head, Head):
+        raise InputError("must be a woundroll.contact.heads.Head", "head")
+    depth_max = _check_scalar(depth_max, "depth_max")
+    r, s = _check_profile(web, core, radius, sigma_r)
+    opts = options if options is not None else Contact3DOptions()
+    if not isinstance(opts, Contact3DOptions):
+        raise InputError("must be a Contact3DOptions", "options")
+    r_in, r_out = core.outer_radius, float(r[-1])
+    z_max = 0.5 * web.width
+    if head.cmd_halfwidth >= z_max and opts.cmd_edges == "free":
+        raise InputError(
+            f"the head ({2 * head.cmd_halfwidth * 1e3:.3g} mm along the CMD) is wider than "
+            f"the roll ({web.width * 1e3:.3g} mm)",
+            "head.length" if head.shape == "cylinder" else "head.radius",
+        )
+    if head.shape != "punch" and depth_max >= 0.5 * head.radius:
+        raise InputError(
+            f"must be below half the head radius ({0.5 * head.radius:g} m), got {depth_max:g} m",
+            "depth_max",
+        )
+    if depth_max >= 0.25 * (r_out - r_in):
+        raise InputError(
+            f"must be below a quarter of the wound thickness "
+            f"({0.25 * (r_out - r_in):g} m), got {depth_max:g} m",
+            "depth_max",
+        )
+    a_y, a_z = head.footprint(depth_max, r_out)
+    if a_y >= 0.25 * r_out:
+        raise InputError("the head is too large for the roll's radius", "head.radius")
+    nf = opts.n_fine
+    t_size = opts.tangential_size if opts.tangential_size is not None else a_y / nf
+    fine_t = opts.fine_halfwidth if opts.fine_halfwidth is not None else a_y
+    surface = opts.surface_size if opts.surface_size is not None else max(web.thickness, a_y / nf)
+    if head.shape == "cylinder":
+        z_size = opts.axial_size if opts.axial_size is not None else min(a_z / 12.0, a_y / 2.0)
+        fine_z = opts.fine_halflength if opts.fine_halflength is not None else a_z + a_y
+    else:
+        z_size = opts.axial_size if opts.axial_size is not None else a_z / nf
+        fine_z = opts.fine_halflength if opts.fine_halflength is not None else a_z
+    fine_z = min(fine_z, 0.9 * z_max)
+    for name, size, extent in (
+        ("options.tangential_size", t_size, a_y),
+        ("options.axial_size", z_size, min(a_z, z_max)),
+        ("options.surface_size", surface, a_y),
+    ):
+        if size > extent / 3.0:
+            raise InputError(
+                f"{size * 1e3:.3g} mm is too coarse for the contact "
+                f"(half extent {extent * 1e3:.3g} mm; at most a third of it)",
+                name,
+            )
+    if surface >= 0.5 * (r_out - r_in):
+        raise InputError("is too large for the wound thickness", "options.surface_size")
+    mesh = build_mesh3d(
+        r_in,
+        r_out,
+        z_max=z_max,
+        theta_max=0.5 * math.pi if opts.locality_cut else math.pi,
+        surface_size=surface,
+        radial_growth=opts.radial_growth,
+        tangential_size=t_size,
+        fine_halfwidth=max(fine_t, t_size),
+        tangential_growth=opts.tangential_growth,
+        axial_size=z_size,
+        fine_halflength=max(fine_z, z_size),
+        axial_growth=opts.axial_growth,
+    )
+    model = Roll3D(web, core, r, s, mesh, opts)
+    return model
+
+
+def indent3d(
+    web: Web,
+    core: Core,
+    radius: FloatArray,
+    sigma_r: FloatArray,
+    *,
+    head: Head,
+    depth_max: float | str = 1e-3,
+    friction: float = 0.3,
+    update_modulus: bool = True,
+    options: Contact3DOptions | None = None,
+) -> Contact3DResult:
+    """Press a rigid head into the wound roll (3D) and return F(d), a(d) and the fields.
+
+    Parameters
+    ----------
+    web, core, radius, sigma_r, depth_max, friction, update_modulus
+        As :func:`woundroll.contact.indent` (the roll's width is ``web.width``).
+    head : Head
+        Cylinder (axis along the CMD, rounded ends), sphere or flat punch.
+    options : Contact3DOptions, optional
+
+    Returns
+    -------
+    Contact3DResult
+
+    Raises
+    ------
+    InputError
+        Bad geometry, a head wider than the roll, a depth beyond the model's reach, a mesh
+        too coarse for the contact, bad options.
+    ConvergenceError
+        The contact set does not settle.
+    """
+    t0 = time.perf_counter()
+    depth_max = _check_scalar(depth_max, "depth_max")
+    friction = to_si(friction, "dimensionless", "friction")
+    if friction < 0:
+        raise InputError(f"must be zero or positive, got {friction:g}", "friction")
+    model = build_roll3d(
+        web, core, radius, sigma_r, head=head, depth_max=depth_max, options=options
+    )
+    mesh, opts, r_out = model.mesh, model.opts, model.R
+    t_setup = time.perf_counter() - t0
+    n_t, n_z = mesh.theta.size, mesh.z.size
+    th, zz = model.surf_theta, model.surf_z
+    cos_t = np.cos(th)
+    lift = head.lift(r_out * np.sin(th), zz)
+    reach = np.isfinite(lift) & (cos_t > 0)
+
+    def bound_at(d: float) -> FloatArray:
+        # radial displacement at which a surface node meets the head pressed to depth d
+        out = np.full(th.size, np.inf)
+        out[reach] = (r_out - d + lift[reach]) / cos_t[reach] - r_out
+        return out
+
+    n = int(opts.n_steps)
+    delta = depth_max * (np.arange(n + 1) / n) ** opts.step_exponent
+    sym = 4.0  # quarter model: theta >= 0 and z >= 0
+    n_el = mesh.n_elements
+    u = np.zeros(model.asm.n_free)
+    u_prev = np.zeros_like(u)
+    sig = np.zeros((n_el, 6))
+    f_surf = np.zeros(th.size)
+    force = np.zeros(n + 1)
+    half = np.zeros(n + 1)
+    half_len = np.zeros(n + 1)
+    p_peak = np.zeros(n + 1)
+    sig_hist = np.zeros((n + 1, n_el, 3))
+    p_line_hist = np.zeros((n + 1, n_t))
+    tol = 1e-3 * delta[1]  # gap tolerance, as in 2D
+    s_line = r_out * mesh.theta
+    if opts.slip == "reduced-shear":
+        model.slipped = np.zeros(n_el, dtype=bool)
+    D_frozen = model.moduli(model.sigma_pre) if not update_modulus else None
+    if D_frozen is not None:
+        model.factor(D_frozen)  # one factorisation for all increments
+    dsig_last = None
+    u_all = np.zeros(3 * mesh.n_nodes)
+
+    def solve(D: FloatArray, bound: FloatArray, guess: NDArray[np.bool_]):
+        du, f_new = model.solve_pass(bound, u[model.sr], f_surf, guess, tol)
+        u_all[model.free] = du
+        return du, f_new, stresses(D, model.asm.centre_strains(u_all))
+
+    for k in range(1, n + 1):
+        bound = bound_at(delta[k])
+        u_surf = u[model.sr]
+        # predicted contact: the last increment's motion extrapolated
+        ratio = (delta[k] - delta[k - 1]) / max(delta[k - 1] - delta[max(k - 2, 0)], 1e-300)
+        u_pred = u_surf + ratio * (u_surf - u_prev[model.sr]) if k > 1 else u_surf
+        guess = (f_surf < 0) | (bound - u_pred < 0)
+        if D_frozen is not None:
+            D = D_frozen
+        else:
+            # mid-step modulus (midpoint rule): the mid-step stress from the last increment's
+            # stress rate (second order, no extra solve), or from a trial solve at the
+            # start-of-step modulus on the first increment and with ``predictor="trial"``
+            D = model.moduli(model.sigma_pre + sig[:, 0])
+            if opts.midpoint:
+                if dsig_last is None or opts.predictor == "trial":
+                    model.factor(D)
+                    _, _, trial = solve(D, bound, guess)
+                    d_half = 0.5 * trial[:, 0]
+                else:
+                    d_half = 0.5 * ratio * dsig_last[:, 0]
+                D = model.moduli(model.sigma_pre + sig[:, 0] + d_half)
+            model.factor(D)
+        du, f_new, dsig = solve(D, bound, guess)
+        dsig_last = dsig
+        u_prev = u.copy()
+        u = u + du
+        sig += dsig
+        if model.slipped is not None:
+            # slip emulation (Figure 19): where the interlayer shear reaches mu P, {23},
+            # the transverse shear moduli drop for the rest of the loading
+            tau = np.hypot(sig[:, 3], sig[:, 4])
+            grew = (tau >= friction * np.maximum(-(model.sigma_pre + sig[:, 0]), 0.0)) & (tau > 0)
+            if np.any(grew & ~model.slipped):
+                model.slipped |= grew
+                if D_frozen is not None:
+                    D_frozen = model.moduli(model.sigma_pre)
+                    model.factor(D_frozen)
+        f_surf = f_new
+        A = f_new < 0
+        force[k] = -sym * float(np.sum(f_new * cos_t))
+        p = -f_new / model.surf_area
+        p_peak[k] = float(p.max())
+        grid_p = p.reshape(n_z, n_t)
+        p_line_hist[k] = grid_p[0]
+        gap = (bound - u[model.sr]).reshape(n_z, n_t)
+        act = A.reshape(n_z, n_t)
+        half[k] = _edge(s_line, act[0], gap[0])
+        half_len[k] = _edge(mesh.z, act[:, 0], gap[:, 0])
+        sig_hist[k] = sig[:, [0, 1, 3]]
+    sigma_r_total = model.sigma_pre + sig[:, 0]
+    sf = slip_factor(sig[:, 3], sigma_r_total, friction)
+    length = float(head.length) if head.shape == "cylinder" else 2.0 * head.cmd_halfwidth
+    alpha, beta, r2, max_res = fit_spring(delta, force)
+    tc = model.t_centre
+    return Contact3DResult(
+        delta=delta,
+        force=force,
+        contact_pressure=p_line_hist[-1],
+        force_per_length=force / length,
+        half_width=half,
+        peak_pressure=p_peak,
+        alpha=alpha,
+        beta=beta,
+        fit_r2=r2,
+        fit_max_rel_residual=max_res,
+        contact_s=s_line,
+        element_x=model.r_centre * np.cos(tc),
+        element_y=model.r_centre * np.sin(tc),
+        element_r=model.r_centre,
+        element_theta=tc,
+        sigma_r=sigma_r_total,
+        sigma_r_pre=model.sigma_pre,
+        sigma_theta=sig[:, 1],
+        tau_r_theta=sig[:, 3],
+        slip_factor=sf,
+        sigma_r_history=model.sigma_pre[None, :] + sig_hist[:, :, 0],
+        sigma_theta_history=sig_hist[:, :, 1],
+        tau_r_theta_history=sig_hist[:, :, 2],
+        contact_pressure_history=p_line_hist,
+        friction=friction,
+        head_radius=head.radius,
+        head_length=length,
+        outer_radius=r_out,
+        update_modulus=update_modulus,
+        n_elements=n_el,
+        n_dof=model.asm.n_free,
+        mesh_shape=(mesh.r.size - 1, n_t - 1, n_z - 1),  # type: ignore[arg-type]
+        solve_time_s=time.perf_counter() - t0,
+        half_length=half_len,
+        element_z=model.z_centre,
+        sigma_z=sig[:, 2],
+        tau_r_z=sig[:, 4],
+        surface_pressure=(-f_surf / model.surf_area).reshape(n_z, n_t).T,
+        surface_theta=mesh.theta,
+        surface_z=mesh.z,
+        head=head.to_dict(),
+        stats={
+            "factorisations": model.n_factor,
+            "rhs_solved": model.n_solves,
+            "assembly_s": model.t_assembly,
+            "factor_s": model.t_factor,
+            "solve_s": model.t_solve,
+            "setup_s": t_setup,
+            "slipped_elements": 0 if model.slipped is None else int(model.slipped.sum()),
+        },
+    )

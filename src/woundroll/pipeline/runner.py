@@ -1,0 +1,402 @@
+"""The pipeline: a case -> stresses in the roll -> roll stiffness under the striker ->
+striker motion -> instrument reading (and, with a thickness profile, across the CMD).
+
+Each step lives in its own package; this module only chains them and collects the
+typed results into :class:`RunResult`:
+
+1. winder settings -> stresses in the roll: :func:`woundroll.winding.hakiel.wind` (1D), or
+   with ``winding.thickness_profile`` :func:`woundroll.profile.predict_profile` (axisymmetric
+   winding, per-sector contact and reading across the CMD);
+2. roll stiffness under the striker: :func:`woundroll.contact.roll_stiffness` (the 2D
+   contact model, and the spring {3} fitted over the depths the striker reaches);
+3. striker motion and reading: :func:`woundroll.instruments.hardness_from_spring` (FD
+   {4}-{13} and energy {19}-{22} models).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from dataclasses import replace
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from woundroll.case import Case, load_case
+from woundroll.errors import InputError
+from woundroll.pipeline.results import NoUpdate, RunResult, result_flags
+
+if TYPE_CHECKING:
+    from woundroll.contact import RollStiffness
+    from woundroll.instruments import HardnessResult, TesterSetup
+    from woundroll.materials.web import Core, Web
+
+#: ``progress(stage, fraction)``; stages "winding", "contact", "impact", "foundation",
+#: "dynamic".
+Progress = Callable[[str, float], None]
+
+
+def hardness_on_roll(
+    setup: TesterSetup,
+    stiffness: RollStiffness,
+    pile_height: float,
+    density: float,
+    *,
+    semi_contact_width_given: bool = False,
+) -> HardnessResult:
+    """Impact models {4}-{22} with the contact model's spring and the roll's active mass.
+
+    Active mass {14}-{18}: pile height H (``tester.pile_height``, else ``pile_height``: the
+    wound thickness), density (``tester.density``, else the web's), and the semi-contact
+    width a of the contact
+    model at the impact's maximum depth (the paper takes a from its contact algorithm),
+    unless ``tester.semi_contact_width`` is given.
+    """
+    from woundroll.instruments import hardness_from_spring
+
+    if not semi_contact_width_given:
+        setup = replace(setup, semi_contact_width=stiffness.semi_contact_width)
+    return hardness_from_spring(
+        setup, stiffness.alpha, stiffness.beta, pile_height=pile_height, density=density
+    )
+
+
+def _calibration_notes(instrument: Any, model: str) -> list[str]:
+    """A note when the head was calibrated on its block in another model than the one that
+    reads this roll (docs/instruments.md, "The head calibrated in the reading's model")."""
+    cal = instrument.calibration_model
+    if not cal or cal == model:
+        return []
+    return [
+        f"the head was calibrated on its block in the {cal!r} model, this roll is read in "
+        f"{model!r}: `woundroll calibrate-head --model {model}` gives a head calibrated in it "
+        "(on the Table 2 rolls the head radius moves the reading by about 0.4 %)"
+    ]
+
+
+def _restitution_given(case: Case) -> bool:
+    t = case.tester or {}
+    rs = t.get("roll_spring")
+    return "restitution" in t or (isinstance(rs, dict) and "restitution" in rs)
+
+
+def _with_unloading(setup: TesterSetup, web: Web, pressure: float, notes: list[str]) -> TesterSetup:
+    """The setup with the roll spring's restitution from the web's unloading law
+    (:func:`woundroll.materials.unloading.restitution_at_pressure` at ``pressure``)."""
+    from woundroll.materials.unloading import restitution_at_pressure
+
+    e = restitution_at_pressure(web, pressure)
+    notes.append(
+        f"roll unloading: web.radial_unloading gives e = {e:.3f} for a stack cycle to "
+        f"{pressure / 1e6:.3g} MPa (the pressure under the head), used by the FD model"
+    )
+    rs = setup.roll_spring
+    return replace(
+        setup, restitution=e, roll_spring=None if rs is None else replace(rs, restitution=e)
+    )
+
+
+def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResult:
+    """Run every model the case asks for.
+
+    winder settings -> stresses in the roll (:mod:`woundroll.winding`) -> with ``[tester]``:
+    roll stiffness under the striker (:mod:`woundroll.contact`, unless an explicit
+    ``[tester.roll_spring]`` is given) -> striker motion and reading
+    (:mod:`woundroll.instruments`). With ``winding.thickness_profile``: the CMD profile
+    (:mod:`woundroll.profile`) instead of a single reading.
+
+    Parameters
+    ----------
+    case : Case, or a path / bundled case name
+    progress : callable, optional
+        ``progress(stage, fraction)``.
+    """
+    if not isinstance(case, Case):
+        case = load_case(case)
+    from woundroll.winding.hakiel import WindingOptions, wind
+
+    def report(stage: str, fraction: float) -> None:
+        if progress is not None:
+            progress(stage, fraction)
+
+    web = case.web.build()
+    core = case.core.build()
+    r_out = case.winding.final_radius(web, core)
+    schedule = case.winding.schedule(web)
+    options = WindingOptions.from_dict(case.winding.options, "winding.options")
+    setup = case.tester_setup
+    if case.winding.thickness_profile is not None:
+        return _run_profile(case, web, core, r_out, schedule, options, setup, report)
+    winding = wind(
+        web, core, r_out, schedule, options=options, progress=lambda f: report("winding", f)
+    )
+    max_p = float(-np.min(winding.sigma_r))
+    if setup is None:
+        flags, warns = result_flags(None, None, [], case.warnings, max_p)
+        return RunResult(case=case, winding=winding, warnings=tuple(warns), flags=flags)
+
+    from woundroll.instruments import hardness_from_spring
+
+    if setup.roll_spring is not None:
+        report("impact", 0.0)
+        hardness = hardness_from_spring(
+            setup, pile_height=r_out - core.outer_radius, density=web.density
+        )
+        notes = ["roll spring given explicitly: contact model bypassed"]
+        if web.radial_unloading is not None and not _restitution_given(case):
+            # the web's unloading law at the mean pressure under the head, F / contact area
+            a = setup.semi_contact_width
+            L = setup.instrument.head_length
+            area = 2.0 * a * L if L else math.pi * a * a
+            setup = _with_unloading(setup, web, hardness.energy.peak_force / area, notes)
+            hardness = hardness_from_spring(
+                setup, pile_height=r_out - core.outer_radius, density=web.density
+            )
+        report("impact", 1.0)
+        flags, warns = result_flags(setup.instrument, hardness.reading, [], case.warnings, max_p)
+        return RunResult(
+            case=case,
+            winding=winding,
+            hardness=hardness,
+            notes=tuple(notes),
+            warnings=tuple(warns),
+            flags=flags,
+        )
+
+    from woundroll.contact import roll_stiffness
+
+    H = r_out - core.outer_radius
+    a_given = "semi_contact_width" in (case.tester or {})
+    spec = case.contact
+    model = spec.roll_model(setup.instrument.head_shape).name
+    # the FE impact (contact.dynamic) is on the plane-strain or the 3D roll: the 1.5D models
+    # beside it take the same roll's spring, without the CMD-spreading correction
+    plane = spec.dynamic and model == "2d+cmd-spread"
+    args = {
+        "depth_max": spec.depth_max,
+        "friction": spec.friction,
+        "options": spec.contact_options(),
+        "model": "2d" if plane else model,
+        "options3d": spec.contact3d_options(),
+    }
+    report("contact", 0.0)
+    with _user_fields(case, H):
+        stiff = roll_stiffness(web, core, winding.radius, winding.sigma_r, setup.instrument, **args)
+    unloading_notes: list[str] = _calibration_notes(setup.instrument, stiff.model)
+    if web.radial_unloading is not None and not _restitution_given(case):
+        p_peak = float(np.max(-stiff.at_impact.sigma_r))
+        setup = _with_unloading(setup, web, p_peak, unloading_notes)
+    with _thin_roll(case, H, setup.instrument.head_radius):
+        hardness = hardness_on_roll(setup, stiff, H, web.density, semi_contact_width_given=a_given)
+    no_update = None
+    if spec.no_update:
+        report("contact", 0.5)
+        # E_r frozen is softer: the striker goes at least as deep, start where that ended
+        with _user_fields(case, H):
+            frozen = roll_stiffness(
+                web,
+                core,
+                winding.radius,
+                winding.sigma_r,
+                setup.instrument,
+                update_modulus=False,
+                start_depth=float(stiff.contact.delta[-1]),
+                **args,
+            )
+        no_update = NoUpdate(
+            frozen,
+            _thin_roll_call(
+                case,
+                H,
+                setup.instrument.head_radius,
+                lambda: hardness_on_roll(
+                    setup, frozen, H, web.density, semi_contact_width_given=a_given
+                ),
+            ),
+        )
+    report("contact", 1.0)
+    springs = [("contact", stiff), ("no update", no_update and no_update.stiffness)]
+    flags, warns = result_flags(setup.instrument, hardness.reading, springs, case.warnings, max_p)
+    dynamic = None
+    if spec.dynamic:
+        from woundroll.contact.dynamic.plane_strain import impact_dynamic
+        from woundroll.contact.solid3d.solver import Contact3DResult
+
+        report("dynamic", 0.0)
+        dyn_args = (web, core, winding.radius, winding.sigma_r, setup.instrument)
+        dyn_kw = {
+            "contact_time": hardness.fd.contact_time,
+            "depth_scale": float(stiff.contact.delta[-1]),
+        }
+        if isinstance(stiff.contact, Contact3DResult):  # the same model as the spring's
+            from woundroll.contact.dynamic.solid3d import Dynamic3DOptions, impact_dynamic3d
+
+            opts3 = Dynamic3DOptions.from_2d(spec.dynamic_settings(), spec.contact3d_options())
+            dynamic = impact_dynamic3d(*dyn_args, **dyn_kw, options=opts3)
+        else:
+            dynamic = impact_dynamic(*dyn_args, **dyn_kw, options=spec.dynamic_settings())
+        report("dynamic", 1.0)
+        if plane:
+            unloading_notes.append(
+                "dynamic: the FE impact runs on the plane-strain roll, so the 1.5D models use "
+                "the plane-strain spring too (contact.model '2d' instead of '2d+cmd-spread')"
+            )
+    return RunResult(
+        case=case,
+        winding=winding,
+        contact=stiff,
+        hardness=hardness,
+        no_update=no_update,
+        notes=tuple(unloading_notes),
+        warnings=tuple(warns),
+        flags=flags,
+        dynamic=dynamic,
+    )
+
+
+@contextmanager
+def _user_fields(case: Case, wound: float) -> Iterator[None]:
+    """Errors of the contact model that name an option the user did not set (its defaults
+    follow the roll: ``surface_size`` is the web thickness) are about the roll being too thin
+    for the model: say so, naming the case's field."""
+    try:
+        yield
+    except InputError as exc:
+        fld = exc.field or ""
+        name = fld.removeprefix("contact.options.")
+        user_set = fld.startswith("contact.options.") and name in case.contact.options
+        if user_set or not (fld.startswith("contact.options.") or fld == "contact.radius"):
+            raise
+        raise InputError(
+            f"the roll is too thin for the contact model under the head: {wound * 1e3:.3g} mm "
+            f"wound ({exc.message}); wind a larger roll",
+            "winding.outer_radius" if case.winding.outer_radius is not None else "winding.length",
+        ) from None
+
+
+@contextmanager
+def _thin_roll(case: Case, wound: float, head_radius: float) -> Iterator[None]:
+    """On a roll wound thinner than the head radius, an impact that does not end is the
+    striker going through the few layers (the contact model's spring is extrapolated far
+    beyond them): an input limit naming the roll's size, not a solver failure."""
+    from woundroll.errors import ConvergenceError
+
+    try:
+        yield
+    except ConvergenceError as exc:
+        if wound >= head_radius:
+            raise
+        raise InputError(
+            f"the roll is too thin for a hardness reading: {wound * 1e3:.3g} mm wound, less "
+            f"than the head radius ({head_radius * 1e3:.3g} mm), and the impact did not end "
+            f"({exc}); wind a larger roll",
+            "winding.outer_radius" if case.winding.outer_radius is not None else "winding.length",
+        ) from None
+
+
+def _thin_roll_call(case: Case, wound: float, head_radius: float, fn: Callable[[], Any]) -> Any:
+    with _thin_roll(case, wound, head_radius):
+        return fn()
+
+
+def _run_profile(
+    case: Case,
+    web: Web,
+    core: Core,
+    r_out: float,
+    schedule: Any,
+    options: Any,
+    setup: TesterSetup | None,
+    report: Callable[[str, float], None],
+) -> RunResult:
+    """The CMD hardness profile: axisymmetric winding -> per-sector contact -> reading.
+
+    The 1D winding at the nominal thickness (the result's reference ``winding``) runs on
+    a sector worker while this process winds the (r, z) model, on the core the serial
+    winding leaves free (inline when there are no workers)."""
+    from woundroll.contact.heads import head_length_of
+    from woundroll.instruments import get_instrument, tester_from_spec
+    from woundroll.profile.hardness import ContactModel, NipSpec, early_pool, predict_profile
+    from woundroll.winding.hakiel import wind
+
+    if setup is not None and setup.roll_spring is not None:
+        raise InputError(
+            "a CMD profile computes each sector's roll spring with the contact model; "
+            "remove [tester.roll_spring] or winding.thickness_profile",
+            "tester.roll_spring",
+        )
+    instrument = setup.instrument if setup is not None else get_instrument("rho-meter")
+    spec = case.profile
+    reference = (web, core, r_out, schedule)  # the 1D roll: the schedule with its nip load
+    notes = [
+        "winding: the 1D model at the nominal web thickness, for reference; "
+        "profile: the axisymmetric model with the thickness profile",
+    ]
+    nip = None
+    if case.winding.nip_roller is not None:
+        roller = case.winding.nip_roller.build(case.winding.nip_load, case.winding.friction)
+        nip = NipSpec(roller, foundation_stride=spec.foundation_stride)
+        schedule = replace(schedule, nip_load=0.0)
+    elif case.winding.nip_load > 0:
+        notes.append(
+            "nip: uniform nip-induced tension mu N / h across the CMD "
+            "(give [winding.nip_roller] for the beam-on-foundation distribution)"
+        )
+    entry = case.contact.roll_model(instrument.head_shape)
+    if not entry.per_sector:
+        raise InputError(
+            f"the {entry.name!r} roll model is too slow to solve once per CMD sector "
+            f"({spec.sectors} sectors): use '2d' or '2d+cmd-spread' for a profile",
+            "contact.model",
+        )
+    notes += _calibration_notes(instrument, entry.name)
+    contact = ContactModel(
+        web,
+        core,
+        instrument.head_radius,
+        head_length_of(instrument),
+        spec.depth_max,
+        instrument=instrument,
+        options=case.contact.contact_options(),
+        model=entry.name,
+    )
+
+    def progress(stage: str, done: int, total: int) -> None:
+        report(stage, done / max(total, 1))
+
+    with early_pool(contact, spec.workers) as pool:
+        # the nominal 1D roll on a worker
+        job = pool.submit(wind, *reference, options=options) if pool is not None else None
+        profile = predict_profile(
+            web,
+            core,
+            schedule,
+            case.thickness_profile,
+            outer_radius=r_out,
+            contact=contact,
+            instrument=instrument,
+            n_sectors=spec.sectors,
+            n_groups=spec.groups,
+            nip=nip,
+            depth_max=spec.depth_max,
+            workers=spec.workers,
+            progress=progress,
+            pool=pool,
+            setup=setup if setup is not None else tester_from_spec({"instrument": "rho-meter"}),
+        )
+        winding = job.result() if job is not None else wind(*reference, options=options)
+    measured = case.measured_profile
+    if measured is not None:
+        profile = profile.compare(measured)
+    p_max = float(np.max(-np.asarray(profile.sigma_r_core)))
+    flags, warns = result_flags(instrument, profile.rho, [], case.warnings, p_max)
+    return RunResult(
+        case=case,
+        winding=winding,
+        profile=profile,
+        notes=tuple(notes),
+        warnings=tuple(warns),
+        flags=flags,
+    )
