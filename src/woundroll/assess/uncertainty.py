@@ -375,8 +375,7 @@ def propagate(
         ``profile``; :func:`profile_bands`): 1 (default), 2 or 0.
     """
     from woundroll.case import Case, load_case
-    from woundroll.inverse.diagnosis import RollModel, near_surface_pressure
-    from woundroll.winding.hakiel import WindingOptions, wind
+    from woundroll.inverse.diagnosis import RollModel
 
     if not isinstance(case, Case):
         case = load_case(case)
@@ -385,9 +384,43 @@ def propagate(
     params = uncertain_parameters(case)
     u = draw_samples(case, n, seed)
     web0 = case.web.build()
+    sched0 = case.winding.schedule(web0)
+    # the stresses: every sample wound
+    result = _winding_samples(case, web0, sched0, params, u, n, progress)
+    setup = case.tester_setup
+    if setup is None or setup.roll_spring is not None:
+        note = "no [tester]" if setup is None else "explicit [tester.roll_spring]"
+        return replace(result, notes=(*result.notes, f"{note}: no reading band"))
+    # the reading: a surrogate of the contact and impact steps, checked by full runs
+    model = RollModel.from_case(case)
+    reading, sur = _reading_surrogate(model, web0, sched0, params, u, n, verify, progress)
+    result = replace(
+        result, reading=reading, reading_nominal=sur["nominal"], scale=model.scale, surrogate=sur
+    )
+    if case.winding.thickness_profile is None:
+        return result
+    # across the roll: the profile band
+    bands = profile_bands(
+        case, model, u, params, full=profile, progress=progress, calibrate=calibrate
+    )
+    return replace(result, profile=bands)
+
+
+def _winding_samples(
+    case: Case,
+    web0: Any,
+    sched0: Any,
+    params: dict[str, float],
+    u: dict[str, FloatArray],
+    n: int,
+    progress: Callable[[str, float], None] | None,
+) -> UncertaintyResult:
+    """The nominal roll and every sample wound by the 1D model, on the nominal radii."""
+    from woundroll.inverse.diagnosis import near_surface_pressure
+    from woundroll.winding.hakiel import WindingOptions, wind
+
     core = case.core.build()
     r_out = case.winding.final_radius(web0, core)
-    sched0 = case.winding.schedule(web0)
     options = WindingOptions.from_dict(case.winding.options, "winding.options")
     setup = case.tester_setup
     depth = setup.instrument.head_radius if setup is not None else 0.0065
@@ -414,7 +447,7 @@ def propagate(
         min_hoop[i] = float(w.sigma_theta.min())
         if progress is not None and (i % 10 == 0 or i == n - 1):
             progress("winding samples", (i + 1) / n)
-    result = UncertaintyResult(
+    return UncertaintyResult(
         n=n,
         parameters=params,
         samples=u,
@@ -429,10 +462,21 @@ def propagate(
         pressure_depth=depth,
         notes=tuple(notes),
     )
-    if setup is None or setup.roll_spring is not None:
-        note = "no [tester]" if setup is None else "explicit [tester.roll_spring]"
-        return replace(result, notes=(*notes, f"{note}: no reading band"))
-    model = RollModel.from_case(case)
+
+
+def _reading_surrogate(
+    model: Any,
+    web0: Any,
+    sched0: Any,
+    params: dict[str, float],
+    u: dict[str, FloatArray],
+    n: int,
+    verify: int,
+    progress: Callable[[str, float], None] | None,
+) -> tuple[FloatArray, dict[str, Any]]:
+    """The reading of every sample from a quadratic surrogate per standardised parameter
+    (central differences of full forward runs), checked by full runs at the first
+    ``verify`` samples. Returns the readings and the surrogate's description."""
     names = list(params)
     total = 1 + 2 * len(names) + verify
 
@@ -472,7 +516,7 @@ def propagate(
         full = run({k: float(v[i]) for k, v in u.items()})
         tick()
         checks.append({"sample": i, "full": full, "surrogate": float(reading[i])})
-    sur = {
+    return reading, {
         "kind": "quadratic per standardised parameter, no cross terms",
         "step_sd": h,
         "nominal": r0,
@@ -482,13 +526,6 @@ def propagate(
         "checks": checks,
         "max_abs_error": max((abs(c["full"] - c["surrogate"]) for c in checks), default=None),
     }
-    result = replace(result, reading=reading, reading_nominal=r0, scale=model.scale, surrogate=sur)
-    if case.winding.thickness_profile is None:
-        return result
-    bands = profile_bands(
-        case, model, u, params, full=profile, progress=progress, calibrate=calibrate
-    )
-    return replace(result, profile=bands)
 
 
 def reduced_profile(
@@ -596,15 +633,7 @@ def profile_bands(
     p_s = reduced_profile(case, model, curve, params, {}, ns, pressure=True)[1]
     outside = (p_s < curve.surface_pressure.min()) | (p_s > curve.surface_pressure.max())
     tick()
-    a, b, plus = {}, {}, {}
-    for name in names:
-        rp = sector_readings({name: h})[1]
-        tick()
-        rm = sector_readings({name: -h})[1]
-        tick()
-        a[name] = (rp - rm) / (2 * h)
-        b[name] = (rp - 2 * r0 + rm) / h**2
-        plus[name] = rp - r0
+    a, b, plus = _sector_sensitivities(names, sector_readings, r0, h, tick)
     a_reduced = {k: v.copy() for k, v in a.items()}
     calibration = None
     covered = {name: ~outside for name in names}
@@ -614,13 +643,7 @@ def profile_bands(
         )
         a["tension"], b["tension"] = _apply_calibration(a["tension"], b["tension"], calibration, h)
         covered["tension"] = np.ones(z.size, dtype=bool)
-    delta = np.zeros((np.asarray(next(iter(u.values()))).size, z.size))
-    for name in names:
-        uu = np.asarray(u[name])[:, None]
-        term = a[name][None, :] * uu + 0.5 * b[name][None, :] * uu**2
-        # slack or off-curve lanes: the reduced model says nothing (the calibrated tension
-        # term does: it is the full model's own change)
-        delta = delta + np.where(covered[name][None, :], term, 0.0)
+    delta = _surrogate_delta(u, names, a, b, covered, z.size)
     if full is not None:
         centre = np.interp(z, full.z, full.rho)
         source = "full profile run"
@@ -652,6 +675,46 @@ def profile_bands(
         },
         "_samples": samples,
     }
+
+
+def _sector_sensitivities(
+    names: list[str],
+    sector_readings: Callable[[dict[str, float]], tuple[FloatArray, FloatArray]],
+    r0: FloatArray,
+    h: float,
+    tick: Callable[[], None],
+) -> tuple[dict[str, FloatArray], dict[str, FloatArray], dict[str, FloatArray]]:
+    """Per parameter and sector: the linear and quadratic terms of the surrogate (central
+    differences of step ``h`` SD) and the change at +h SD."""
+    a, b, plus = {}, {}, {}
+    for name in names:
+        rp = sector_readings({name: h})[1]
+        tick()
+        rm = sector_readings({name: -h})[1]
+        tick()
+        a[name] = (rp - rm) / (2 * h)
+        b[name] = (rp - 2 * r0 + rm) / h**2
+        plus[name] = rp - r0
+    return a, b, plus
+
+
+def _surrogate_delta(
+    u: dict[str, FloatArray],
+    names: list[str],
+    a: dict[str, FloatArray],
+    b: dict[str, FloatArray],
+    covered: dict[str, NDArray[np.bool_]],
+    n_sectors: int,
+) -> FloatArray:
+    """The surrogate's change of each sector's reading at each sample (n, sectors)."""
+    delta = np.zeros((np.asarray(next(iter(u.values()))).size, n_sectors))
+    for name in names:
+        uu = np.asarray(u[name])[:, None]
+        term = a[name][None, :] * uu + 0.5 * b[name][None, :] * uu**2
+        # slack or off-curve lanes: the reduced model says nothing (the calibrated tension
+        # term does: it is the full model's own change)
+        delta = delta + np.where(covered[name][None, :], term, 0.0)
+    return delta
 
 
 #: A sector's reduced-model change at +2 SD below this [reading units] is too small to
