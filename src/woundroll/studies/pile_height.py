@@ -349,6 +349,22 @@ def _thin(radius: np.ndarray, values: np.ndarray, n: int = 400) -> tuple[list[fl
     return radius[keep].tolist(), values[keep].tolist()
 
 
+def _pressure_profiles(heights: list[float], outs: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Each roll's interlayer pressure over the radius (thinned) and under the head."""
+    profiles = []
+    for h, o in zip(heights, outs, strict=True):
+        rr, pp = _thin(o["radius"], -o["sigma_r"])
+        profiles.append(
+            {
+                "pile_height_m": h,
+                "radius_m": rr,
+                "pressure_Pa": pp,
+                "under_head_at_impact": o["axis_pressure"],
+            }
+        )
+    return profiles
+
+
 def pile_height_study(
     case: str = "pet2-53.4N",
     pile_heights: Sequence[float | str] = DEFAULT_PILE_HEIGHTS,
@@ -412,17 +428,7 @@ def pile_height_study(
         label=lambda i: f"pile height: H = {heights[i] * 100:.2f} cm",
     )
     outs = [*rest, ref_out]
-    profiles = []
-    for h, o in zip(heights, outs, strict=True):
-        rr, pp = _thin(o["radius"], -o["sigma_r"])
-        profiles.append(
-            {
-                "pile_height_m": h,
-                "radius_m": rr,
-                "pressure_Pa": pp,
-                "under_head_at_impact": o["axis_pressure"],
-            }
-        )
+    profiles = _pressure_profiles(heights, outs)
     _report(progress, "done", 1.0)
     return PileHeightStudy(
         case=case,

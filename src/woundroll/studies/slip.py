@@ -277,42 +277,9 @@ def slip_factor_study(
     near = fields.outer_radius * np.abs(np.asarray(fields.element_theta)) <= 3.0 * a
     sf = np.asarray(fields.slip_factor)[near]
     d, w = fields.slip_extent(3.0 * a)
-    emulation: list[dict[str, Any]] = []
-    if emulation_cases:
-        base = (
-            f"contact.friction={float(friction)!r}",
-            "contact.no_update=false",
-            f"contact.model='{model}'",
-            f"contact.slip_shear_fraction={float(slip_shear_fraction)!r}",
-        )
-        jobs = [
-            (name, (*base, f"contact.slip='{mode}'"), ("contact",) if mode != "none" else ())
-            for name in emulation_cases
-            for mode in ("none", "reduced-shear")
-        ]
-        rows = _map(
-            _measure,
-            jobs,
-            workers=workers,
-            progress=None if progress is None else lambda s, f: progress(s, 0.1 + 0.9 * f),
-            label=lambda i: f"slip emulation: {jobs[i][0]}",
-        )
-        for i, name in enumerate(emulation_cases):
-            plain, slip = rows[2 * i]["row"], rows[2 * i + 1]
-            c = slip["contact"]
-            n = c.stats["slipped_elements"] if c.slipped is None else int(np.sum(c.slipped))
-            emulation.append(
-                {
-                    "case": name,
-                    "rho_fd": plain["rho_fd"],
-                    "rho_energy": plain["rho_energy"],
-                    "delta_max_m": plain["delta_max_m"],
-                    "rho_fd_slip": slip["row"]["rho_fd"],
-                    "rho_energy_slip": slip["row"]["rho_energy"],
-                    "delta_max_m_slip": slip["row"]["delta_max_m"],
-                    "slipped_elements": n,
-                }
-            )
+    emulation = _emulation_rows(
+        emulation_cases, friction, model, slip_shear_fraction, workers, progress
+    )
     _report(progress, "done", 1.0)
     return SlipStudy(
         emulation=tuple(emulation),
@@ -332,6 +299,55 @@ def slip_factor_study(
         slip_depth_whole_m=fields.slip_extent(math.pi * fields.outer_radius)[0],
         contact=fields,
     )
+
+
+def _emulation_rows(
+    emulation_cases: Sequence[str],
+    friction: float,
+    model: str,
+    slip_shear_fraction: float,
+    workers: int,
+    progress: Progress | None,
+) -> list[dict[str, Any]]:
+    """Figure 19: each case read with and without ``contact.slip = "reduced-shear"``."""
+    emulation: list[dict[str, Any]] = []
+    if not emulation_cases:
+        return emulation
+    base = (
+        f"contact.friction={float(friction)!r}",
+        "contact.no_update=false",
+        f"contact.model='{model}'",
+        f"contact.slip_shear_fraction={float(slip_shear_fraction)!r}",
+    )
+    jobs = [
+        (name, (*base, f"contact.slip='{mode}'"), ("contact",) if mode != "none" else ())
+        for name in emulation_cases
+        for mode in ("none", "reduced-shear")
+    ]
+    rows = _map(
+        _measure,
+        jobs,
+        workers=workers,
+        progress=None if progress is None else lambda s, f: progress(s, 0.1 + 0.9 * f),
+        label=lambda i: f"slip emulation: {jobs[i][0]}",
+    )
+    for i, name in enumerate(emulation_cases):
+        plain, slip = rows[2 * i]["row"], rows[2 * i + 1]
+        c = slip["contact"]
+        n = c.stats["slipped_elements"] if c.slipped is None else int(np.sum(c.slipped))
+        emulation.append(
+            {
+                "case": name,
+                "rho_fd": plain["rho_fd"],
+                "rho_energy": plain["rho_energy"],
+                "delta_max_m": plain["delta_max_m"],
+                "rho_fd_slip": slip["row"]["rho_fd"],
+                "rho_energy_slip": slip["row"]["rho_energy"],
+                "delta_max_m_slip": slip["row"]["delta_max_m"],
+                "slipped_elements": n,
+            }
+        )
+    return emulation
 
 
 def run(
