@@ -366,44 +366,64 @@ def forward_curve(
     targets = np.asarray(targets, dtype=float)
     targets = targets[np.isfinite(targets)]
     if tensions is None and targets.size:
-        lo, hi = float(targets.min()), float(targets.max())
-        stuck = {"low": False, "high": False}
-        while True:
-            ts = sorted(pts)
-            r = [pts[t].reading for t in ts]
-            if not stuck["low"] and lo < min(r) and ts[0] / 2 >= t_case * MIN_FACTOR * (1 - 1e-9):
-                side, t_new = "low", ts[0] / 2
-            elif (
-                not stuck["high"] and hi > max(r) and ts[-1] * 2 <= t_case * MAX_FACTOR * (1 + 1e-9)
-            ):
-                side, t_new = "high", ts[-1] * 2
-            else:
-                break
-            try:
-                pts[t_new] = model.evaluate(t_new)
-                step()
-            except (ConvergenceError, InputError):
-                stuck[side] = True  # the chain has no answer there (e.g. too slack to solve)
+        _extend_to_targets(model, pts, targets, step)
     if tensions is None and targets.size and refine > 1.0:
-        # subdivide (geometric midpoints) the intervals that hold a target reading until
-        # their tension ratio is at most ``refine``: the interpolant is exact at grid points
-        for _ in range(8):
-            ts = sorted(pts)
-            r = np.array([pts[t].reading for t in ts])
-            split = set()
-            for v in targets:
-                k = int(np.searchsorted(r, v))
-                if 0 < k < len(ts) and ts[k] / ts[k - 1] > refine * (1 + 1e-9):
-                    split.add(k)
-            if not split:
-                break
-            for k in sorted(split):
-                t_new = math.sqrt(ts[k] * ts[k - 1])
-                pts[t_new] = model.evaluate(t_new)
-                step()
+        _refine_at_targets(model, pts, targets, refine, step)
     if progress is not None:
         progress(1.0)
     return ForwardCurve(tuple(pts[t] for t in sorted(pts)), model.scale, model.roll_model)
+
+
+def _extend_to_targets(
+    model: RollModel,
+    pts: dict[float, ForwardPoint],
+    targets: FloatArray,
+    step: Callable[[], None],
+) -> None:
+    """Extend the grid by factors of 2 (within MIN_FACTOR ... MAX_FACTOR of the case's
+    tension) until it brackets the targets, or the chain has no answer there."""
+    t_case = model.tension
+    lo, hi = float(targets.min()), float(targets.max())
+    stuck = {"low": False, "high": False}
+    while True:
+        ts = sorted(pts)
+        r = [pts[t].reading for t in ts]
+        if not stuck["low"] and lo < min(r) and ts[0] / 2 >= t_case * MIN_FACTOR * (1 - 1e-9):
+            side, t_new = "low", ts[0] / 2
+        elif not stuck["high"] and hi > max(r) and ts[-1] * 2 <= t_case * MAX_FACTOR * (1 + 1e-9):
+            side, t_new = "high", ts[-1] * 2
+        else:
+            break
+        try:
+            pts[t_new] = model.evaluate(t_new)
+            step()
+        except (ConvergenceError, InputError):
+            stuck[side] = True  # the chain has no answer there (e.g. too slack to solve)
+
+
+def _refine_at_targets(
+    model: RollModel,
+    pts: dict[float, ForwardPoint],
+    targets: FloatArray,
+    refine: float,
+    step: Callable[[], None],
+) -> None:
+    """Subdivide (geometric midpoints) the intervals that hold a target reading until
+    their tension ratio is at most ``refine``: the interpolant is exact at grid points."""
+    for _ in range(8):
+        ts = sorted(pts)
+        r = np.array([pts[t].reading for t in ts])
+        split = set()
+        for v in targets:
+            k = int(np.searchsorted(r, v))
+            if 0 < k < len(ts) and ts[k] / ts[k - 1] > refine * (1 + 1e-9):
+                split.add(k)
+        if not split:
+            break
+        for k in sorted(split):
+            t_new = math.sqrt(ts[k] * ts[k - 1])
+            pts[t_new] = model.evaluate(t_new)
+            step()
 
 
 @dataclass(frozen=True)
@@ -592,29 +612,14 @@ class Diagnosis:
             vs = f"on {set_text}"
         else:
             vs = f"{abs(dev):.0f} % {'above' if dev > 0 else 'below'} {set_text}"
-        if math.isfinite(lo) and math.isfinite(hi):
-            band = f"{setp(lo)}-{setp(hi)} {unit}"
-        elif math.isfinite(hi):
-            band = f"<= {setp(hi)} {unit}"
-        elif math.isfinite(lo):
-            band = f">= {setp(lo)} {unit}"
-        else:
-            band = "unbounded"
+        band = _interval_text(lo, hi, setp, unit)
         conf = f"{100 * self.confidence:.0f} %"
         sat = [st for st in self.status if st.startswith("saturated")]
         wound = "as if wound at"
         if self.position.size == 1 and sat:
             # a reading at the scale's end bounds the tension from one side only
             wound = "as if wound at least at" if "least" in sat[0] else "as if wound at most at"
-        tail = ""
-        if self.position.size > 1:
-            ok = np.isfinite(self.web_tension)
-            tail = f"; {self.position.size} positions"
-            if np.count_nonzero(ok) > 1:
-                tail += (
-                    f", from {setp(float(np.min(self.web_tension[ok])))} to "
-                    f"{setp(float(np.max(self.web_tension[ok])))} {unit}"
-                )
+        tail = self._positions_text(setp, unit)
         if sat:
             tail += (
                 f"; {len(sat)} of {self.position.size} positions read at the scale's end "
@@ -624,6 +629,19 @@ class Diagnosis:
             f"this roll reads {wound} {parts[0]} ({', '.join(parts[1:])}), {vs} "
             f"({conf}: {band}){tail}"
         ).replace(" ()", "")
+
+    def _positions_text(self, setp: Callable[[float], str], unit: str) -> str:
+        """ "; 5 positions, from 40.1 to 52.3 N": the positions' tension range."""
+        tail = ""
+        if self.position.size > 1:
+            ok = np.isfinite(self.web_tension)
+            tail = f"; {self.position.size} positions"
+            if np.count_nonzero(ok) > 1:
+                tail += (
+                    f", from {setp(float(np.min(self.web_tension[ok])))} to "
+                    f"{setp(float(np.max(self.web_tension[ok])))} {unit}"
+                )
+        return tail
 
     def summary(self) -> list[tuple[str, ...]]:
         """Rows for a table: position [in], reading, WOT [MPa] and P [kPa] with intervals
@@ -742,6 +760,17 @@ _UNIT_SYSTEMS: dict[str, dict[str, tuple[str, float]]] = {
         "force_per_length": ("pli", 4.4482216152605 / 0.0254),
     },
 }
+
+
+def _interval_text(lo: float, hi: float, setp: Callable[[float], str], unit: str) -> str:
+    """An interval with open ends (NaN) written as a bound."""
+    if math.isfinite(lo) and math.isfinite(hi):
+        return f"{setp(lo)}-{setp(hi)} {unit}"
+    if math.isfinite(hi):
+        return f"<= {setp(hi)} {unit}"
+    if math.isfinite(lo):
+        return f">= {setp(lo)} {unit}"
+    return "unbounded"
 
 
 def set_point_units(kind: str, value: float) -> str:
