@@ -73,17 +73,8 @@ from numpy.typing import NDArray
 from scipy.linalg.blas import dsbmv
 from scipy.linalg.lapack import dtbtrs
 
-from woundroll.contact.dynamic.timeloop import (
-    ImpactState,
-    Increment,
-    Newmark,
-    Striker,
-    result_fields,
-    roll_density,
-    run_impact,
-    time_step,
-)
-from woundroll.contact.dynamic.timeloop import lcp as _lcp
+from woundroll.contact.dynamic import timeloop
+from woundroll.contact.dynamic.timeloop import ImpactState, Increment, Newmark, Striker
 from woundroll.contact.plane_strain.fem import Assembler, plane_strain_moduli
 from woundroll.contact.plane_strain.mesh import RollMesh, build_mesh
 from woundroll.contact.plane_strain.solver import ContactOptions, _Roll
@@ -557,10 +548,7 @@ class _ImpactRoll2D:
         head_radius: float,
         depth_scale: float,
     ) -> None:
-        self.roll = roll
-        self.opts = opts
-        self.nm = nm
-        self.striker = striker
+        self.roll, self.opts, self.nm, self.striker = roll, opts, nm, striker
         self.R_h = head_radius
         self.r_out = float(roll.mesh.r[-1])
         self.n = roll.n
@@ -684,7 +672,7 @@ class _ImpactRoll2D:
                 raise ConvergenceError("banded triangular solve failed")
             nx = normal[idx, 0]
             W = Y.T @ Y + np.outer(nx, nx) / s_eff
-            lam_c = _lcp(W, g_free[idx])
+            lam_c = timeloop.lcp(W, g_free[idx])
             dz, info = dtbtrs(cb, Y @ lam_c, uplo="L", trans="T", diag="N")
             if info != 0:
                 raise ConvergenceError("banded triangular solve failed")
@@ -746,39 +734,29 @@ class _ImpactRoll2D:
         return Increment(du, dx, lam_new, acc_new, v_new, f_int_new, dsig, force, damping)
 
 
-def _estimates(
+def _spring_estimate(
     web: Web,
     core: Core,
-    r: FloatArray,
-    s: FloatArray,
+    profile: tuple[FloatArray, FloatArray],
     instrument: Instrument,
     opts: DynamicOptions,
     mesh_opts: ContactOptions,
-    contact_time: float | None,
-    depth_scale: float | None,
-) -> tuple[float, float]:
-    """The contact duration and the depth scale, where not given, from the quasi-static
-    roll spring (coarse): ``pi sqrt(m_s / (k_s + F(d)/d))`` and 1.25 x the energy model's
-    depth."""
-    if contact_time is None or depth_scale is None:
-        from woundroll.contact.spring import roll_stiffness
+) -> tuple[float, float, float]:
+    """The energy model's depth on the quasi-static roll spring (coarse), the spring's
+    secant stiffness there and the deepest depth solved
+    (:func:`woundroll.contact.dynamic.timeloop.estimates`)."""
+    from woundroll.contact.spring import roll_stiffness
 
-        est = roll_stiffness(
-            web,
-            core,
-            r,
-            s,
-            instrument,
-            update_modulus=opts.update_modulus,
-            options=replace(mesh_opts, n_steps=8),
-        )
-        d_est = est.impact_depth
-        if depth_scale is None:
-            depth_scale = min(1.25 * d_est, float(est.contact.delta[-1]))
-        if contact_time is None:
-            k_sec = (est.alpha * d_est + est.beta) + instrument.spring_stiffness
-            contact_time = math.pi * math.sqrt(instrument.mass / k_sec)
-    return contact_time, depth_scale
+    est = roll_stiffness(
+        web,
+        core,
+        *profile,
+        instrument,
+        update_modulus=opts.update_modulus,
+        options=replace(mesh_opts, n_steps=8),
+    )
+    d_est = est.impact_depth
+    return d_est, est.alpha * d_est + est.beta, float(est.contact.delta[-1])
 
 
 def impact_dynamic(
@@ -834,11 +812,14 @@ def impact_dynamic(
     R_h = float(instrument.head_radius)
     r = np.asarray(radius, dtype=float)
     s = np.asarray(sigma_r, dtype=float)
-    rho_roll = roll_density(web, density)
-    contact_time, depth_scale = _estimates(
-        web, core, r, s, instrument, opts, mesh_opts, contact_time, depth_scale
+    rho_roll = timeloop.roll_density(web, density)
+    contact_time, depth_scale = timeloop.estimates(
+        instrument,
+        contact_time,
+        depth_scale,
+        lambda: _spring_estimate(web, core, (r, s), instrument, opts, mesh_opts),
     )
-    dt = time_step(opts, contact_time)
+    dt = timeloop.time_step(opts, contact_time)
     r_out = float(r[-1])
     reach = 0.98 * min(0.5 * R_h, 0.25 * (r_out - core.outer_radius))
     mesh = _mesh_for(web, core, r_out, R_h, min(float(depth_scale), reach), mesh_opts)
@@ -847,7 +828,7 @@ def impact_dynamic(
     striker = Striker.of(instrument, (2.0 if mesh_opts.half_model else 1.0) * L)
     nm = Newmark.of(opts, dt)
     fe = _ImpactRoll2D(roll, opts, nm, striker, R_h, depth_scale)
-    run = run_impact(
+    run = timeloop.run_impact(
         fe,
         striker,
         nm,
@@ -857,7 +838,7 @@ def impact_dynamic(
     )
     col = fe.axis_elements
     return DynamicImpactResult(
-        **result_fields(
+        **timeloop.result_fields(
             run,
             striker,
             instrument,

@@ -57,18 +57,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from woundroll.contact.dynamic import timeloop
 from woundroll.contact.dynamic.plane_strain import DynamicImpactResult, DynamicOptions
-from woundroll.contact.dynamic.timeloop import (
-    ImpactState,
-    Increment,
-    Newmark,
-    Striker,
-    result_fields,
-    roll_density,
-    run_impact,
-    time_step,
-)
-from woundroll.contact.dynamic.timeloop import lcp as _lcp
+from woundroll.contact.dynamic.timeloop import ImpactState, Increment, Newmark, Striker
 from woundroll.contact.heads import Head
 from woundroll.contact.solid3d.fem import lumped_mass, orthotropic_moduli, stresses
 from woundroll.contact.solid3d.solver import Contact3DOptions, Roll3D, build_roll3d
@@ -385,7 +376,7 @@ class _ImpactRoll3D:
                 exact = eff.columns_exact(cols)
                 W = -eff.Z[sr[idx]][:, cols]
                 W = 0.5 * (W + W.T) + np.outer(w[idx], w[idx]) / s_eff
-                lam_c = _lcp(W, g[idx] - W @ lm[idx])
+                lam_c = timeloop.lcp(W, g[idx] - W @ lm[idx])
                 dl = np.zeros(eff.n_cols)
                 dl[cols] = lam_c - lm[idx]
                 corr = eff.Z[:, : eff.n_cols] @ dl
@@ -445,7 +436,7 @@ class _ImpactRoll3D:
         }
 
 
-def _estimates(
+def _indent3d_estimate(
     web: Web,
     core: Core,
     r: FloatArray,
@@ -453,37 +444,28 @@ def _estimates(
     instrument: Instrument,
     hd: Head,
     opts: Dynamic3DOptions,
-    mesh_opts: Contact3DOptions,
-    reach: float,
-    contact_time: float | None,
-    depth_scale: float | None,
-) -> tuple[float, float]:
-    """The contact duration and the depth scale, where not given, from a coarse
-    quasi-static 3D solve: ``pi sqrt(m_s / (k_s + F(d)/d))`` at the energy model's depth and
-    1.25 x that depth."""
-    if contact_time is None or depth_scale is None:
-        from woundroll.contact.solid3d.solver import indent3d
-        from woundroll.instruments import TabulatedLaw, impact_energy
+    depth_max: float,
+) -> tuple[float, float, float]:
+    """The energy model's depth on a coarse quasi-static 3D solve to ``depth_max``, the
+    roll's secant stiffness F(d)/d there and the cap of the depth scale (``depth_max``)
+    (:func:`woundroll.contact.dynamic.timeloop.estimates`)."""
+    from woundroll.contact.solid3d.solver import indent3d
+    from woundroll.instruments import TabulatedLaw, impact_energy
 
-        est = indent3d(
-            web,
-            core,
-            r,
-            s,
-            head=hd,
-            depth_max=reach if depth_scale is None else min(float(depth_scale), reach),
-            update_modulus=opts.update_modulus,
-            options=replace(mesh_opts, n_steps=8),
-        )
-        law = TabulatedLaw(est.delta, est.force)
-        d_est = min(impact_energy(instrument, law).max_depth, float(est.delta[-1]))
-        if depth_scale is None:
-            depth_scale = min(1.25 * d_est, reach)
-        if contact_time is None:
-            k_s = instrument.spring_stiffness
-            k_sec = float(np.interp(d_est, est.delta, est.force)) / d_est + k_s
-            contact_time = math.pi * math.sqrt(instrument.mass / k_sec)
-    return contact_time, depth_scale
+    mesh_opts = opts.mesh if opts.mesh is not None else Contact3DOptions()
+    est = indent3d(
+        web,
+        core,
+        r,
+        s,
+        head=hd,
+        depth_max=depth_max,
+        update_modulus=opts.update_modulus,
+        options=replace(mesh_opts, n_steps=8),
+    )
+    law = TabulatedLaw(est.delta, est.force)
+    d_est = min(impact_energy(instrument, law).max_depth, float(est.delta[-1]))
+    return d_est, float(np.interp(d_est, est.delta, est.force)) / d_est, depth_max
 
 
 def impact_dynamic3d(
@@ -533,13 +515,17 @@ def impact_dynamic3d(
     hd = head if head is not None else Head.from_instrument(instrument)
     r = np.asarray(radius, dtype=float)
     s = np.asarray(sigma_r, dtype=float)
-    rho_roll = roll_density(web, density)
+    rho_roll = timeloop.roll_density(web, density)
     r_out = float(r[-1])
     reach = 0.98 * min(0.5 * hd.radius, 0.25 * (r_out - core.outer_radius))
-    contact_time, depth_scale = _estimates(
-        web, core, r, s, instrument, hd, opts, mesh_opts, reach, contact_time, depth_scale
+    to = reach if depth_scale is None else min(float(depth_scale), reach)
+    contact_time, depth_scale = timeloop.estimates(
+        instrument,
+        contact_time,
+        depth_scale,
+        lambda: _indent3d_estimate(web, core, r, s, instrument, hd, opts, to),
     )
-    dt = time_step(opts, contact_time)
+    dt = timeloop.time_step(opts, contact_time)
     roll = build_roll3d(
         web, core, r, s, head=hd, depth_max=min(float(depth_scale), reach), options=mesh_opts
     )
@@ -547,7 +533,7 @@ def impact_dynamic3d(
     striker = Striker.of(instrument, 4.0)  # quarter model
     nm = Newmark.of(opts, dt)
     fe = _ImpactRoll3D(roll, web, hd, m, opts, nm, striker, r_out, depth_scale)
-    run = run_impact(
+    run = timeloop.run_impact(
         fe,
         striker,
         nm,
@@ -556,7 +542,7 @@ def impact_dynamic3d(
         unloading=web.radial_unloading is not None,
     )
     col = fe.axis_elements
-    fields = result_fields(
+    fields = timeloop.result_fields(
         run,
         striker,
         instrument,

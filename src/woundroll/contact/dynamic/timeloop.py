@@ -21,6 +21,7 @@ linear solver, how the contact set is found) and share everything else, which is
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Protocol
 
@@ -35,6 +36,27 @@ if TYPE_CHECKING:
     from woundroll.instruments import Instrument
 
 FloatArray = NDArray[np.float64]
+
+
+def estimates(
+    instrument: Instrument,
+    contact_time: float | None,
+    depth_scale: float | None,
+    estimate: Callable[[], tuple[float, float, float]],
+) -> tuple[float, float]:
+    """The contact duration [s] and the depth scale [m] of the mesh where not given, from a
+    quasi-static estimate: ``estimate()`` gives the energy model's depth d, the roll's
+    secant stiffness F(d)/d there and the largest depth scale the model takes. The
+    duration is the half period ``pi sqrt(m_s / (k_s + F(d)/d))``; the depth scale
+    ``1.25 d``."""
+    if contact_time is None or depth_scale is None:
+        d_est, k_roll, cap = estimate()
+        if depth_scale is None:
+            depth_scale = min(1.25 * d_est, cap)
+        if contact_time is None:
+            k_sec = k_roll + instrument.spring_stiffness
+            contact_time = math.pi * math.sqrt(instrument.mass / k_sec)
+    return contact_time, depth_scale
 
 
 def time_step(opts: Any, contact_time: float) -> float:
