@@ -76,8 +76,8 @@ from scipy.linalg.lapack import dtbtrs
 from woundroll.contact.dynamic import timeloop
 from woundroll.contact.dynamic.timeloop import ImpactState, Increment, Newmark, Striker
 from woundroll.contact.plane_strain.fem import Assembler, plane_strain_moduli
-from woundroll.contact.plane_strain.mesh import RollMesh, build_mesh
-from woundroll.contact.plane_strain.solver import ContactOptions, _Roll
+from woundroll.contact.plane_strain.mesh import RollMesh
+from woundroll.contact.plane_strain.solver import ContactOptions, _Roll, contact_mesh
 from woundroll.errors import ConvergenceError, InputError
 
 if TYPE_CHECKING:
@@ -500,37 +500,6 @@ class DynamicImpactResult:
         return fig
 
 
-def _mesh_for(
-    web: Web, core: Core, r_out: float, head_radius: float, depth: float, opts: ContactOptions
-) -> RollMesh:
-    """The quasi-static model's default mesh for a solve to ``depth`` (same rules as
-    :func:`woundroll.contact.indent`: surface ring one layer thick, fine zone a_geo, tangential
-    size max(h/4, a_geo/40))."""
-    r_in = core.outer_radius
-    R_eff = 1.0 / (1.0 / head_radius + 1.0 / r_out)
-    a_geo = math.sqrt(2.0 * R_eff * depth)
-    surface_size = opts.surface_size if opts.surface_size is not None else web.thickness
-    t_size = (
-        opts.tangential_size
-        if opts.tangential_size is not None
-        else max(0.25 * surface_size, a_geo / 40.0)
-    )
-    fine = opts.fine_halfwidth if opts.fine_halfwidth is not None else a_geo
-    if surface_size >= 0.5 * (r_out - r_in):
-        raise InputError("is too large for the wound thickness", "contact.options.surface_size")
-    return build_mesh(
-        r_in,
-        r_out,
-        surface_size=surface_size,
-        radial_growth=opts.radial_growth,
-        tangential_size=t_size,
-        fine_halfwidth=max(fine, t_size),
-        tangential_growth=opts.tangential_growth,
-        max_element_angle=opts.max_element_angle,
-        periodic=not opts.half_model,
-    )
-
-
 class _ImpactRoll2D:
     """The 2D roll in the time loop (:class:`woundroll.contact.dynamic.timeloop.FeRoll`): the
     moduli of a step, its solve with the contact (module docstring), the roll's Newmark
@@ -822,7 +791,19 @@ def impact_dynamic(
     dt = timeloop.time_step(opts, contact_time)
     r_out = float(r[-1])
     reach = 0.98 * min(0.5 * R_h, 0.25 * (r_out - core.outer_radius))
-    mesh = _mesh_for(web, core, r_out, R_h, min(float(depth_scale), reach), mesh_opts)
+    # the quasi-static mesh with the surface ring one layer thick and the fine zone a_geo
+    depth = min(float(depth_scale), reach)
+    mesh = contact_mesh(
+        web,
+        core,
+        r_out,
+        R_h,
+        depth,
+        mesh_opts,
+        surface_layers=1.0,
+        fine_zone=1.0,
+        field="contact.options.surface_size",
+    )
     roll = _FeRoll(web, core, r, s, mesh, mesh_opts, rho_roll, opts.mass == "consistent")
     # the half model carries half the load per unit CMD length: per length -> whole head
     striker = Striker.of(instrument, (2.0 if mesh_opts.half_model else 1.0) * L)

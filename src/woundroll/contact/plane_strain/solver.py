@@ -1001,25 +1001,37 @@ def _indent_inputs(
     return (head_radius, head_length, depth_max, deepest), friction, r, s, opts
 
 
-def _indent_mesh(
-    web: Web, core: Core, r_out: float, head_radius: float, depth_max: float, opts: ContactOptions
+def contact_mesh(
+    web: Web,
+    core: Core,
+    r_out: float,
+    head_radius: float,
+    depth_max: float,
+    opts: ContactOptions,
+    *,
+    surface_layers: float = 0.5,
+    fine_zone: float = FINE_ZONE,
+    field: str = "options.surface_size",
 ) -> RollMesh:
-    """The mesh for a head pressed to ``depth_max``: the surface ring half a layer thick,
-    a fine zone of :data:`FINE_ZONE` a_geo (the geometric half-chord at ``depth_max``),
-    tangential size max(h/4, a_geo/40) there (:class:`ContactOptions` may set each)."""
+    """The mesh for a head pressed to ``depth_max``: the surface ring ``surface_layers``
+    web layers thick, a fine zone of ``fine_zone`` a_geo (the geometric half-chord at
+    ``depth_max``), tangential size max(h/4, a_geo/40) there with h the web thickness
+    (:class:`ContactOptions` may set each). The dynamic model meshes with one layer and the
+    whole a_geo (:func:`woundroll.contact.dynamic.plane_strain.impact_dynamic`)."""
     r_in = core.outer_radius
     R_eff = 1.0 / (1.0 / head_radius + 1.0 / r_out)
     a_geo = math.sqrt(2.0 * R_eff * depth_max)
-    surface_size = opts.surface_size if opts.surface_size is not None else 0.5 * web.thickness
-    t_ref = opts.surface_size if opts.surface_size is not None else web.thickness
+    given = opts.surface_size
+    surface_size = given if given is not None else surface_layers * web.thickness
+    t_ref = given if given is not None else web.thickness
     t_size = (
         opts.tangential_size
         if opts.tangential_size is not None
         else max(0.25 * t_ref, a_geo / 40.0)
     )
-    fine = opts.fine_halfwidth if opts.fine_halfwidth is not None else FINE_ZONE * a_geo
+    fine = opts.fine_halfwidth if opts.fine_halfwidth is not None else fine_zone * a_geo
     if surface_size >= 0.5 * (r_out - r_in):
-        raise InputError("is too large for the wound thickness", "options.surface_size")
+        raise InputError("is too large for the wound thickness", field)
     return build_mesh(
         r_in,
         r_out,
@@ -1150,7 +1162,7 @@ def indent(
     )
     head_radius, head_length, depth_max, deepest = sizes
     r_out = float(r[-1])
-    mesh = _indent_mesh(web, core, r_out, head_radius, depth_max, opts)
+    mesh = contact_mesh(web, core, r_out, head_radius, depth_max, opts)
     sym = 2.0 if opts.half_model else 1.0  # the half model carries half the load
     roll = _Roll(web, core, r, s, mesh, opts)
     delta = depth_schedule(depth_max, int(opts.n_steps), opts.step_exponent, deepest)

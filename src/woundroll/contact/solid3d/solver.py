@@ -243,9 +243,7 @@ class Roll3D:
         mesh: RollMesh3D,
         opts: Contact3DOptions,
     ) -> None:
-        self.web = web
-        self.mesh = mesh
-        self.opts = opts
+        self.web, self.mesh, self.opts = web, mesh, opts
         #: elements whose interlayer shear reached Coulomb's limit (slip emulation)
         self.slipped: NDArray[np.bool_] | None = None
         n_r, n_t, n_z = mesh.shape
