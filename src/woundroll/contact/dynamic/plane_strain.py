@@ -500,6 +500,24 @@ class DynamicImpactResult:
         return fig
 
 
+def _dynamic_mesh(
+    web: Web, core: Core, r_out: float, head_radius: float, depth: float, opts: ContactOptions
+) -> RollMesh:
+    """The quasi-static model's mesh (:func:`~woundroll.contact.plane_strain.solver.contact_mesh`)
+    with the surface ring one layer thick and the fine zone the whole a_geo."""
+    return contact_mesh(
+        web,
+        core,
+        r_out,
+        head_radius,
+        depth,
+        opts,
+        surface_layers=1.0,
+        fine_zone=1.0,
+        field="contact.options.surface_size",
+    )
+
+
 class _ImpactRoll2D:
     """The 2D roll in the time loop (:class:`woundroll.contact.dynamic.timeloop.FeRoll`): the
     moduli of a step, its solve with the contact (module docstring), the roll's Newmark
@@ -518,10 +536,11 @@ class _ImpactRoll2D:
         depth_scale: float,
     ) -> None:
         self.roll, self.opts, self.nm, self.striker = roll, opts, nm, striker
-        self.R_h = head_radius
+        self.R_h = self.head_radius = head_radius
         self.r_out = float(roll.mesh.r[-1])
         self.n = roll.n
-        self.sigma_pre = roll.sigma_pre
+        self.sigma_pre, self.r_centre = roll.sigma_pre, roll.r_centre
+        self.elastic = roll.web.radial_unloading is None
         self.n_contact = roll.surface.size
         self.mass_times = roll.mass_times
         s_surf = self.r_out * roll.mesh.theta
@@ -529,7 +548,7 @@ class _ImpactRoll2D:
         if not roll.mesh.periodic:  # the half model
             trib[0] = 0.5 * s_surf[1]
             trib[-1] = 0.5 * (s_surf[-1] - s_surf[-2])
-        self.s_surf, self.trib = s_surf, trib
+        self.surface_s, self.trib = s_surf, trib
         col = roll.axis_elements
         self.axis_depth = self.r_out - roll.r_centre[col]
         #: the contact axis's elements, surface first (as reported)
@@ -791,45 +810,14 @@ def impact_dynamic(
     dt = timeloop.time_step(opts, contact_time)
     r_out = float(r[-1])
     reach = 0.98 * min(0.5 * R_h, 0.25 * (r_out - core.outer_radius))
-    # the quasi-static mesh with the surface ring one layer thick and the fine zone a_geo
-    depth = min(float(depth_scale), reach)
-    mesh = contact_mesh(
-        web,
-        core,
-        r_out,
-        R_h,
-        depth,
-        mesh_opts,
-        surface_layers=1.0,
-        fine_zone=1.0,
-        field="contact.options.surface_size",
-    )
+    mesh = _dynamic_mesh(web, core, r_out, R_h, min(float(depth_scale), reach), mesh_opts)
     roll = _FeRoll(web, core, r, s, mesh, mesh_opts, rho_roll, opts.mass == "consistent")
     # the half model carries half the load per unit CMD length: per length -> whole head
     striker = Striker.of(instrument, (2.0 if mesh_opts.half_model else 1.0) * L)
-    nm = Newmark.of(opts, dt)
-    fe = _ImpactRoll2D(roll, opts, nm, striker, R_h, depth_scale)
-    run = timeloop.run_impact(
-        fe,
-        striker,
-        nm,
-        contact_time=contact_time,
-        max_contact_times=opts.max_contact_times,
-        unloading=web.radial_unloading is not None,
-    )
-    col = fe.axis_elements
+    fe = _ImpactRoll2D(roll, opts, Newmark.of(opts, dt), striker, R_h, depth_scale)
+    run = timeloop.run_impact(fe, contact_time, opts.max_contact_times)
     return DynamicImpactResult(
-        **timeloop.result_fields(
-            run,
-            striker,
-            instrument,
-            dt=dt,
-            elastic=web.radial_unloading is None,
-            axis_depth=r_out - roll.r_centre[col],
-            axis_pressure_pre=-roll.sigma_pre[col],
-            contact_s=fe.s_surf,
-            head_radius=R_h,
-        ),
+        **timeloop.result_fields(run, fe, instrument),
         n_dof=roll.n + 1,
         density=rho_roll,
         solve_time_s=time.perf_counter() - t_start,

@@ -277,8 +277,11 @@ class _ImpactRoll3D:
         self.striker = striker
         self.eff = _Effective(roll, m, 1.0 + nm.c1 * nm.a1, nm.c0 + nm.c1 * nm.a0)
         self.n = roll.asm.n_free
-        self.sigma_pre = roll.sigma_pre
+        self.sigma_pre, self.r_centre = roll.sigma_pre, roll.r_centre
+        self.elastic = web.radial_unloading is None
         mesh = roll.mesh
+        self.r_out, self.head_radius = r_out, head.radius
+        self.surface_s = r_out * mesh.theta
         # surface geometry: radial-line gaps g = c - d w - u_r, w = 1 / cos(theta)
         th = roll.surf_theta
         cos_t = np.cos(th)
@@ -531,28 +534,9 @@ def impact_dynamic3d(
     )
     m = lumped_mass(roll.mesh, rho_roll)[roll.free]
     striker = Striker.of(instrument, 4.0)  # quarter model
-    nm = Newmark.of(opts, dt)
-    fe = _ImpactRoll3D(roll, web, hd, m, opts, nm, striker, r_out, depth_scale)
-    run = timeloop.run_impact(
-        fe,
-        striker,
-        nm,
-        contact_time=contact_time,
-        max_contact_times=opts.max_contact_times,
-        unloading=web.radial_unloading is not None,
-    )
-    col = fe.axis_elements
-    fields = timeloop.result_fields(
-        run,
-        striker,
-        instrument,
-        dt=dt,
-        elastic=web.radial_unloading is None,
-        axis_depth=r_out - roll.r_centre[col],
-        axis_pressure_pre=-roll.sigma_pre[col],
-        contact_s=r_out * roll.mesh.theta,
-        head_radius=hd.radius,
-    )
+    fe = _ImpactRoll3D(roll, web, hd, m, opts, Newmark.of(opts, dt), striker, r_out, depth_scale)
+    run = timeloop.run_impact(fe, contact_time, opts.max_contact_times)
+    fields = timeloop.result_fields(run, fe, instrument)
     wall = time.perf_counter() - t_start
     return DynamicImpactResult(
         **fields,

@@ -187,11 +187,18 @@ class Increment:
 class FeRoll(Protocol):
     """What the time loop needs of a finite-element roll."""
 
+    striker: Striker  # per model
+    nm: Newmark
     n: int  # free DOFs
     sigma_pre: FloatArray  # pre-impact radial stress at the element centres
-    axis_elements: NDArray[np.int64]  # elements on the contact axis, surface first
+    r_centre: FloatArray  # radii of the element centres
+    axis_elements: NDArray[np.int64]  # elements on the contact axis, in the order reported
     n_stress: int  # stress components of an element
     n_contact: int  # surface nodes that may touch the head
+    surface_s: FloatArray  # arc length from the axis of the reported surface line's nodes
+    r_out: float
+    head_radius: float
+    elastic: bool  # no unloading law
     label: str  # for messages
 
     def advance(self, st: ImpactState, k_step: int) -> Increment: ...
@@ -276,15 +283,7 @@ def _update_roll(st: ImpactState, inc: Increment, sigma_pre: FloatArray) -> None
     st.lam = inc.lam
 
 
-def run_impact(
-    roll: FeRoll,
-    s: Striker,
-    nm: Newmark,
-    *,
-    contact_time: float,
-    max_contact_times: float,
-    unloading: bool,
-) -> dict[str, Any]:
+def run_impact(roll: FeRoll, contact_time: float, max_contact_times: float) -> dict[str, Any]:
     """Step the impact from first contact to separation (module docstring).
 
     Returns the histories closed at separation (``sep``, a :class:`Separation`), the energy
@@ -292,8 +291,9 @@ def run_impact(
     deceleration and the state then (step, pressure along the contact axis, contact
     pressure), and the number of steps.
     """
+    s, nm = roll.striker, roll.nm
     dt = nm.dt
-    st = _initial_state(roll, s, unloading)
+    st = _initial_state(roll, s, not roll.elastic)
     e_in = 0.5 * s.m_s * s.v_c * s.v_c
     e_int = 0.0  # work of the roll's internal forces (per model)
     e_damp = 0.0
@@ -351,26 +351,17 @@ def run_impact(
     }
 
 
-def result_fields(
-    run: dict[str, Any],
-    s: Striker,
-    instrument: Instrument,
-    *,
-    dt: float,
-    elastic: bool,
-    axis_depth: FloatArray,
-    axis_pressure_pre: FloatArray,
-    contact_s: FloatArray,
-    head_radius: float,
-) -> dict[str, Any]:
+def result_fields(run: dict[str, Any], roll: FeRoll, instrument: Instrument) -> dict[str, Any]:
     """The :class:`~woundroll.contact.dynamic.plane_strain.DynamicImpactResult` fields of a
-    run (all but the model's own: DOFs, density, timings, options, model, stats).
-    ``axis_depth`` and ``axis_pressure_pre`` are along the roll's ``axis_elements``; the
-    contact pressure is reported on the surface within ten maximum depths plus five head
-    radii of the axis (``contact_s``: the arc length of the surface nodes)."""
+    run (all but the model's own: DOFs, density, timings, options, model, stats). The
+    pressures along the contact axis are on the roll's ``axis_elements``; the contact
+    pressure is reported on the surface within ten maximum depths plus five head radii of
+    the axis."""
+    s, dt, col = roll.striker, roll.nm.dt, roll.axis_elements
     sep = run["sep"]
     k_pk, p_axis, p_contact = run["peak_state"]
-    half = contact_s <= 10 * max(float(np.max(sep.x) - s.xg), 1e-6) + 5 * head_radius
+    contact_s = roll.surface_s
+    half = contact_s <= 10 * max(float(np.max(sep.x) - s.xg), 1e-6) + 5 * roll.head_radius
     return {
         **sep.striker_fields(
             instrument,
@@ -383,12 +374,12 @@ def result_fields(
             energy_in=run["energy_in"],
             energy_roll=run["energy_roll"],
             energy_damped=run["energy_damped"],
-            elastic=elastic,
+            elastic=roll.elastic,
             energies=run["energies"],
         ),
-        "axis_depth": axis_depth,
+        "axis_depth": roll.r_out - roll.r_centre[col],
         "axis_pressure": p_axis,
-        "axis_pressure_pre": axis_pressure_pre,
+        "axis_pressure_pre": -roll.sigma_pre[col],
         "contact_s": contact_s[half],
         "contact_pressure": p_contact[half],
         "time_step": dt,
