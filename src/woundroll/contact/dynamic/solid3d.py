@@ -132,6 +132,17 @@ class Dynamic3DOptions:
     def newmark_beta(self) -> float:
         return 0.25 * (self.newmark_gamma + 0.5) ** 2
 
+    def as_2d(self) -> DynamicOptions:
+        """The shared settings as :class:`DynamicOptions` (what the result reports)."""
+        return DynamicOptions(
+            time_step=self.time_step,
+            steps_per_contact=self.steps_per_contact,
+            newmark_gamma=self.newmark_gamma,
+            rayleigh_mass=self.rayleigh_mass,
+            rayleigh_stiffness=self.rayleigh_stiffness,
+            update_modulus=self.update_modulus,
+        )
+
     @classmethod
     def from_2d(
         cls, opts: DynamicOptions, mesh: Contact3DOptions | None = None
@@ -543,14 +554,7 @@ def impact_dynamic3d(
         n_dof=fe.n + 1,
         density=rho_roll,
         solve_time_s=wall,
-        options=DynamicOptions(
-            time_step=opts.time_step,
-            steps_per_contact=opts.steps_per_contact,
-            newmark_gamma=opts.newmark_gamma,
-            rayleigh_mass=opts.rayleigh_mass,
-            rayleigh_stiffness=opts.rayleigh_stiffness,
-            update_modulus=opts.update_modulus,
-        ),
+        options=opts.as_2d(),
         model="3D FE roll (quarter), implicit Newmark, frictionless contact",
         stats=fe.stats(),
     )

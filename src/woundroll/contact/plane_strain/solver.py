@@ -743,13 +743,8 @@ def _newton_increment(
     hist_x: list[FloatArray] = []  # log E_used of the passes
     hist_f: list[FloatArray] = []  # log E_mid - log E_used
     for _ in range(8 * NEWTON_ITERATIONS):
-        deps = roll.strain_increment(step.du)
         # an exact pass was solved at mod_used and _step already has its stresses
-        dsig = step.dsig if exact else roll.stress_of_strain(mod_used, deps)
-        E_mid = roll.secant_modulus(start, start + dsig[:, 0])
-        w = np.abs(np.sum(dsig * deps, axis=1)) * roll.area
-        total = float(np.sum(w))
-        err = float(np.sum(w * np.abs(E_used / E_mid - 1.0))) / total if total > 0 else 0.0
+        dsig, E_mid, w, total, err = _secant_mismatch(roll, step, mod_used, exact, start, E_used)
         if du_prev is not None:
             scale = max(float(np.max(np.abs(step.du))), 1e-300)
             err = max(err, float(np.max(np.abs(step.du - du_prev))) / scale)
@@ -757,18 +752,7 @@ def _newton_increment(
             step.dsig = dsig
             return step, n_fact
         since += 1
-        x = np.log(E_used)
-        f = np.log(E_mid) - x
-        hist_x.append(x)
-        hist_f.append(f)
-        x_new = x + f
-        if ANDERSON > 0 and len(hist_x) >= 2:
-            del hist_x[: -ANDERSON - 1], hist_f[: -ANDERSON - 1]
-            sw = np.sqrt(w / total) if total > 0 else np.ones_like(w)
-            dF = np.diff(np.stack(hist_f, axis=1), axis=1)
-            dX = np.diff(np.stack(hist_x, axis=1), axis=1)
-            gamma = np.linalg.lstsq(dF * sw[:, None], f * sw, rcond=None)[0]
-            x_new = np.clip(x + f - (dX + dF) @ gamma, x - 3.0, x + 3.0)
+        x_new = _mixed_log_modulus(hist_x, hist_f, E_used, E_mid, w, total)
         E_used = np.clip(np.exp(x_new), roll.E_floor, roll.E_cap)
         mod_used = roll.moduli_at(E_used)
         if (
@@ -790,6 +774,52 @@ def _newton_increment(
     raise ConvergenceError(
         f"an increment's moduli did not settle in {8 * NEWTON_ITERATIONS} passes; use more n_steps"
     )
+
+
+def _secant_mismatch(
+    roll: _Roll,
+    step: _Step,
+    mod_used: tuple[FloatArray, ...],
+    exact: bool,
+    start: FloatArray,
+    E_used: FloatArray,
+) -> tuple[FloatArray, FloatArray, FloatArray, float, float]:
+    """A pass of :func:`_newton_increment` judged: its stresses at ``mod_used`` (``step``'s
+    own for an exact pass), the law's secant E_mid over them, the elements' strain-energy
+    increments (weights) and their total, and the weighted mismatch |E_used / E_mid - 1|."""
+    deps = roll.strain_increment(step.du)
+    dsig = step.dsig if exact else roll.stress_of_strain(mod_used, deps)
+    E_mid = roll.secant_modulus(start, start + dsig[:, 0])
+    w = np.abs(np.sum(dsig * deps, axis=1)) * roll.area
+    total = float(np.sum(w))
+    err = float(np.sum(w * np.abs(E_used / E_mid - 1.0))) / total if total > 0 else 0.0
+    return dsig, E_mid, w, total, err
+
+
+def _mixed_log_modulus(
+    hist_x: list[FloatArray],
+    hist_f: list[FloatArray],
+    E_used: FloatArray,
+    E_mid: FloatArray,
+    w: FloatArray,
+    total: float,
+) -> FloatArray:
+    """The next pass's log E: the fixed-point update log E_mid with Anderson mixing over
+    the last :data:`ANDERSON` passes (``hist_x``, ``hist_f`` kept here), weighted by the
+    strain-energy increments ``w``, the step limited to a factor e^3."""
+    x = np.log(E_used)
+    f = np.log(E_mid) - x
+    hist_x.append(x)
+    hist_f.append(f)
+    x_new = x + f
+    if ANDERSON > 0 and len(hist_x) >= 2:
+        del hist_x[: -ANDERSON - 1], hist_f[: -ANDERSON - 1]
+        sw = np.sqrt(w / total) if total > 0 else np.ones_like(w)
+        dF = np.diff(np.stack(hist_f, axis=1), axis=1)
+        dX = np.diff(np.stack(hist_x, axis=1), axis=1)
+        gamma = np.linalg.lstsq(dF * sw[:, None], f * sw, rcond=None)[0]
+        x_new = np.clip(x + f - (dX + dF) @ gamma, x - 3.0, x + 3.0)
+    return x_new
 
 
 def _slip_weight(
@@ -1082,6 +1112,46 @@ def _press(
     return h, u_hist, s_surf
 
 
+def _result2d(
+    load: _Loading,
+    h: LoadHistory,
+    u_hist: FloatArray,
+    s_surf: FloatArray,
+    head_length: float,
+    update_modulus: bool,
+    t0: float,
+) -> ContactResult:
+    """The result of :func:`indent` (``t0``: when it started)."""
+    roll, friction, head_radius = load.roll, load.friction, load.head_radius
+    mesh, r_out = roll.mesh, load.r_out
+    sig = load.sig
+    xy = roll.basis.centre_xy
+    return ContactResult(
+        **result_fields(
+            h,
+            force=h.force * head_length,
+            stress=(sig[:, 0], sig[:, 1], sig[:, 2]),
+            sigma_pre=roll.sigma_pre,
+            friction=friction,
+            elements=(xy[:, 0], xy[:, 1], roll.r_centre, np.arctan2(xy[:, 1], xy[:, 0])),
+            contact_s=s_surf,
+        ),
+        force_per_length=h.force,
+        head_radius=head_radius,
+        head_length=head_length,
+        outer_radius=r_out,
+        update_modulus=update_modulus,
+        n_elements=mesh.n_elements,
+        n_dof=int(roll.free.sum()),
+        mesh_shape=(mesh.n_r - 1, mesh.n_theta),
+        solve_time_s=time.perf_counter() - t0,
+        factorisations=load.factorisations,
+        slipped=None if roll.slip_weight is None else roll.slip_weight > 0,
+        slip_passes=load.slip_passes,
+        surface_deflection_history=u_hist,
+    )
+
+
 def indent(
     web: Web,
     core: Core,
@@ -1168,29 +1238,4 @@ def indent(
     delta = depth_schedule(depth_max, int(opts.n_steps), opts.step_exponent, deepest)
     load = _Loading(roll, opts, delta, head_radius, friction, update_modulus)
     h, u_hist, s_surf = _press(load, sym, head_length, stop)
-    sig = load.sig
-    xy = roll.basis.centre_xy
-    return ContactResult(
-        **result_fields(
-            h,
-            force=h.force * head_length,
-            stress=(sig[:, 0], sig[:, 1], sig[:, 2]),
-            sigma_pre=roll.sigma_pre,
-            friction=friction,
-            elements=(xy[:, 0], xy[:, 1], roll.r_centre, np.arctan2(xy[:, 1], xy[:, 0])),
-            contact_s=s_surf,
-        ),
-        force_per_length=h.force,
-        head_radius=head_radius,
-        head_length=head_length,
-        outer_radius=r_out,
-        update_modulus=update_modulus,
-        n_elements=mesh.n_elements,
-        n_dof=int(roll.free.sum()),
-        mesh_shape=(mesh.n_r - 1, mesh.n_theta),
-        solve_time_s=time.perf_counter() - t0,
-        factorisations=load.factorisations,
-        slipped=None if roll.slip_weight is None else roll.slip_weight > 0,
-        slip_passes=load.slip_passes,
-        surface_deflection_history=u_hist,
-    )
+    return _result2d(load, h, u_hist, s_surf, head_length, update_modulus, t0)

@@ -454,7 +454,17 @@ def build_roll3d(
     opts = options if options is not None else Contact3DOptions()
     if not isinstance(opts, Contact3DOptions):
         raise InputError("must be a Contact3DOptions", "options")
-    r_in, r_out = core.outer_radius, float(r[-1])
+    _check_reach(web, core, float(r[-1]), head, depth_max, opts)
+    mesh = _mesh_under_the_head(web, core, float(r[-1]), head, depth_max, opts)
+    model = Roll3D(web, core, r, s, mesh, opts)
+    return model
+
+
+def _check_reach(
+    web: Web, core: Core, r_out: float, head: Head, depth_max: float, opts: Contact3DOptions
+) -> None:
+    """The head fits the roll's width, the depth the model's reach."""
+    r_in = core.outer_radius
     z_max = 0.5 * web.width
     if head.cmd_halfwidth >= z_max and opts.cmd_edges == "free":
         raise InputError(
@@ -473,6 +483,15 @@ def build_roll3d(
             f"({0.25 * (r_out - r_in):g} m), got {depth_max:g} m",
             "depth_max",
         )
+
+
+def _mesh_under_the_head(
+    web: Web, core: Core, r_out: float, head: Head, depth_max: float, opts: Contact3DOptions
+) -> RollMesh3D:
+    """The graded mesh sized by the head's geometric footprint at ``depth_max`` (half
+    extents a_y, a_z; :class:`Contact3DOptions` may set each size)."""
+    r_in = core.outer_radius
+    z_max = 0.5 * web.width
     a_y, a_z = head.footprint(depth_max, r_out)
     if a_y >= 0.25 * r_out:
         raise InputError("the head is too large for the roll's radius", "head.radius")
@@ -500,7 +519,7 @@ def build_roll3d(
             )
     if surface >= 0.5 * (r_out - r_in):
         raise InputError("is too large for the wound thickness", "options.surface_size")
-    mesh = build_mesh3d(
+    return build_mesh3d(
         r_in,
         r_out,
         z_max=z_max,
@@ -514,8 +533,6 @@ def build_roll3d(
         fine_halflength=max(fine_z, z_size),
         axial_growth=opts.axial_growth,
     )
-    model = Roll3D(web, core, r, s, mesh, opts)
-    return model
 
 
 class _Loading3D:
@@ -649,6 +666,60 @@ def _press3d(load: _Loading3D) -> tuple[LoadHistory, FloatArray]:
     return h, half_len
 
 
+def _result3d(
+    load: _Loading3D,
+    h: LoadHistory,
+    half_len: FloatArray,
+    head: Head,
+    update_modulus: bool,
+    times: tuple[float, float],
+) -> Contact3DResult:
+    """The result of :func:`indent3d` (``times``: its start and its setup's seconds)."""
+    model, friction = load.model, load.friction
+    mesh = model.mesh
+    t0, t_setup = times
+    sig, tc, n_t, n_z = load.sig, model.t_centre, mesh.theta.size, mesh.z.size
+    length = float(head.length) if head.shape == "cylinder" else 2.0 * head.cmd_halfwidth
+    elements = (model.r_centre * np.cos(tc), model.r_centre * np.sin(tc), model.r_centre, tc)
+    return Contact3DResult(
+        **result_fields(
+            h,
+            force=h.force,
+            stress=(sig[:, 0], sig[:, 1], sig[:, 3]),
+            sigma_pre=model.sigma_pre,
+            friction=friction,
+            elements=elements,
+            contact_s=model.R * mesh.theta,
+        ),
+        force_per_length=h.force / length,
+        head_radius=head.radius,
+        head_length=length,
+        outer_radius=model.R,
+        update_modulus=update_modulus,
+        n_elements=mesh.n_elements,
+        n_dof=model.asm.n_free,
+        mesh_shape=(mesh.r.size - 1, n_t - 1, n_z - 1),  # type: ignore[arg-type]
+        solve_time_s=time.perf_counter() - t0,
+        half_length=half_len,
+        element_z=model.z_centre,
+        sigma_z=sig[:, 2],
+        tau_r_z=sig[:, 4],
+        surface_pressure=(-load.f_surf / model.surf_area).reshape(n_z, n_t).T,
+        surface_theta=mesh.theta,
+        surface_z=mesh.z,
+        head=head.to_dict(),
+        stats={
+            "factorisations": model.n_factor,
+            "rhs_solved": model.n_solves,
+            "assembly_s": model.t_assembly,
+            "factor_s": model.t_factor,
+            "solve_s": model.t_solve,
+            "setup_s": t_setup,
+            "slipped_elements": 0 if model.slipped is None else int(model.slipped.sum()),
+        },
+    )
+
+
 def indent3d(
     web: Web,
     core: Core,
@@ -691,48 +762,9 @@ def indent3d(
     model = build_roll3d(
         web, core, radius, sigma_r, head=head, depth_max=depth_max, options=options
     )
-    mesh, opts = model.mesh, model.opts
+    opts = model.opts
     t_setup = time.perf_counter() - t0
     delta = depth_schedule(depth_max, int(opts.n_steps), opts.step_exponent)
     load = _Loading3D(model, head, delta, friction, update_modulus)
     h, half_len = _press3d(load)
-    sig, tc, n_t, n_z = load.sig, model.t_centre, mesh.theta.size, mesh.z.size
-    length = float(head.length) if head.shape == "cylinder" else 2.0 * head.cmd_halfwidth
-    elements = (model.r_centre * np.cos(tc), model.r_centre * np.sin(tc), model.r_centre, tc)
-    return Contact3DResult(
-        **result_fields(
-            h,
-            force=h.force,
-            stress=(sig[:, 0], sig[:, 1], sig[:, 3]),
-            sigma_pre=model.sigma_pre,
-            friction=friction,
-            elements=elements,
-            contact_s=model.R * mesh.theta,
-        ),
-        force_per_length=h.force / length,
-        head_radius=head.radius,
-        head_length=length,
-        outer_radius=model.R,
-        update_modulus=update_modulus,
-        n_elements=mesh.n_elements,
-        n_dof=model.asm.n_free,
-        mesh_shape=(mesh.r.size - 1, n_t - 1, n_z - 1),  # type: ignore[arg-type]
-        solve_time_s=time.perf_counter() - t0,
-        half_length=half_len,
-        element_z=model.z_centre,
-        sigma_z=sig[:, 2],
-        tau_r_z=sig[:, 4],
-        surface_pressure=(-load.f_surf / model.surf_area).reshape(n_z, n_t).T,
-        surface_theta=mesh.theta,
-        surface_z=mesh.z,
-        head=head.to_dict(),
-        stats={
-            "factorisations": model.n_factor,
-            "rhs_solved": model.n_solves,
-            "assembly_s": model.t_assembly,
-            "factor_s": model.t_factor,
-            "solve_s": model.t_solve,
-            "setup_s": t_setup,
-            "slipped_elements": 0 if model.slipped is None else int(model.slipped.sum()),
-        },
-    )
+    return _result3d(load, h, half_len, head, update_modulus, (t0, t_setup))
