@@ -133,7 +133,7 @@ def test_2d_force_converges_at_second_order_under_mesh_refinement() -> None:
 
 @pytest.mark.slow
 def test_2d_force_order_approaches_two() -> None:
-    # one level more (126,374 DOF, ~30 s): the last pair's order was 1.67
+    # one level more (126,374 DOF, 30-80 s): the last pair's order was 1.67
     levels = np.arange(5)
     F = np.array([_force_2d(k) for k in levels])
     _, pairs = observed_orders(2.0**-levels, F)
@@ -156,7 +156,7 @@ def test_3d_force_converges_under_mesh_refinement() -> None:
 
 @pytest.mark.slow
 def test_3d_force_order_approaches_two() -> None:
-    # level 3 too (176,256 DOF, ~30 s): the last pair's order was 2.15
+    # level 3 too (176,256 DOF, 30-80 s): the last pair's order was 2.15
     levels = np.arange(4)
     F = np.array([_force_3d(k) for k in levels])
     _, pairs = observed_orders(2.0**-levels, F)
