@@ -14,7 +14,6 @@ from pathlib import Path
 
 import woundroll
 from woundroll.contact import fit_roll_spring, indent
-from woundroll.contact.plane_strain.cmd_spread import apply_cmd_spread
 from woundroll.instruments import get_instrument, impact_energy, impact_fd
 from woundroll.instruments.roll_side import RollSpring
 from woundroll.winding.hakiel import wind
@@ -53,8 +52,7 @@ contact = indent(
     head_length=rho_meter.head_length,
     depth_max=1e-3,
 )
-# plane strain + the load the roll carries past the head's ends (the default path, as in 1.)
-contact = apply_cmd_spread(contact).corrected
+# plane strain, the default roll model for the Rho-meter's cylindrical head (docs/contact.md)
 spring = fit_roll_spring(contact.delta, contact.force, rho_meter)
 print(
     f"roll spring {{3}}: alpha {spring.alpha:.3g} N/m^2, beta {spring.beta:.3g} N/m "

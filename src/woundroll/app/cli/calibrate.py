@@ -13,6 +13,7 @@ from typing import Annotated, Any
 
 import typer
 
+from woundroll.app.cli.options import JsonOpt
 from woundroll.errors import ConvergenceError, InputError
 
 
@@ -86,7 +87,7 @@ def calibrate_head_cmd(
         Path | None,
         typer.Option("--write", help="Write the calibrated instrument file (TOML) here."),
     ] = None,
-    as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
+    as_json: JsonOpt = False,
 ) -> None:
     """Calibrate the head on its calibration block through the roll model that reads rolls.
 
@@ -203,7 +204,7 @@ def calibrate_cmd(
             "(default 0: the leave-one-out test allows the tester's repeatability only).",
         ),
     ] = 0.0,
-    as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
+    as_json: JsonOpt = False,
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress.")] = False,
 ) -> None:
     """Calibrate the model on a mill's own rolls: fit what is unknown to readings of rolls of

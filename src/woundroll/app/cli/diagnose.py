@@ -15,6 +15,7 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
+from woundroll.app.cli.options import CaseArg, JsonOpt, LaneWidthOpt, SetOpt, out_option
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.util.output import strict_json, write_result_files
 
@@ -45,9 +46,7 @@ def readings_cmd(
         str | None,
         typer.Option(help="Web width ('24 in'): positions outside the roll are an error."),
     ] = None,
-    lane_width: Annotated[
-        str | None, typer.Option("--lane-width", help="Lane width for lane numbers ('6 in').")
-    ] = None,
+    lane_width: LaneWidthOpt = None,
     fmt: Annotated[
         str,
         typer.Option(
@@ -324,27 +323,18 @@ def _readings_trend(  # type: ignore[no-untyped-def]
 
 
 def diagnose_cmd(
-    case: Annotated[
-        str, typer.Argument(help="Case file (TOML) or bundled case name (see `woundroll cases`).")
-    ],
+    case: CaseArg,
     readings: Annotated[
         str | None,
         typer.Option("--readings", help="Readings CSV (default: the case's [readings] file)."),
     ] = None,
-    lane_width: Annotated[
-        str | None, typer.Option("--lane-width", help="Lane width for lane numbers ('6 in').")
-    ] = None,
+    lane_width: LaneWidthOpt = None,
     confidence: Annotated[
         float, typer.Option(help="Two-sided confidence of the intervals.")
     ] = 0.95,
-    set_: Annotated[
-        list[str] | None,
-        typer.Option("--set", help="Override a case key: dotted.key=value (repeatable)."),
-    ] = None,
-    out_dir: Annotated[
-        Path | None, typer.Option("--out", help="Write diagnosis.json and PNG plots here.")
-    ] = None,
-    as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
+    set_: SetOpt = None,
+    out_dir: out_option("diagnosis.json and PNG plots") = None,  # type: ignore[valid-type]
+    as_json: JsonOpt = False,
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress or table.")] = False,
     causes: Annotated[
         bool,
@@ -478,17 +468,10 @@ def _print_defects(defects) -> None:  # type: ignore[no-untyped-def]
 
 
 def defects_cmd(
-    case: Annotated[
-        str, typer.Argument(help="Case file (TOML) or bundled case name (see `woundroll cases`).")
-    ],
-    set_: Annotated[
-        list[str] | None,
-        typer.Option("--set", help="Override a case key: dotted.key=value (repeatable)."),
-    ] = None,
-    as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
-    out_dir: Annotated[
-        Path | None, typer.Option("--out", help="Write defects.json and defects.png here.")
-    ] = None,
+    case: CaseArg,
+    set_: SetOpt = None,
+    as_json: JsonOpt = False,
+    out_dir: out_option("defects.json and defects.png") = None,  # type: ignore[valid-type]
 ) -> None:
     """Defect risk of a roll from its wound-in stresses: starring, core crush, slip,
     telescoping, blocking, slack (limits in the case's defects section)."""
@@ -590,9 +573,7 @@ def _range(text: str | None, kind: str, field: str, convert=None) -> tuple[float
 
 
 def design_cmd(
-    case: Annotated[
-        str, typer.Argument(help="Case file (TOML) or bundled case name (see `woundroll cases`).")
-    ],
+    case: CaseArg,
     target: Annotated[
         str, typer.Option(help="Target surface hardness with its scale: '60 Rho' (or g).")
     ],
@@ -625,20 +606,16 @@ def design_cmd(
     allow_negative_hoop: Annotated[
         bool, typer.Option(help="Do not require a non-negative hoop stress.")
     ] = False,
-    set_: Annotated[
-        list[str] | None,
-        typer.Option("--set", help="Override a case key: dotted.key=value (repeatable)."),
-    ] = None,
-    as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
-    out_dir: Annotated[
-        Path | None, typer.Option("--out", help="Write design.json and design.png here.")
-    ] = None,
+    set_: SetOpt = None,
+    as_json: JsonOpt = False,
+    out_dir: out_option("design.json and design.png") = None,  # type: ignore[valid-type]
 ) -> None:
     """Setpoint design: tension, taper and nip load for a target hardness, a pressure
     window and no negative hoop stress, within the winder's ranges."""
 
     from woundroll.app.cli.console import fail, out
-    from woundroll.case import _tension, load_case
+    from woundroll.case import load_case
+    from woundroll.case.schema import _tension
     from woundroll.inverse.design import DesignTarget, design_setpoints
     from woundroll.io.readings import _scale_of
     from woundroll.units import to_si

@@ -11,6 +11,7 @@ from typing import Annotated, Any
 
 import typer
 
+from woundroll.app.cli.options import CaseArg, LaneWidthOpt, SetOpt, out_option
 from woundroll.errors import ConvergenceError, InputError
 
 
@@ -74,10 +75,8 @@ def report_ids(
 
 
 def report_cmd(
-    case: Annotated[
-        str, typer.Argument(help="Case file (TOML) or bundled case name (see `woundroll cases`).")
-    ],
-    out_dir: Annotated[Path, typer.Option("--out", help="Write DIR/report.html here.")],
+    case: CaseArg,
+    out_dir: out_option("DIR/report.html", required=True),  # type: ignore[valid-type]
     readings: Annotated[
         str | None,
         typer.Option(
@@ -86,9 +85,7 @@ def report_cmd(
             "the diagnosis and per-lane defect risk.",
         ),
     ] = None,
-    lane_width: Annotated[
-        str | None, typer.Option("--lane-width", help="Lane width for lane numbers ('6 in').")
-    ] = None,
+    lane_width: LaneWidthOpt = None,
     fmt: Annotated[
         str,
         typer.Option(
@@ -98,10 +95,7 @@ def report_cmd(
     roll: Annotated[
         str | None, typer.Option("--roll", help="Roll id on a TAPPI sheet with several rolls.")
     ] = None,
-    set_: Annotated[
-        list[str] | None,
-        typer.Option("--set", help="Override a case key: dotted.key=value (repeatable)."),
-    ] = None,
+    set_: SetOpt = None,
     roll_id: Annotated[
         str | None,
         typer.Option(

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import sys
-from pathlib import Path
 from typing import Annotated
 
 import typer
@@ -13,24 +12,16 @@ from rich.table import Table
 
 from woundroll.app.cli import diagnose
 from woundroll.app.cli.console import err, fail, out, warn, with_progress
+from woundroll.app.cli.options import CaseArg, JsonOpt, SetOpt, out_option
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.pipeline.summary import result_summary
 
 
 def run(
-    case: Annotated[
-        str, typer.Argument(help="Case file (TOML) or bundled case name (see `woundroll cases`).")
-    ],
-    set_: Annotated[
-        list[str] | None,
-        typer.Option("--set", help="Override a case key: dotted.key=value (repeatable)."),
-    ] = None,
-    out_dir: Annotated[
-        Path | None, typer.Option("--out", help="Write result.json and PNG plots here.")
-    ] = None,
-    as_json: Annotated[
-        bool, typer.Option("--json", help="Print the result as JSON on stdout.")
-    ] = False,
+    case: CaseArg,
+    set_: SetOpt = None,
+    out_dir: out_option("result.json and PNG plots") = None,  # type: ignore[valid-type]
+    as_json: JsonOpt = False,
     quiet: Annotated[
         bool, typer.Option("--quiet", "-q", help="No progress bar or summary.")
     ] = False,

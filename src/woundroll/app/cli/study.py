@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import sys
-from pathlib import Path
 from typing import Annotated
 
 import typer
@@ -12,6 +11,7 @@ from rich.markup import escape
 from rich.table import Table
 
 from woundroll.app.cli.console import err, fail, out, with_progress
+from woundroll.app.cli.options import out_option
 from woundroll.errors import ConvergenceError, InputError
 
 
@@ -23,9 +23,7 @@ def study(
             "(the FE impact in time against the 1.5D models)."
         ),
     ],
-    out_dir: Annotated[
-        Path | None, typer.Option("--out", help="Write study.json and PNG plots here.")
-    ] = None,
+    out_dir: out_option("study.json and PNG plots") = None,  # type: ignore[valid-type]
     as_json: Annotated[
         bool, typer.Option("--json", help="Print the study as JSON on stdout.")
     ] = False,

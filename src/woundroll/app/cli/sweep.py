@@ -12,13 +12,12 @@ from typing import Annotated
 
 import typer
 
+from woundroll.app.cli.options import CaseArg
 from woundroll.errors import InputError
 
 
 def sweep_cmd(
-    case: Annotated[
-        str, typer.Argument(help="Case file (TOML) or bundled case name (see `woundroll cases`).")
-    ],
+    case: CaseArg,
     vary: Annotated[
         list[str],
         typer.Option(
