@@ -651,6 +651,29 @@ def profile_bands(
         centre = r0
         source = "reduced model"
     samples = centre[None, :] + delta
+    surrogate = {
+        "kind": "reduced profile model, quadratic per standardised parameter",
+        "step_sd": h,
+        "linear": {k: v.tolist() for k, v in a.items()},
+        "quadratic": {k: v.tolist() for k, v in b.items()},
+        "curve_runs": len(curve.points) * (1 + len(curves)),
+        "linear_reduced": {k: v.tolist() for k, v in a_reduced.items()},
+        "tension_calibration": calibration,
+    }
+    return _bands_dict(z, centre, source, samples, r0, outside, surrogate)
+
+
+def _bands_dict(
+    z: FloatArray,
+    centre: FloatArray,
+    source: str,
+    samples: FloatArray,
+    r0: FloatArray,
+    outside: NDArray[np.bool_],
+    surrogate: dict[str, Any],
+) -> dict[str, Any]:
+    """The ``uncertainty.profile`` dictionary: percentiles and SD of the sampled readings
+    per sector, the per-sample readings under the private key ``_samples``."""
     lo, mid, hi = np.percentile(samples, PERCENTILES, axis=0)
     return {
         "z_m": z.tolist(),
@@ -664,15 +687,7 @@ def profile_bands(
         "outside_curve": [bool(x) for x in outside],
         "outside_note": "sectors whose near-surface pressure lies outside the forward "
         "curve's (slack lanes) get no band (low = high = nominal)",
-        "surrogate": {
-            "kind": "reduced profile model, quadratic per standardised parameter",
-            "step_sd": h,
-            "linear": {k: v.tolist() for k, v in a.items()},
-            "quadratic": {k: v.tolist() for k, v in b.items()},
-            "curve_runs": len(curve.points) * (1 + len(curves)),
-            "linear_reduced": {k: v.tolist() for k, v in a_reduced.items()},
-            "tension_calibration": calibration,
-        },
+        "surrogate": surrogate,
         "_samples": samples,
     }
 

@@ -748,32 +748,16 @@ def _predict_profile(
     hook, f_depth = None, None
     if nip is not None:
         hook, f_depth, tension = _nip_on_the_roll(
-            web,
-            core,
-            tension,
-            thickness_profile,
-            outer_radius,
-            nip,
-            n_sectors=n_sectors,
-            n_groups=n_groups,
-            workers=workers,
-            progress=stage("foundation"),
-            pool=pool,
-        )
+            web, core, tension, thickness_profile, outer_radius, nip, n_sectors=n_sectors,
+            n_groups=n_groups, workers=workers, progress=stage("foundation"), pool=pool,
+        )  # fmt: skip
         timings["nip_foundation"] = time.perf_counter() - t0
     # 1. stresses in the roll, (r, z)
     t1 = time.perf_counter()
     w = wind_axisymmetric(
-        web,
-        core,
-        outer_radius,
-        tension,
-        thickness_profile,
-        n_sectors=n_sectors,
-        n_groups=n_groups,
-        nip=hook,
-        progress=stage("winding"),
-    )
+        web, core, outer_radius, tension, thickness_profile, n_sectors=n_sectors,
+        n_groups=n_groups, nip=hook, progress=stage("winding"),
+    )  # fmt: skip
     timings["winding"] = time.perf_counter() - t1
     # 2. the roll spring under the striker, sector by sector
     t2 = time.perf_counter()
