@@ -883,14 +883,9 @@ def diagnose(
     half = _quantiles(readings, confidence, repeat)
     r_mid = readings.mean
     r_lo, r_hi = r_mid - half, r_mid + half
-
-    def report(stage: str) -> Callable[[float], None] | None:
-        if progress is None:
-            return None
-        return lambda f: progress(stage, f)
-
     # forward: the reading over tension, bracketing every interval end
-    curve = forward_curve(model, np.concatenate([r_lo, r_hi]), progress=report("forward curve"))
+    stage = None if progress is None else (lambda f: progress("forward curve", f))
+    curve = forward_curve(model, np.concatenate([r_lo, r_hi]), progress=stage)
     notes: list[str] = []
     _check_monotone(curve, readings.scale)
     # inverse: each position's tension and its scatter interval
@@ -900,10 +895,7 @@ def diagnose(
     unc = getattr(case, "uncertainty", None)
     sens = _material_sensitivity(model, unc, curve, r_mid, t_mid, progress, notes)
     m_half = _material_half_width(sens, unc, confidence, r_mid.size, notes)
-    ln_mid = np.log(t_mid)
-    ln_lo = ln_mid - np.sqrt((ln_mid - np.log(t_lo)) ** 2 + m_half**2)
-    ln_hi = ln_mid + np.sqrt((np.log(t_hi) - ln_mid) ** 2 + m_half**2)
-    T, T_lo, T_hi = np.exp(ln_mid), np.exp(ln_lo), np.exp(ln_hi)
+    T, T_lo, T_hi = _combined_interval(t_mid, t_lo, t_hi, m_half)
 
     wot = lambda t: _affine(curve, t)  # noqa: E731
     P = lambda t: _power(curve, t)  # noqa: E731
@@ -1084,6 +1076,16 @@ def _material_half_width(
             + ", ".join(f"{n} (SD {sens[n][0]:.3g})" for n in names)
         )
     return z * np.sqrt(np.maximum(var, 0.0))
+
+
+def _combined_interval(
+    t_mid: FloatArray, t_lo: FloatArray, t_hi: FloatArray, m_half: FloatArray
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The scatter interval and the material half-width combined in quadrature in ln T0."""
+    ln_mid = np.log(t_mid)
+    ln_lo = ln_mid - np.sqrt((ln_mid - np.log(t_lo)) ** 2 + m_half**2)
+    ln_hi = ln_mid + np.sqrt((np.log(t_hi) - ln_mid) ** 2 + m_half**2)
+    return np.exp(ln_mid), np.exp(ln_lo), np.exp(ln_hi)
 
 
 def _verify_median(

@@ -459,25 +459,14 @@ def calibrate_site(
     n_k = np.array([y.size for y in ys], dtype=float)
     ybar = np.array([y.mean() for y in ys])
     K = len(labels)
-    if K < len(params) + 1:
-        raise InputError(
-            f"{len(params)} parameter(s) need at least {len(params) + 1} rolls; got {K}",
-            "--cases",
-        )
-    if roll_scatter < 0 or not math.isfinite(roll_scatter):
-        raise InputError(f"must be a reading SD >= 0, got {roll_scatter!r}", "--roll-scatter")
+    _check_counts(K, len(params), roll_scatter)
 
     def tick(stage: str) -> Callable[[int], None] | None:
         return None if progress is None else (lambda runs: progress(stage, runs))
 
     model = _Model(srcs, loaded, params, tick("fit"))
     x0 = np.log([pm.base(loaded[0]) for pm in params])
-    for pm in params:
-        if pm.name in ("slip_fraction", "mu") and loaded[0].contact.slip == "none":
-            notes.append(
-                f"fitting {pm.name} switches the slip emulation on "
-                "(contact.slip = 'reduced-shear'): 'model before' is read with it"
-            )
+    notes += _slip_notes(params, loaded[0])
     ks = list(range(K))
     before = model.means(ks, x0)
     # each roll counts once: its readings share the roll's own deviation (roll-to-roll
@@ -514,6 +503,24 @@ def calibrate_site(
         scale_name=scale_name,
         notes=notes,
     )
+
+
+def _check_counts(K: int, p: int, roll_scatter: float) -> None:
+    """At least one roll more than parameters; a roll scatter >= 0."""
+    if K < p + 1:
+        raise InputError(f"{p} parameter(s) need at least {p + 1} rolls; got {K}", "--cases")
+    if roll_scatter < 0 or not math.isfinite(roll_scatter):
+        raise InputError(f"must be a reading SD >= 0, got {roll_scatter!r}", "--roll-scatter")
+
+
+def _slip_notes(params: list[Parameter], case: Any) -> list[str]:
+    """Fitting a slip parameter switches the slip emulation on: say so."""
+    return [
+        f"fitting {pm.name} switches the slip emulation on "
+        "(contact.slip = 'reduced-shear'): 'model before' is read with it"
+        for pm in params
+        if pm.name in ("slip_fraction", "mu") and case.contact.slip == "none"
+    ]
 
 
 def _parameter_names(fit: Sequence[str]) -> list[str]:
