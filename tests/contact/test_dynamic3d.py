@@ -239,7 +239,7 @@ def test_case_with_3d_contact_runs_the_3d_dynamic_impact(tmp_path) -> None:
     assert n > 20
     for key in ("deceleration_m_per_s2", "position_m", "velocity_m_per_s", "contact_force_N"):
         assert len(dyn[key]) == n
-    assert dyn["rho"] == pytest.approx(d["rho_fd"], rel=0.25)
+    assert dyn["rho_dynamic"] == pytest.approx(d["rho_fd"], rel=0.25)
     files = res.write(tmp_path)
     assert tmp_path / "dynamic.png" in files
 
@@ -256,4 +256,4 @@ def test_calibration_block_in_3d() -> None:
     r = _measure_block("block", (), "3d")
     assert 0.95 * r["rho_fd"] < r["rho_dynamic"] < r["rho_fd"]
     assert r["restitution_dynamic"] > 0.97
-    assert r["impulse_dynamic_Ns"] == pytest.approx(r["impulse_fd_Ns"], rel=0.01)
+    assert r["impulse_dynamic_N_s"] == pytest.approx(r["impulse_fd_N_s"], rel=0.01)

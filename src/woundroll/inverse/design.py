@@ -259,7 +259,7 @@ class Design:
             "profiles": {
                 "radius_m": w.radius.tolist(),
                 "sigma_r_Pa": w.sigma_r.tolist(),
-                "wot_Pa": w.wot.tolist(),
+                "wound_on_tension_Pa": w.wot.tolist(),
                 "layer_radius_m": w.layer_mean_hoop_stress()[0].tolist(),
                 "layer_mean_hoop_stress_Pa": w.layer_mean_hoop_stress()[1].tolist(),
             },

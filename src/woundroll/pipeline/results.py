@@ -33,8 +33,8 @@ class NoUpdate:
             "beta_N_per_m": self.stiffness.beta,
             "rho_fd": h["rho_fd"],
             "rho_energy": h["rho_energy"],
-            "impulse_Ns": h["impulse_Ns"],
-            "delta_max_m": h["delta_max_m"],
+            "impulse_N_s": h["impulse_N_s"],
+            "impact_depth_m": h["impact_depth_m"],
         }
 
 
