@@ -246,12 +246,21 @@ class Design:
 
     def to_dict(self) -> dict[str, Any]:
         w = self.winding
+        unit_keys = {  # the target's dimensional fields, with their SI unit in the key
+            "pressure_min": "pressure_min_Pa",
+            "pressure_max": "pressure_max_Pa",
+            "tension_min": "tension_min_Pa",
+            "tension_max": "tension_max_Pa",
+            "nip_min": "nip_min_N_per_m",
+            "nip_max": "nip_max_N_per_m",
+            "hoop_min": "hoop_min_Pa",
+        }
         return {
             "feasible": self.feasible,
             "violations": list(self.violations),
             "setpoints": self.setpoints(),
             "target": {
-                k: (None if isinstance(v, float) and not math.isfinite(v) else v)
+                unit_keys.get(k, k): (None if isinstance(v, float) and not math.isfinite(v) else v)
                 for k, v in self.target.__dict__.items()
             },
             "reading": self.reading,

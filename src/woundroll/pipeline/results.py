@@ -73,9 +73,12 @@ class RunResult:
     dynamic: DynamicImpactResult | None = None
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict: ``{"case": ..., "winding": {...}, "contact": ..., "hardness": ...,
-        "flags": {...}, "warnings": [...]}`` (``flags``: :func:`result_flags`)."""
-        out: dict[str, Any] = {"case": self.case.record()}
+        """JSON-ready dict: ``{"schema_version": 2, "case": ..., "winding": {...}, "contact":
+        ..., "hardness": ..., "flags": {...}, "warnings": [...]}`` (``flags``:
+        :func:`result_flags`; the keys: :mod:`woundroll.pipeline.vocabulary`)."""
+        from woundroll.pipeline.vocabulary import SCHEMA_VERSION
+
+        out: dict[str, Any] = {"schema_version": SCHEMA_VERSION, "case": self.case.record()}
         for name in ("winding", "contact", "hardness", "no_update", "profile"):
             part = getattr(self, name)
             if part is not None:

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple, Protocol
 import numpy as np
 
 from woundroll.errors import InputError
+from woundroll.pipeline.vocabulary import versioned
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -179,7 +180,9 @@ def _write(result: Any, out_dir: str | Path) -> list[Path]:
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     p = out / "study.json"
-    p.write_text(json.dumps(result.to_dict(), indent=1, allow_nan=False) + "\n", encoding="utf-8")
+    p.write_text(
+        json.dumps(versioned(result.to_dict()), indent=1, allow_nan=False) + "\n", encoding="utf-8"
+    )
     return [p, *result.plot(out)]
 
 
