@@ -711,10 +711,14 @@ def _term_schema(term: Term) -> dict[str, Any]:
         s: dict[str, Any] = {"$ref": f"#/$defs/list_of_{term.kind}"}
         if term.kind == "number":  # or the quantity's statistics: {"mean": ..., "p50": ...}
             s = {"anyOf": [s, {"$ref": "#/$defs/block"}]}
-    elif term.kind == "object":
-        s = {"anyOf": [{"$ref": "#/$defs/block"}, {"type": "null"}]}
-    elif term.kind == "objects":
-        s = {"anyOf": [{"type": "array", "items": {"$ref": "#/$defs/block"}}, {"type": "null"}]}
+    elif term.kind in ("object", "objects"):  # a block, or a list of blocks (case.inputs)
+        s = {
+            "anyOf": [
+                {"$ref": "#/$defs/block"},
+                {"type": "array", "items": {"$ref": "#/$defs/block"}},
+                {"type": "null"},
+            ]
+        }
     elif term.kind == "map":
         s = {"type": ["object", "null"]}
     else:
@@ -777,3 +781,7 @@ def nomenclature_table() -> str:
             unit = t.unit or "-"
         rows.append(f"| `{t.name}` | {t.symbol} | {t.meaning.replace('|', '/')} | {unit} |")
     return "\n".join(rows) + "\n"
+
+
+if __name__ == "__main__":  # print the nomenclature table (docs/nomenclature.md)
+    print(nomenclature_table(), end="")
