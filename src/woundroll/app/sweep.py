@@ -16,8 +16,9 @@
   :func:`woundroll.pipeline.run`; a roll that fails (bad value, no convergence, any other
   error) gets its message in the ``error`` column and NaN results, the sweep goes on;
 * the **table**: one row per roll, a column per varied input (``winding.tension [N]``) and
-  per scalar result of the run's JSON, named by its dotted key with the unit taken from the
-  key's suffix (``winding.core_pressure [Pa]``, ``hardness.reading [rho]``), then ``error``;
+  per scalar result of the run's JSON, named by its dotted key with the unit its description
+  in :mod:`woundroll.pipeline.vocabulary` gives (``winding.core_pressure [Pa]``,
+  ``hardness.reading [rho]``), then ``error``;
 * with ``uncertainty=N`` (``--uncertainty N``) each roll also propagates the case's
   ``[uncertainty]`` (:func:`woundroll.assess.uncertainty.propagate`, as ``woundroll run
   --uncertainty N``) and the table gets the 95 % bands: ``winding.core_pressure_low [Pa]``

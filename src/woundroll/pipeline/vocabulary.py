@@ -177,6 +177,8 @@ _TERMS: tuple[Term, ...] = (
     _o("overrides", "the --set overrides", "objects"),
     _o("history", "time histories of a study's roll", "any"),
     _o("pfeiffer", "the Pfeiffer law's fit"),
+    _o("constant", "the constant-modulus law's fit"),
+    _o("polynomial", "the polynomial law's fit"),
     _o("loading", "the loading law"),
     _o("unloading", "the unloading law"),
     # ------------------------------------------------------------------ case record
@@ -514,6 +516,22 @@ _TERMS: tuple[Term, ...] = (
     _i("runs", "forward runs made"),
     _t("loo_error", "", "leave-one-out error, in the readings' scale"),
     _t("loo_allowed", "", "allowed leave-one-out error"),
+    # ------------------------------------------------------------------ stack tests
+    _t("C1_Pa", "Pa", "polynomial law's C1", "C1"),
+    _t("C2_Pa", "Pa", "polynomial law's C2", "C2"),
+    _t("C3_Pa", "Pa", "polynomial law's C3", "C3"),
+    _t("strain", "", "radial strain of the stack (tabulated law)", "ε"),
+    _t("strain_max", "", "largest strain of the stack test"),
+    _t("K1_sd_Pa", "Pa", "standard error of K1"),
+    _t("K2_sd", "", "standard error of K2"),
+    _t("K1_K2_correlation", "", "correlation of K1 and K2"),
+    _t("covariance", "", "covariance matrix of the fitted parameters (SI)"),
+    _t("r2", "", "R^2 of the fit"),
+    _t("rms_rel_error", "", "RMS relative error of the fit"),
+    _t("max_rel_error", "", "largest relative error of the fit"),
+    _i("n_points", "points fitted"),
+    _t("energy_ratio_measured", "", "unloading over loading energy of the cycle"),
+    _t("restitution_measured", "", "restitution the cycle implies"),
     # ------------------------------------------------------------------ studies
     _s("study", "name of the study"),
     _s("figures", "figures of the reference paper the study reproduces"),
@@ -699,6 +717,7 @@ DOCUMENTS: dict[str, tuple[str, tuple[str, ...]]] = {
         ("schema_version", "instrument", "unknown"),
     ),
     "study": ("study.json / woundroll study --json", ("schema_version",)),
+    "fit-stack": ("woundroll fit-stack --json: radial-modulus laws fitted", ("schema_version",)),
 }
 
 _SCALAR = {"number": "number", "integer": "integer", "boolean": "boolean", "string": "string"}
