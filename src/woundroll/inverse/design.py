@@ -813,13 +813,13 @@ def _relaxations(
         out.append(
             {
                 "constraint": name,
-                "slack": slack,
-                "limit_needed": value,
+                "normalised_slack": slack,
+                "limit_needed_Pa": value,
                 "sentence": text.format(value * unit),
             }
         )
     if not out and viol:
-        out.append({"constraint": "reading", "slack": None, "limit_needed": None,
+        out.append({"constraint": "reading", "normalised_slack": None, "limit_needed_Pa": None,
                     "sentence": "widen --tolerance or the tension range"})  # fmt: skip
     return out
 

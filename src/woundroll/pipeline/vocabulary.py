@@ -116,7 +116,7 @@ def _i(name: str, meaning: str) -> Term:
 _TERMS: tuple[Term, ...] = (
     # ------------------------------------------------------------------ documents, blocks
     _i("schema_version", "version of this vocabulary the document is written in (2)"),
-    _o("case", "the case as run: title and every input with its source"),
+    _o("case", "the case as run: title and every input with its source (in a row: its name)"),
     _o("winding", "the 1D winding model: stresses per node from the core out"),
     _o("contact", "the roll under the striker: force-depth curve and the roll spring {3}"),
     _o("hardness", "the reading: the striker's impact on the roll spring"),
@@ -221,7 +221,7 @@ _TERMS: tuple[Term, ...] = (
     _s("modulus_update", "how E_r follows the pressure"),
     _t("rtol", "", "relative tolerance"),
     _i("max_iterations", "iteration limit"),
-    _t("modulus_floor", "", "floor of E_r, as a fraction of its zero-pressure value"),
+    _t("modulus_floor", "", "floor of E_r, as a fraction of E_theta"),
     _i("window_layers", "layers of the active window"),
     _i("flush_interval", "increments between flushes of the window"),
     _i("load_substeps", "load substeps of an increment"),
@@ -489,7 +489,11 @@ _TERMS: tuple[Term, ...] = (
     _t("layer_radius_m", "m", "mid radius of a layer"),
     _t("layer_mean_hoop_stress_Pa", "Pa", "mean hoop stress of a layer"),
     _s("binding_constraint", "the constraint with the least slack"),
-    _s("relaxations", "how to relax the constraints"),
+    _o("relaxations", "per violated constraint, the limit that admits the design", "objects"),
+    _s("constraint", "name of a design constraint"),
+    _t("normalised_slack", "", "slack of a constraint over its limit (< 0: violated)"),
+    _t("limit_needed_Pa", "Pa", "the constraint's limit that would admit the design"),
+    _i("full_forward_runs", "full forward runs made"),
     _s("case_snippet", "the setpoints as case-file TOML"),
     # ------------------------------------------------------------------ calibration
     _s("unknown", "the head dimension solved for"),
@@ -720,6 +724,9 @@ DOCUMENTS: dict[str, tuple[str, tuple[str, ...]]] = {
     "fit-stack": ("woundroll fit-stack --json: radial-modulus laws fitted", ("schema_version",)),
 }
 
+#: Blocks that a row names by a string instead (``rolls[].case``: the case's name).
+_ALSO_A_NAME = {"case"}
+
 _SCALAR = {"number": "number", "integer": "integer", "boolean": "boolean", "string": "string"}
 
 
@@ -738,6 +745,8 @@ def _term_schema(term: Term) -> dict[str, Any]:
                 {"type": "null"},
             ]
         }
+        if term.name in _ALSO_A_NAME:
+            s["anyOf"].append({"type": "string"})
     elif term.kind == "map":
         s = {"type": ["object", "null"]}
     else:

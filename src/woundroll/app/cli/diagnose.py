@@ -616,7 +616,8 @@ def design_cmd(
     window and no negative hoop stress, within the winder's ranges."""
 
     from woundroll.app.cli.console import fail, out
-    from woundroll.case import _tension, load_case
+    from woundroll.case import load_case
+    from woundroll.case.schema import _tension
     from woundroll.inverse.design import DesignTarget, design_setpoints
     from woundroll.io.readings import _scale_of
     from woundroll.units import to_si
