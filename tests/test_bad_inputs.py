@@ -274,7 +274,7 @@ def test_zero_tension_prints_no_negative_zero(tmp_path):
 
 
 def test_num_drops_the_sign_of_a_rounded_zero():
-    from woundroll.app.cli import _num
+    from woundroll.pipeline.summary import _num
 
     assert _num(-1e-12, ".1f") == "0.0"
     assert _num(-0.0, ".3g") == "0"

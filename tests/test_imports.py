@@ -10,7 +10,12 @@ import pytest
 
 import woundroll
 
-MODULES = sorted(m.name for m in pkgutil.walk_packages(woundroll.__path__, prefix="woundroll."))
+# ``__main__`` modules run the command line when imported (``python -m woundroll``)
+MODULES = sorted(
+    m.name
+    for m in pkgutil.walk_packages(woundroll.__path__, prefix="woundroll.")
+    if not m.name.endswith("__main__")
+)
 
 
 def test_package_has_modules() -> None:

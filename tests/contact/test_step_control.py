@@ -19,8 +19,8 @@ import pytest
 
 from woundroll.case import load_case
 from woundroll.contact import ContactOptions, indent, roll_stiffness
-from woundroll.contact.plane_strain import solver as solver_mod
 from woundroll.contact import spring as spring_mod
+from woundroll.contact.plane_strain import solver as solver_mod
 from woundroll.errors import InputError
 from woundroll.instruments import get_instrument, rho_energy
 from woundroll.pipeline import run

@@ -30,8 +30,8 @@ from woundroll.errors import InputError
 
 def _plane_strain(web: Any, core: Any, r: Any, sigma_r: Any, instrument: Any, **kw: Any) -> Any:
     """The plane-strain 2D model (:func:`woundroll.contact.indent`): (result, None)."""
-    from woundroll.contact.plane_strain.solver import indent
     from woundroll.contact.heads import head_length_of
+    from woundroll.contact.plane_strain.solver import indent
 
     kw.pop("options3d", None)
     res = indent(

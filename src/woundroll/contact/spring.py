@@ -435,7 +435,6 @@ def roll_stiffness(
     ConvergenceError
         The striker's depth kept growing past four solutions.
     """
-    from woundroll.contact.heads import head_length_of
     from woundroll.contact.models import resolve_model
 
     entry = resolve_model(model, instrument.head_shape, f"{field}.model")

@@ -1,0 +1,100 @@
+"""Regenerate the numbers in docs/ from the code, so that they cannot go stale silently.
+
+A page marks each generated block::
+
+    <!-- generated: studies.tension -->
+    | material | tension [N] | ...
+    <!-- end generated -->
+
+and the block's text is what the generator ``studies.tension`` returns: the function
+``tension`` in ``BLOCKS`` of ``docs/scripts/studies.py``. Run::
+
+    .venv/bin/python docs/scripts/regenerate.py            # rewrite every block
+    .venv/bin/python docs/scripts/regenerate.py studies    # only the blocks of studies.py
+    .venv/bin/python docs/scripts/regenerate.py --check    # exit 1 naming each stale block
+
+(``make docs`` runs the first). tests/test_docs.py checks that every marker names a generator
+and, in the slow suite, that every block is current.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import re
+import sys
+from collections.abc import Callable
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+DOCS = HERE.parent
+MARKER = re.compile(
+    r"(?P<open><!-- generated: (?P<name>[\w.-]+) -->\n)(?P<body>.*?)"
+    r"(?P<close><!-- end generated -->)",
+    re.S,
+)
+
+
+def generators() -> dict[str, Callable[[], str]]:
+    """Every ``module.block`` generator of docs/scripts/*.py (their ``BLOCKS``)."""
+    found: dict[str, Callable[[], str]] = {}
+    for path in sorted(HERE.glob("*.py")):
+        if path.name == Path(__file__).name:
+            continue
+        spec = importlib.util.spec_from_file_location(f"docs_scripts_{path.stem}", path)
+        assert spec is not None and spec.loader is not None
+        mod = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(mod)
+        for name, fn in getattr(mod, "BLOCKS", {}).items():
+            found[f"{path.stem}.{name}"] = fn
+    return found
+
+
+def blocks() -> list[tuple[Path, str]]:
+    """(page, generator name) of every marked block in docs/*.md."""
+    pages = sorted(DOCS.glob("*.md"))
+    return [(p, m["name"]) for p in pages for m in MARKER.finditer(p.read_text())]
+
+
+def regenerate(only: set[str], check: bool) -> list[str]:
+    """Rewrite (or with ``check`` compare) the blocks whose generator module is in ``only``
+    (all when empty); return the names of the blocks that were stale."""
+    gens = generators()
+    stale: list[str] = []
+    cache: dict[str, str] = {}
+    for page in sorted(DOCS.glob("*.md")):
+        text = page.read_text()
+
+        def fill(m: re.Match[str], page: Path = page) -> str:
+            name = m["name"]
+            if only and name.split(".")[0] not in only:
+                return m.group(0)
+            if name not in gens:
+                raise SystemExit(f"{page.name}: no generator {name!r} in docs/scripts")
+            if name not in cache:
+                print(f"generating {name} ...", file=sys.stderr, flush=True)
+                cache[name] = gens[name]().rstrip("\n") + "\n"
+            if cache[name] != m["body"]:
+                stale.append(f"{page.name}: {name}")
+            return m["open"] + cache[name] + m["close"]
+
+        new = MARKER.sub(fill, text)
+        if new != text and not check:
+            page.write_text(new)
+    return stale
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("modules", nargs="*", help="generator modules (default: all)")
+    ap.add_argument("--check", action="store_true", help="compare only; exit 1 if stale")
+    opts = ap.parse_args()
+    stale = regenerate(set(opts.modules), opts.check)
+    for s in stale:
+        print(("stale: " if opts.check else "updated: ") + s)
+    if opts.check and stale:
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()
