@@ -359,6 +359,18 @@ _TERMS: tuple[Term, ...] = (
     _t("peak_position_m", "m", "position of a band's peak"),
     _t("peak", "", "a band's peak reading"),
     _t("deviation", "", "deviation from the mean reading"),
+    _s("chart", "the control chart's kind and limits"),
+    _b("provisional", "too few rolls for settled control limits"),
+    _o("mean_chart", "X-mR chart of the rolls' mean readings"),
+    _o("cov_chart", "X-mR chart of the rolls' CoV"),
+    _s("flagged", "rolls outside the control limits, one sentence each"),
+    _t("values", "", "the chart's values, one per roll"),
+    _t("center", "", "the chart's centre line"),
+    _t("mr_bar", "", "mean moving range"),
+    _t("ucl", "", "upper control limit"),
+    _t("lcl", "", "lower control limit"),
+    _t("mr_ucl", "", "upper control limit of the moving range"),
+    _i("out_of_control", "indices of the rolls outside the limits"),
     # ------------------------------------------------------------------ diagnosis
     _t("web_tension_Pa", "Pa", "web stress at the winder (tension / (width thickness))", "T_w"),
     _t("web_tension_low_Pa", "Pa", "lower end of web_tension_Pa's interval"),
@@ -721,6 +733,10 @@ DOCUMENTS: dict[str, tuple[str, tuple[str, ...]]] = {
         ("schema_version", "instrument", "unknown"),
     ),
     "study": ("study.json / woundroll study --json", ("schema_version",)),
+    "trend": (
+        "trend.json / woundroll readings --trend --json: roll-to-roll control charts",
+        ("schema_version", "rolls"),
+    ),
     "fit-stack": ("woundroll fit-stack --json: radial-modulus laws fitted", ("schema_version",)),
 }
 

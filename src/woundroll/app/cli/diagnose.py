@@ -268,14 +268,14 @@ def _readings_trend(  # type: ignore[no-untyped-def]
         try:
             out_dir.mkdir(parents=True, exist_ok=True)
             (out_dir / "trend.json").write_text(
-                strict_json(tr.to_dict(), indent=1), encoding="utf-8"
+                strict_json(versioned(tr.to_dict()), indent=1), encoding="utf-8"
             )
             (out_dir / "trend.csv").write_text(tr.to_csv(), encoding="utf-8")
             plt.close(tr.plot(out_dir / "trend.png"))
         except OSError as exc:
             raise InputError(f"cannot write to {out_dir}: {exc.strerror or exc}", "--out") from None
     if as_json:
-        sys.stdout.write(strict_json(tr.to_dict()) + "\n")
+        sys.stdout.write(strict_json(versioned(tr.to_dict())) + "\n")
         return
     s = tr.scale
     lots = any("lot" in c.ids for c in checks)
