@@ -144,7 +144,7 @@ def test_write_produces_json_and_pngs(subset, slip, piles, tmp_path):
         data = json.loads((out / "study.json").read_text(encoding="utf-8"))
         assert data["study"] == name
         # strict JSON: the file was written with allow_nan=False, check a round trip
-        assert data == json.loads(json.dumps(study.to_dict()))
+        assert data == {"schema_version": 2, **json.loads(json.dumps(study.to_dict()))}
 
 
 def test_slip_factor_exceeds_one_around_the_impact(slip):
