@@ -101,7 +101,7 @@ def main() -> None:
         "cho_solve_banded": "banded solve of the free step",
         "values_lower": "assembly: element values",
         "banded": "assembly: scatter into band storage",
-        "_lcp": "complementarity (NNLS on chol(W))",
+        "lcp": "complementarity (NNLS on chol(W))",
         "stress_increment": "stress update",
         "moduli": "moduli (E_r law, plane-strain reduction)",
     }

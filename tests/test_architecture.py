@@ -37,7 +37,7 @@ LAYERS: list[tuple[str, ...]] = [
 
 #: Inside ``woundroll.contact``, lowest first.
 CONTACT_LAYERS: list[tuple[str, ...]] = [
-    ("result", "heads"),
+    ("result", "heads", "stepping"),
     ("plane_strain",),
     ("solid3d",),
     ("models",),

@@ -181,61 +181,15 @@ def fit_roll_spring(
     solve_window : bool
         Solve the window's fixed point (default); False: ``passes`` plain passes only.
     """
-    d = np.asarray(delta, dtype=float).ravel()
-    f = np.asarray(force, dtype=float).ravel()
-    if d.shape != f.shape or d.size < 2:
-        raise InputError("need matching depth and force arrays of >= 2 points", "roll_spring")
-    if not (np.all(np.isfinite(d)) and np.all(np.isfinite(f))):
-        raise InputError("the force-depth curve has non-finite values", "roll_spring")
-    keep = d > 0
-    d, f = d[keep], f[keep]
-    if d.size < 2 or not np.any(f > 0):
-        raise InputError("the force-depth curve carries no load", "roll_spring")
-    sel = np.ones(d.size, dtype=bool)
+    d, f = _loaded_curve(delta, force)
     alpha, beta = _nnls_quadratic(d, f)
     d_max = None
     if instrument is not None:
-        from woundroll.instruments.impact import energy_max_depth  # the striker's reach
-
-        def impact_depth(a: float, b: float) -> float:
-            return float(
-                energy_max_depth(
-                    a,
-                    b,
-                    instrument.spring_stiffness,  # type: ignore[attr-defined]
-                    instrument.release_position,  # type: ignore[attr-defined]
-                    instrument.contact_position,  # type: ignore[attr-defined]
-                )
-            )
-
-        # the window [0, reach d_max] is sampled on the interpolated curve at fixed
-        # fractions of its length, so that the fit -- and the reading -- is a continuous
-        # function of d_max: selecting the computed points inside the window made the
-        # fit jump whenever a point left it (0.3 Rho on PET1 40 N, docs/contact.md)
-        from woundroll.util.pchip import pchip  # SciPy's PCHIP without importing scipy.interpolate
-
-        curve = pchip(np.concatenate([[0.0], d]), np.concatenate([[0.0], f]))
-        frac = (np.arange(1, WINDOW_SAMPLES + 1) / WINDOW_SAMPLES) ** 1.5
-        d_end = float(d.max())
-
-        def fit_over(window: float) -> tuple[float, float]:
-            ds = window * frac
-            return _nnls_quadratic(ds, curve(ds))
-
-        def next_window(window: float) -> float:
-            return min(reach * impact_depth(*fit_over(window)), d_end)
-
-        window = min(reach * impact_depth(alpha, beta), d_end)
-        for _ in range(passes - 1):
-            window = next_window(window)
-        if solve_window:
-            window = _window_fixed_point(next_window, window, d_end)
-        alpha, beta = fit_over(window)
-        ds = window * frac
-        d_max = impact_depth(alpha, beta)
-        fs = curve(ds)
+        alpha, beta, ds, fs, d_max = _fit_over_the_reach(
+            d, f, (alpha, beta), instrument, reach, passes, solve_window
+        )
     else:
-        ds, fs = d[sel], f[sel]
+        ds, fs = d, f
     fit = (alpha * ds + beta) * ds
     ss_tot = float(np.sum((fs - fs.mean()) ** 2))
     r2 = 1.0 - float(np.sum((fs - fit) ** 2)) / ss_tot if ss_tot > 0 else 1.0
@@ -249,6 +203,74 @@ def fit_roll_spring(
         n_points=int(ds.size),
         extrapolated=bool(d_max is not None and d_max > float(d.max()) * (1 + 1e-9)),
     )
+
+
+def _loaded_curve(
+    delta: ArrayLike, force: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The curve's points at positive depth, checked (matching, finite, carrying load)."""
+    d = np.asarray(delta, dtype=float).ravel()
+    f = np.asarray(force, dtype=float).ravel()
+    if d.shape != f.shape or d.size < 2:
+        raise InputError("need matching depth and force arrays of >= 2 points", "roll_spring")
+    if not (np.all(np.isfinite(d)) and np.all(np.isfinite(f))):
+        raise InputError("the force-depth curve has non-finite values", "roll_spring")
+    keep = d > 0
+    d, f = d[keep], f[keep]
+    if d.size < 2 or not np.any(f > 0):
+        raise InputError("the force-depth curve carries no load", "roll_spring")
+    return d, f
+
+
+def _fit_over_the_reach(
+    d: NDArray[np.float64],
+    f: NDArray[np.float64],
+    start: tuple[float, float],
+    instrument: Any,
+    reach: float,
+    passes: int,
+    solve_window: bool,
+) -> tuple[float, float, NDArray[np.float64], NDArray[np.float64], float]:
+    """The fit narrowed to the depths the striker reaches (:func:`fit_roll_spring`):
+    (alpha, beta, the window's sample depths and forces, the energy model's depth)."""
+    from woundroll.instruments.impact import energy_max_depth  # the striker's reach
+
+    def impact_depth(a: float, b: float) -> float:
+        return float(
+            energy_max_depth(
+                a,
+                b,
+                instrument.spring_stiffness,
+                instrument.release_position,
+                instrument.contact_position,
+            )
+        )
+
+    # the window [0, reach d_max] is sampled on the interpolated curve at fixed
+    # fractions of its length, so that the fit -- and the reading -- is a continuous
+    # function of d_max: selecting the computed points inside the window made the
+    # fit jump whenever a point left it (0.3 Rho on PET1 40 N, docs/contact.md)
+    from woundroll.util.pchip import pchip  # SciPy's PCHIP without importing scipy.interpolate
+
+    curve = pchip(np.concatenate([[0.0], d]), np.concatenate([[0.0], f]))
+    frac = (np.arange(1, WINDOW_SAMPLES + 1) / WINDOW_SAMPLES) ** 1.5
+    d_end = float(d.max())
+
+    def fit_over(window: float) -> tuple[float, float]:
+        ds = window * frac
+        return _nnls_quadratic(ds, curve(ds))
+
+    def next_window(window: float) -> float:
+        return min(reach * impact_depth(*fit_over(window)), d_end)
+
+    window = min(reach * impact_depth(*start), d_end)
+    for _ in range(passes - 1):
+        window = next_window(window)
+    if solve_window:
+        window = _window_fixed_point(next_window, window, d_end)
+    alpha, beta = fit_over(window)
+    ds = window * frac
+    return alpha, beta, ds, curve(ds), impact_depth(alpha, beta)
 
 
 #: The loading stops once its depth is this many times the fit window of the curve so far
@@ -439,17 +461,8 @@ def roll_stiffness(
 
     entry = resolve_model(model, instrument.head_shape, f"{field}.model")
     r = np.asarray(radius, dtype=float)
-    # the model's reach: below half the head radius and a quarter of the wound thickness
-    reach = 0.98 * min(
-        0.5 * instrument.head_radius if instrument.head_shape != "punch" else np.inf,
-        0.25 * float(r[-1] - r[0]),
-    )
-    if depth_max is not None:
-        depth = depth_max
-    elif start_depth is not None:
-        depth = min(start_depth, reach)
-    else:
-        depth = min(FIRST_DEPTH, 0.8 * reach)
+    reach = _model_reach(instrument, r)
+    depth = _first_depth(depth_max, start_depth, reach)
     stop = None
     if depth_max is None and entry.extends:
         stop = _past_the_reach(instrument)
@@ -471,28 +484,56 @@ def roll_stiffness(
             )
         except InputError as exc:
             raise exc.at(field) from None
-        name = entry.name
         spring = fit_roll_spring(contact.delta, contact.force, instrument, reach=FIT_REACH)
-        # deepen while the fit window [0, FIT_REACH d_max] is cut off by the solution's
-        # depth (not only when d_max itself is beyond it): the window then always has its
-        # full length and the spring stays continuous in the roll's state
         solved = float(contact.delta[-1]) if stop is not None else depth  # extended
-        window_inside = FIT_REACH * float(spring.max_depth) <= solved * (1 + 1e-9)  # type: ignore[arg-type]
-        if window_inside or (depth_max is None and solved >= reach * (1 - 1e-12)):
-            # beyond the model's reach (a slack, floor-soft roll) the fit is extrapolated:
-            # RollStiffness.extrapolated says so
-            return RollStiffness(contact, spring, name, correction)
-        if depth_max is not None and not spring.extrapolated:
-            # a fixed depth: the window is cut there
-            return RollStiffness(contact, spring, name, correction)
-        if depth_max is not None:
-            raise InputError(
-                f"the striker reaches {spring.max_depth * 1e3:.3g} mm, deeper than the "
-                f"contact solution ({depth * 1e3:.3g} mm): raise it or leave it unset",
-                f"{field}.depth_max",
-            )
+        if _deep_enough(spring, solved, depth_max, reach, field):
+            return RollStiffness(contact, spring, entry.name, correction)
         depth = min(DEEPEN_MARGIN * FIT_REACH * float(spring.max_depth), reach)  # type: ignore[arg-type]
     raise ConvergenceError(
         f"the striker's depth kept growing past the contact solution ({depth * 1e3:.3g} mm) "
         "after 4 solutions"
     )
+
+
+def _model_reach(instrument: Instrument, r: NDArray[np.float64]) -> float:
+    """The contact model's reach: below half the head radius and a quarter of the wound
+    thickness."""
+    return 0.98 * min(
+        0.5 * instrument.head_radius if instrument.head_shape != "punch" else np.inf,
+        0.25 * float(r[-1] - r[0]),
+    )
+
+
+def _first_depth(depth_max: float | None, start_depth: float | None, reach: float) -> float:
+    """The depth of the first contact solution (:func:`roll_stiffness`)."""
+    if depth_max is not None:
+        return depth_max
+    if start_depth is not None:
+        return min(start_depth, reach)
+    return min(FIRST_DEPTH, 0.8 * reach)
+
+
+def _deep_enough(
+    spring: SpringFit, solved: float, depth_max: float | None, reach: float, field: str
+) -> bool:
+    """The contact solution, solved to ``solved``, is deep enough for the spring.
+
+    Deepen while the fit window [0, FIT_REACH d_max] is cut off by the solution's depth
+    (not only when d_max itself is beyond it): the window then always has its full length
+    and the spring stays continuous in the roll's state. Beyond the model's reach (a slack,
+    floor-soft roll) the fit is extrapolated (:attr:`RollStiffness.extrapolated` says so);
+    at a fixed ``depth_max`` the window is cut there, and a striker going deeper is an
+    input error.
+    """
+    window_inside = FIT_REACH * float(spring.max_depth) <= solved * (1 + 1e-9)  # type: ignore[arg-type]
+    if window_inside or (depth_max is None and solved >= reach * (1 - 1e-12)):
+        return True
+    if depth_max is not None and not spring.extrapolated:
+        return True
+    if depth_max is not None:
+        raise InputError(
+            f"the striker reaches {spring.max_depth * 1e3:.3g} mm, deeper than the "
+            f"contact solution ({depth_max * 1e3:.3g} mm): raise it or leave it unset",
+            f"{field}.depth_max",
+        )
+    return False

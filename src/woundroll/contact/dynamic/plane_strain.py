@@ -72,11 +72,12 @@ import scipy.linalg as la
 from numpy.typing import NDArray
 from scipy.linalg.blas import dsbmv
 from scipy.linalg.lapack import dtbtrs
-from scipy.optimize import nnls
 
+from woundroll.contact.dynamic import timeloop
+from woundroll.contact.dynamic.timeloop import ImpactState, Increment, Newmark, Striker
 from woundroll.contact.plane_strain.fem import Assembler, plane_strain_moduli
-from woundroll.contact.plane_strain.mesh import RollMesh, build_mesh
-from woundroll.contact.plane_strain.solver import ContactOptions, _Roll
+from woundroll.contact.plane_strain.mesh import RollMesh
+from woundroll.contact.plane_strain.solver import ContactOptions, _Roll, contact_mesh
 from woundroll.errors import ConvergenceError, InputError
 
 if TYPE_CHECKING:
@@ -207,23 +208,6 @@ def element_mass(mesh: RollMesh) -> FloatArray:
     M[:, 0::2, 0::2] = m4
     M[:, 1::2, 1::2] = m4
     return M
-
-
-def _lcp(W: FloatArray, q: FloatArray) -> FloatArray:
-    """``lam >= 0, q + W lam >= 0, lam (q + W lam) = 0`` for SPD ``W`` (NNLS on its Cholesky
-    factor; the same method as the quasi-static model's)."""
-    W = 0.5 * (W + W.T)
-    scale = float(np.max(np.diag(W)))
-    try:
-        L = la.cholesky(W / scale, lower=True)
-    except la.LinAlgError:
-        raise ConvergenceError("contact flexibility matrix is not positive definite") from None
-    b = -la.solve_triangular(L, q / scale, lower=True)
-    try:
-        lam, _ = nnls(L.T, b, maxiter=50 * max(q.size, 10))
-    except RuntimeError as exc:
-        raise ConvergenceError(f"contact active set did not settle ({exc})") from None
-    return lam
 
 
 class _FeRoll(_Roll):
@@ -516,144 +500,251 @@ class DynamicImpactResult:
         return fig
 
 
-def _mesh_for(
+def _dynamic_mesh(
     web: Web, core: Core, r_out: float, head_radius: float, depth: float, opts: ContactOptions
 ) -> RollMesh:
-    """The quasi-static model's default mesh for a solve to ``depth`` (same rules as
-    :func:`woundroll.contact.indent`: surface ring one layer thick, fine zone a_geo, tangential
-    size max(h/4, a_geo/40))."""
-    r_in = core.outer_radius
-    R_eff = 1.0 / (1.0 / head_radius + 1.0 / r_out)
-    a_geo = math.sqrt(2.0 * R_eff * depth)
-    surface_size = opts.surface_size if opts.surface_size is not None else web.thickness
-    t_size = (
-        opts.tangential_size
-        if opts.tangential_size is not None
-        else max(0.25 * surface_size, a_geo / 40.0)
-    )
-    fine = opts.fine_halfwidth if opts.fine_halfwidth is not None else a_geo
-    if surface_size >= 0.5 * (r_out - r_in):
-        raise InputError("is too large for the wound thickness", "contact.options.surface_size")
-    return build_mesh(
-        r_in,
+    """The quasi-static model's mesh (:func:`~woundroll.contact.plane_strain.solver.contact_mesh`)
+    with the surface ring one layer thick and the fine zone the whole a_geo."""
+    return contact_mesh(
+        web,
+        core,
         r_out,
-        surface_size=surface_size,
-        radial_growth=opts.radial_growth,
-        tangential_size=t_size,
-        fine_halfwidth=max(fine, t_size),
-        tangential_growth=opts.tangential_growth,
-        max_element_angle=opts.max_element_angle,
-        periodic=not opts.half_model,
+        head_radius,
+        depth,
+        opts,
+        surface_layers=1.0,
+        fine_zone=1.0,
+        field="contact.options.surface_size",
     )
 
 
-@dataclass(frozen=True)
-class _Separation:
-    """The striker's history closed at separation (shared by the 2D and 3D FE impacts)."""
+class _ImpactRoll2D:
+    """The 2D roll in the time loop (:class:`woundroll.contact.dynamic.timeloop.FeRoll`): the
+    moduli of a step, its solve with the contact (module docstring), the roll's Newmark
+    update and its stresses."""
 
-    t: FloatArray
-    x: FloatArray
-    v: FloatArray
-    a: FloatArray
-    f: FloatArray
-    t_end: float
-    x_sep: float
-    v_sep: float
-    impulse: float
-    v_rebound: float
-    back: float
-    e_striker: float
+    label = "dynamic impact"
+    n_stress = 3
 
-    def striker_fields(
+    def __init__(
         self,
-        instrument: Instrument,
-        *,
-        peak: float,
-        peak_step: int,
-        dt: float,
-        t_contact: float,
-        v_contact: float,
-        contact_position: float,
-        energy_in: float,
-        energy_roll: float,
-        energy_damped: float,
-        elastic: bool,
-        energies: tuple[FloatArray, FloatArray, FloatArray],
-    ) -> dict[str, Any]:
-        """The :class:`DynamicImpactResult` fields of the striker's side: the reading, the
-        impulse and contact time, the rebound readouts (Schmidt R, Parotester L), the
-        energy budget and the histories (2D and 3D FE impacts alike)."""
-        from woundroll.instruments.readout import parotester_l, schmidt_r
+        roll: _FeRoll,
+        opts: DynamicOptions,
+        nm: Newmark,
+        striker: Striker,
+        head_radius: float,
+        depth_scale: float,
+    ) -> None:
+        self.roll, self.opts, self.nm, self.striker = roll, opts, nm, striker
+        self.R_h = self.head_radius = head_radius
+        self.r_out = float(roll.mesh.r[-1])
+        self.n = roll.n
+        self.sigma_pre, self.r_centre = roll.sigma_pre, roll.r_centre
+        self.elastic = roll.web.radial_unloading is None
+        self.n_contact = roll.surface.size
+        self.mass_times = roll.mass_times
+        s_surf = self.r_out * roll.mesh.theta
+        trib = 0.5 * (np.roll(s_surf, -1) - np.roll(s_surf, 1))
+        if not roll.mesh.periodic:  # the half model
+            trib[0] = 0.5 * s_surf[1]
+            trib[-1] = 0.5 * (s_surf[-1] - s_surf[-2])
+        self.surface_s, self.trib = s_surf, trib
+        col = roll.axis_elements
+        self.axis_depth = self.r_out - roll.r_centre[col]
+        #: the contact axis's elements, surface first (as reported)
+        self.axis_elements = col[np.argsort(self.axis_depth)]
+        self.frozen = roll.moduli(roll.sigma_pre) if not opts.update_modulus else None
+        self.tol_gap = 1e-6 * max(float(depth_scale), 1e-9)
+        self._factor_cache: list[Any] = []  # (moduli, K band, Cholesky) for E_r frozen
 
-        xg, v_c = contact_position, v_contact
-        es, ek, ei = energies
-        return {
-            "rho": peak / instrument.rho_unit,
-            "peak_deceleration": peak,
-            "peak_time": peak_step * dt,
-            "peak_force": float(np.max(self.f)),
-            "max_depth": float(np.max(self.x) - xg),
-            "impulse": self.impulse,
-            "contact_time": self.t_end - t_contact,
-            "contact_start": t_contact,
-            "impact_speed": v_c,
-            "rebound_speed": self.v_rebound,
-            "restitution": self.v_rebound / v_c,
-            "rebound_r": float(schmidt_r(self.back, instrument.release_position, xg)),
-            "rebound_l": float(parotester_l(v_c, self.v_rebound)),
-            "energy_in": energy_in,
-            "energy_roll_left": energy_roll,
-            "energy_damped": energy_damped,
-            "energy_contact_loss": energy_in - self.e_striker - energy_roll - energy_damped,
-            "elastic_rebound": elastic,
-            "time": self.t,
-            "position": self.x,
-            "velocity": self.v,
-            "deceleration": self.a,
-            "contact_force": self.f,
-            "energy_striker": es,
-            "energy_roll_kinetic": ek,
-            "energy_roll_internal": ei,
-        }
+    def contact_pressure(self, lam: FloatArray) -> FloatArray:
+        return lam / self.trib
+
+    def _moduli(self, st: ImpactState) -> tuple[FloatArray, ...]:
+        """The element moduli of the step (``modulus_update``, module docstring)."""
+        roll, sig, p_hist = self.roll, st.sig, st.p_hist
+        if self.frozen is not None:
+            return self.frozen
+        if self.opts.modulus_update == "euler":
+            return roll.moduli(roll.sigma_pre + sig[:, 0], p_hist)
+        if self.opts.modulus_update == "extrapolated":
+            return roll.moduli(roll.sigma_pre + sig[:, 0] + 0.5 * st.dsig_prev_r, p_hist)
+        # midpoint: trial step at the start-of-step moduli
+        mod0 = roll.moduli(roll.sigma_pre + sig[:, 0], p_hist)
+        trial = self._solve(st, mod0)
+        dsr = roll.stress_increment(mod0, roll.full(trial[0]))[:, 0]
+        return roll.moduli(roll.sigma_pre + sig[:, 0] + 0.5 * dsr, p_hist)
+
+    def _effective_stiffness(self, mod: tuple[FloatArray, ...]) -> tuple[FloatArray, FloatArray]:
+        """The stiffness band and the Cholesky factor of ``K_eff = K_t + c0 M`` (+ damping);
+        with E_r frozen factorised once."""
+        cache = self._factor_cache
+        if cache and cache[0] is mod:
+            return cache[1], cache[2]
+        roll, nm = self.roll, self.nm
+        Kb = roll.k_band(mod)
+        A = (1.0 + nm.c1 * nm.a1) * Kb
+        if roll.M_band is None:
+            A[0] += (nm.c0 + nm.c1 * nm.a0) * roll.m_lumped
+        else:
+            A = A + (nm.c0 + nm.c1 * nm.a0) * roll.M_band
+        try:
+            cb = la.cholesky_banded(A, lower=True, check_finite=False)
+        except la.LinAlgError:
+            raise ConvergenceError("effective stiffness is not positive definite") from None
+        if mod is self.frozen:
+            cache[:] = [mod, Kb, cb]
+        return Kb, cb
+
+    def _free_step(
+        self, st: ImpactState, Kb: FloatArray, cb: FloatArray
+    ) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """The roll's step without contact forces: (du, predicted a, predicted v)."""
+        nm, m_vec = self.nm, self.mass_times
+        a0, a1 = nm.a0, nm.a1
+        a_pred = nm.predicted_acceleration(st.v, st.acc)
+        v_pred = nm.predicted_velocity(st.v, st.acc, a_pred)
+        rhs = -st.f_int + m_vec(a_pred)
+        if a0 > 0 or a1 > 0:
+            cv = a0 * m_vec(v_pred)
+            if a1 > 0:
+                cv = cv + a1 * dsbmv(Kb.shape[0] - 1, 1.0, Kb, v_pred, lower=1)
+            rhs = rhs - cv
+        du_free = la.cho_solve_banded((cb, True), rhs, check_finite=False)
+        return du_free, a_pred, v_pred
+
+    def _head_to_surface(
+        self, st: ImpactState, du: FloatArray, dx: float
+    ) -> tuple[FloatArray, FloatArray]:
+        """Distances of the surface nodes from the head's axis at the striker's new
+        position, and the vectors from the axis to them."""
+        roll = self.roll
+        centre = np.array([self.r_out + self.R_h - (st.x + dx - self.striker.xg), 0.0])
+        pos = roll.xy[roll.surface] + roll.cartesian(roll.full(st.u + du), roll.surface)
+        dpos = pos - centre
+        return np.hypot(dpos[:, 0], dpos[:, 1]), dpos
+
+    def _contact(
+        self, st: ImpactState, cb: FloatArray, du_free: FloatArray, dx_free: float
+    ) -> tuple[FloatArray, float, FloatArray, FloatArray]:
+        """The step with the contact forces: the exact complementarity on the candidate
+        nodes, the set enlarged where a node outside it penetrates. (du, dx, lam, normal)"""
+        roll, n_surf, fi = self.roll, self.n_contact, self.roll.fi
+        s_eff = self.striker.stiffness(self.nm)
+        dist, dpos = self._head_to_surface(st, du_free, dx_free)
+        g_free = dist - self.R_h
+        normal = dpos / dist[:, None]
+        cand = (g_free < 0) | (st.lam > 0)
+        lam_new = np.zeros(n_surf)
+        du, dx = du_free, dx_free
+        for _ in range(8):
+            if not np.any(cand):
+                break
+            band = np.flatnonzero(cand)
+            idx = np.unique(
+                np.clip(np.concatenate([band + k for k in (-2, -1, 0, 1, 2)]), 0, n_surf - 1)
+            )
+            nodes = roll.surface[idx]
+            n_r, n_t = roll.polar(normal[idx], nodes)
+            rows_r, rows_t = fi[2 * nodes], fi[2 * nodes + 1]
+            m = idx.size
+            rhs_c = np.zeros((self.n, m))
+            cols = np.arange(m)
+            ok_r, ok_t = rows_r >= 0, rows_t >= 0
+            rhs_c[rows_r[ok_r], cols[ok_r]] = n_r[ok_r]
+            rhs_c[rows_t[ok_t], cols[ok_t]] = n_t[ok_t]
+            # W = N^T K_eff^-1 N = Y^T Y with Y = L^-1 N (forward substitutions only);
+            # the displacement of the contact forces is then one backward solve L^-T (Y lam)
+            Y, info = dtbtrs(cb, rhs_c, uplo="L", trans="N", diag="N")
+            if info != 0:
+                raise ConvergenceError("banded triangular solve failed")
+            nx = normal[idx, 0]
+            W = Y.T @ Y + np.outer(nx, nx) / s_eff
+            lam_c = timeloop.lcp(W, g_free[idx])
+            dz, info = dtbtrs(cb, Y @ lam_c, uplo="L", trans="T", diag="N")
+            if info != 0:
+                raise ConvergenceError("banded triangular solve failed")
+            du = du_free + dz
+            dx = dx_free + float(nx @ lam_c) / s_eff
+            gap = self._head_to_surface(st, du, dx)[0] - self.R_h
+            outside = np.ones(n_surf, dtype=bool)
+            outside[idx] = False
+            bad = outside & (gap < -self.tol_gap)
+            lam_new = np.zeros(n_surf)
+            lam_new[idx] = lam_c
+            if not np.any(bad):
+                break
+            cand |= bad
+        else:
+            raise ConvergenceError(
+                "dynamic contact: the contact set did not settle in 8 enlargements; "
+                "use a smaller time step or a finer mesh"
+            )
+        return du, dx, lam_new, normal
+
+    def _solve(self, st: ImpactState, mod: tuple[FloatArray, ...]) -> tuple[Any, ...]:
+        """The step at the moduli ``mod``: (du, dx, lam, contact forces on the roll's free
+        DOFs, contact force on the striker per model, predicted a and v, K band)."""
+        roll = self.roll
+        Kb, cb = self._effective_stiffness(mod)
+        du_free, a_pred, v_pred = self._free_step(st, Kb, cb)
+        dx_free = self.striker.free_step(st, self.nm)
+        du, dx, lam_new, normal = self._contact(st, cb, du_free, dx_free)
+        # contact forces: on the roll nodes lam * normal (polar DOFs), on the striker n_x lam
+        fc = np.zeros(roll.free.size)
+        fr, ft = roll.polar(normal * lam_new[:, None], roll.surface)
+        fc[2 * roll.surface] = fr
+        fc[2 * roll.surface + 1] = ft
+        f_striker = float(normal[:, 0] @ lam_new)  # + towards the roll
+        return du, dx, lam_new, fc[roll.free], f_striker, a_pred, v_pred, Kb
+
+    def _damping_force(self, x: FloatArray, Kb: FloatArray) -> FloatArray:
+        nm = self.nm
+        return nm.a0 * self.mass_times(x) + (
+            nm.a1 * dsbmv(Kb.shape[0] - 1, 1.0, Kb, x, lower=1) if nm.a1 > 0 else 0.0
+        )
+
+    def advance(self, st: ImpactState, k_step: int) -> Increment:
+        """The step's increment: moduli, solve, the roll's Newmark update, stresses."""
+        nm, roll = self.nm, self.roll
+        mod = self._moduli(st)
+        du, dx, lam_new, fc, f_s, a_pred, v_pred, Kb = self._solve(st, mod)
+        acc_new = nm.c0 * du - a_pred
+        v_new = v_pred + nm.c1 * du
+        f_int_new = fc - self.mass_times(acc_new)
+        damping = None
+        if nm.damped:
+            cv_old, cv_new = self._damping_force(st.v, Kb), self._damping_force(v_new, Kb)
+            f_int_new = f_int_new - cv_new
+            damping = (cv_old, cv_new)
+        dsig = roll.stress_increment(mod, roll.full(du))
+        force = -self.striker.scale * f_s  # on the striker, pushing it back [N]
+        return Increment(du, dx, lam_new, acc_new, v_new, f_int_new, dsig, force, damping)
 
 
-def _separation(
-    times: list[float],
-    xs: list[float],
-    vs: list[float],
-    acc: list[float],
-    forces: list[float],
-    dt: float,
-    k_s: float,
-    m_s: float,
-    xg: float,
-) -> _Separation:
-    """Close the striker's history where the contact force crosses zero between the last
-    two steps (linear in the step), then the impulse (trapezoid), the striker's rebound
-    speed at the contact position and how far back it swings, by its spring {1}, and its
-    mechanical energy at separation (spring energy counted from the contact position)."""
-    T, X, V, A, F = (np.asarray(h, dtype=float) for h in (times, xs, vs, acc, forces))
-    f1, f2 = F[-2], F[-1]
-    w = f1 / (f1 - f2) if f1 > 0 and f1 != f2 else 1.0
-    t_end = float(T[-2] + w * dt)
-    x_sep = float(X[-2] + w * (X[-1] - X[-2]))
-    v_sep = float(V[-2] + w * (V[-1] - V[-2]))
-    T[-1], X[-1], V[-1], F[-1] = t_end, x_sep, v_sep, 0.0
-    A[-1] = k_s * x_sep / m_s
-    return _Separation(
-        t=T,
-        x=X,
-        v=V,
-        a=A,
-        f=F,
-        t_end=t_end,
-        x_sep=x_sep,
-        v_sep=v_sep,
-        impulse=float(np.sum(0.5 * (F[1:] + F[:-1]) * np.diff(T))),
-        v_rebound=math.sqrt(max(v_sep * v_sep + (k_s / m_s) * (x_sep * x_sep - xg * xg), 0.0)),
-        back=math.sqrt(x_sep * x_sep + (m_s / k_s) * v_sep * v_sep),
-        e_striker=0.5 * m_s * v_sep * v_sep + 0.5 * k_s * (x_sep * x_sep - xg * xg),
+def _spring_estimate(
+    web: Web,
+    core: Core,
+    profile: tuple[FloatArray, FloatArray],
+    instrument: Instrument,
+    opts: DynamicOptions,
+    mesh_opts: ContactOptions,
+) -> tuple[float, float, float]:
+    """The energy model's depth on the quasi-static roll spring (coarse), the spring's
+    secant stiffness there and the deepest depth solved
+    (:func:`woundroll.contact.dynamic.timeloop.estimates`)."""
+    from woundroll.contact.spring import roll_stiffness
+
+    est = roll_stiffness(
+        web,
+        core,
+        *profile,
+        instrument,
+        update_modulus=opts.update_modulus,
+        options=replace(mesh_opts, n_steps=8),
     )
+    d_est = est.impact_depth
+    return d_est, est.alpha * d_est + est.beta, float(est.contact.delta[-1])
 
 
 def impact_dynamic(
@@ -709,293 +800,28 @@ def impact_dynamic(
     R_h = float(instrument.head_radius)
     r = np.asarray(radius, dtype=float)
     s = np.asarray(sigma_r, dtype=float)
-    rho_roll = float(web.density if density is None else density)
-    if not (math.isfinite(rho_roll) and rho_roll > 0):
-        raise InputError(f"must be positive, got {density!r}", "contact.dynamic_density")
-    m_s, k_s = instrument.mass, instrument.spring_stiffness
-    xg = instrument.contact_position
-    if contact_time is None or depth_scale is None:
-        from woundroll.contact.spring import roll_stiffness
-
-        est = roll_stiffness(
-            web,
-            core,
-            r,
-            s,
-            instrument,
-            update_modulus=opts.update_modulus,
-            options=replace(mesh_opts, n_steps=8),
-        )
-        d_est = est.impact_depth
-        if depth_scale is None:
-            depth_scale = min(1.25 * d_est, float(est.contact.delta[-1]))
-        if contact_time is None:
-            k_sec = (est.alpha * d_est + est.beta) + k_s
-            contact_time = math.pi * math.sqrt(m_s / k_sec)
-    if not (math.isfinite(contact_time) and contact_time > 0):
-        raise InputError(f"must be positive, got {contact_time!r}", "contact_time")
-    dt = opts.time_step if opts.time_step is not None else contact_time / opts.steps_per_contact
-    if dt > contact_time / 20:
-        raise InputError(
-            f"{dt:.3g} s is too coarse: the contact lasts about {contact_time:.3g} s; use at "
-            f"most {contact_time / 20:.3g} s",
-            "contact.dynamic_options.time_step",
-        )
+    rho_roll = timeloop.roll_density(web, density)
+    contact_time, depth_scale = timeloop.estimates(
+        instrument,
+        contact_time,
+        depth_scale,
+        lambda: _spring_estimate(web, core, (r, s), instrument, opts, mesh_opts),
+    )
+    dt = timeloop.time_step(opts, contact_time)
     r_out = float(r[-1])
     reach = 0.98 * min(0.5 * R_h, 0.25 * (r_out - core.outer_radius))
-    mesh = _mesh_for(web, core, r_out, R_h, min(float(depth_scale), reach), mesh_opts)
+    mesh = _dynamic_mesh(web, core, r_out, R_h, min(float(depth_scale), reach), mesh_opts)
     roll = _FeRoll(web, core, r, s, mesh, mesh_opts, rho_roll, opts.mass == "consistent")
-    sym = 2.0 if mesh_opts.half_model else 1.0
-    scale = sym * L  # per-length half model -> whole head
-    ms, ks = m_s / scale, k_s / scale
-
-    gamma, beta = opts.newmark_gamma, opts.newmark_beta
-    c0 = 1.0 / (beta * dt * dt)
-    c1 = gamma / (beta * dt)
-    a0, a1 = opts.rayleigh_mass, opts.rayleigh_stiffness
-    n = roll.n
-    fi = roll.fi
-    surf = roll.surface
-    n_surf = surf.size
-    s_surf = r_out * mesh.theta
-    trib = 0.5 * (np.roll(s_surf, -1) - np.roll(s_surf, 1))
-    if mesh_opts.half_model:
-        trib[0] = 0.5 * s_surf[1]
-        trib[-1] = 0.5 * (s_surf[-1] - s_surf[-2])
-
-    # state (roll on free DOFs; striker x from its spring's equilibrium, + towards the roll)
-    u = np.zeros(n)
-    v = np.zeros(n)
-    acc = np.zeros(n)
-    f_int = np.zeros(n)
-    sig = np.zeros((mesh.n_elements, 3))
-    dsig_prev_r = np.zeros(mesh.n_elements)
-    v_c = instrument.impact_speed
-    t_c = math.acos(-xg / instrument.release_position) / instrument.omega
-    x, xv, xa = xg, v_c, -k_s * xg / m_s
-    lam = np.zeros(n_surf)
-    frozen = roll.moduli(roll.sigma_pre) if not opts.update_modulus else None
-    # largest pressure each element has seen (the unloading law's memory)
-    p_hist = np.maximum(-roll.sigma_pre, 0.0) if web.radial_unloading is not None else None
-
-    e_in = 0.5 * m_s * v_c * v_c
-    e_int = 0.0  # work of the roll's internal forces (per length, half model)
-    e_damp = 0.0
-    tol_gap = 1e-6 * max(float(depth_scale), 1e-9)
-
-    times = [t_c]
-    xs_h, vs_h, acc_h, f_h = [x], [xv], [k_s * x / m_s], [0.0]
-    es_h, ek_h, ei_h = [e_in + 0.5 * k_s * x * x], [0.0], [0.0]
-    peak = -math.inf
-    peak_state: tuple[Any, ...] | None = None
-    max_steps = int(opts.max_contact_times * contact_time / dt) + 10
-    touched = False
-    end_s = None
-    k_step = 0
-    m_vec = roll.mass_times
-
-    factor_cache: list[Any] = []  # (moduli, K band, Cholesky) for E_r frozen: factor once
-
-    def solve_step(mod: tuple[FloatArray, ...]) -> tuple[Any, ...]:
-        if factor_cache and factor_cache[0] is mod:
-            Kb, cb = factor_cache[1], factor_cache[2]
-        else:
-            Kb = roll.k_band(mod)
-            A = (1.0 + c1 * a1) * Kb
-            if roll.M_band is None:
-                A[0] += (c0 + c1 * a0) * roll.m_lumped
-            else:
-                A = A + (c0 + c1 * a0) * roll.M_band
-            try:
-                cb = la.cholesky_banded(A, lower=True, check_finite=False)
-            except la.LinAlgError:
-                raise ConvergenceError("effective stiffness is not positive definite") from None
-            if mod is frozen:
-                factor_cache[:] = [mod, Kb, cb]
-        a_pred = v / (beta * dt) + (0.5 / beta - 1.0) * acc
-        v_pred = v + dt * (1.0 - gamma) * acc - dt * gamma * a_pred
-        rhs = -f_int + m_vec(a_pred)
-        if a0 > 0 or a1 > 0:
-            cv = a0 * m_vec(v_pred)
-            if a1 > 0:
-                cv = cv + a1 * dsbmv(Kb.shape[0] - 1, 1.0, Kb, v_pred, lower=1)
-            rhs = rhs - cv
-        du_free = la.cho_solve_banded((cb, True), rhs, check_finite=False)
-        xa_pred = xv / (beta * dt) + (0.5 / beta - 1.0) * xa
-        s_eff = ks + c0 * ms
-        dx_free = (-ks * x + ms * xa_pred) / s_eff
-        # contact: head at its new position, gaps of the surface nodes
-        x_new = x + dx_free
-        centre = np.array([r_out + R_h - (x_new - xg), 0.0])
-        u_full = roll.full(u + du_free)
-        pos = roll.xy[surf] + roll.cartesian(u_full, surf)
-        dpos = pos - centre
-        dist = np.hypot(dpos[:, 0], dpos[:, 1])
-        g_free = dist - R_h
-        normal = dpos / dist[:, None]
-        cand = (g_free < 0) | (lam > 0)
-        lam_new = np.zeros(n_surf)
-        du, dx = du_free, dx_free
-        for _ in range(8):
-            if not np.any(cand):
-                break
-            band = np.flatnonzero(cand)
-            idx = np.unique(
-                np.clip(np.concatenate([band + k for k in (-2, -1, 0, 1, 2)]), 0, n_surf - 1)
-            )
-            nodes = surf[idx]
-            n_r, n_t = roll.polar(normal[idx], nodes)
-            rows_r, rows_t = fi[2 * nodes], fi[2 * nodes + 1]
-            m = idx.size
-            rhs_c = np.zeros((n, m))
-            cols = np.arange(m)
-            ok_r, ok_t = rows_r >= 0, rows_t >= 0
-            rhs_c[rows_r[ok_r], cols[ok_r]] = n_r[ok_r]
-            rhs_c[rows_t[ok_t], cols[ok_t]] = n_t[ok_t]
-            # W = N^T K_eff^-1 N = Y^T Y with Y = L^-1 N (forward substitutions only);
-            # the displacement of the contact forces is then one backward solve L^-T (Y lam)
-            Y, info = dtbtrs(cb, rhs_c, uplo="L", trans="N", diag="N")
-            if info != 0:
-                raise ConvergenceError("banded triangular solve failed")
-            nx = normal[idx, 0]
-            W = Y.T @ Y + np.outer(nx, nx) / s_eff
-            lam_c = _lcp(W, g_free[idx])
-            dz, info = dtbtrs(cb, Y @ lam_c, uplo="L", trans="T", diag="N")
-            if info != 0:
-                raise ConvergenceError("banded triangular solve failed")
-            du = du_free + dz
-            dx = dx_free + float(nx @ lam_c) / s_eff
-            centre = np.array([r_out + R_h - (x + dx - xg), 0.0])
-            pos = roll.xy[surf] + roll.cartesian(roll.full(u + du), surf)
-            dd = pos - centre
-            gap = np.hypot(dd[:, 0], dd[:, 1]) - R_h
-            outside = np.ones(n_surf, dtype=bool)
-            outside[idx] = False
-            bad = outside & (gap < -tol_gap)
-            lam_new = np.zeros(n_surf)
-            lam_new[idx] = lam_c
-            if not np.any(bad):
-                break
-            cand |= bad
-        else:
-            raise ConvergenceError(
-                "dynamic contact: the contact set did not settle in 8 enlargements; "
-                "use a smaller time step or a finer mesh"
-            )
-        # contact forces: on the roll nodes lam * normal (polar DOFs), on the striker n_x lam
-        fc = np.zeros(2 * mesh.n_nodes)
-        fr, ft = roll.polar(normal * lam_new[:, None], surf)
-        fc[2 * surf] = fr
-        fc[2 * surf + 1] = ft
-        f_striker = float(normal[:, 0] @ lam_new)  # + towards the roll
-        return du, dx, lam_new, fc[roll.free], f_striker, a_pred, v_pred, Kb, normal
-
-    while True:
-        k_step += 1
-        if k_step > max_steps:
-            raise ConvergenceError(
-                f"dynamic impact: the striker did not leave the roll within {max_steps} steps "
-                f"({max_steps * dt:.3g} s)"
-            )
-        if frozen is not None:
-            mod = frozen
-        elif opts.modulus_update == "euler":
-            mod = roll.moduli(roll.sigma_pre + sig[:, 0], p_hist)
-        elif opts.modulus_update == "extrapolated":
-            mod = roll.moduli(roll.sigma_pre + sig[:, 0] + 0.5 * dsig_prev_r, p_hist)
-        else:  # midpoint: trial step at the start-of-step moduli
-            mod0 = roll.moduli(roll.sigma_pre + sig[:, 0], p_hist)
-            trial = solve_step(mod0)
-            dsr = roll.stress_increment(mod0, roll.full(trial[0]))[:, 0]
-            mod = roll.moduli(roll.sigma_pre + sig[:, 0] + 0.5 * dsr, p_hist)
-        du, dx, lam_new, fc, f_s, a_pred, v_pred, Kb, normal = solve_step(mod)
-        # Newmark update
-        acc_new = c0 * du - a_pred
-        v_new = v_pred + c1 * du
-        f_int_new = fc - m_vec(acc_new)
-        if a0 > 0 or a1 > 0:
-            cv_old = a0 * m_vec(v) + (
-                a1 * dsbmv(Kb.shape[0] - 1, 1.0, Kb, v, lower=1) if a1 > 0 else 0.0
-            )
-            cv_new = a0 * m_vec(v_new) + (
-                a1 * dsbmv(Kb.shape[0] - 1, 1.0, Kb, v_new, lower=1) if a1 > 0 else 0.0
-            )
-            f_int_new = f_int_new - cv_new
-            e_damp += 0.5 * float((cv_old + cv_new) @ du)
-        e_int += 0.5 * float((f_int + f_int_new) @ du)
-        xa_pred = xv / (beta * dt) + (0.5 / beta - 1.0) * xa
-        xa_new = c0 * dx - xa_pred
-        xv_new = xv + dt * ((1.0 - gamma) * xa + gamma * xa_new)
-        dsig = roll.stress_increment(mod, roll.full(du))
-        sig += dsig
-        dsig_prev_r = dsig[:, 0]
-        if p_hist is not None:
-            p_hist = np.maximum(p_hist, -(roll.sigma_pre + sig[:, 0]))
-        u += du
-        v, acc, f_int = v_new, acc_new, f_int_new
-        x, xv, xa = x + dx, xv_new, xa_new
-        lam = lam_new
-        t = t_c + k_step * dt
-        force = -scale * f_s  # on the striker, pushing it back [N]
-        decel = -xa  # accelerometer: (k_s x + f) / m_s
-        times.append(t)
-        xs_h.append(x)
-        vs_h.append(xv)
-        acc_h.append(decel)
-        f_h.append(force)
-        es_h.append(0.5 * m_s * xv * xv + 0.5 * k_s * x * x)
-        ek_h.append(scale * 0.5 * float(v @ m_vec(v)))
-        ei_h.append(scale * e_int)
-        if force > 0:
-            touched = True
-        if decel > peak:
-            peak = decel
-            col = roll.axis_elements
-            peak_state = (
-                k_step,
-                -(roll.sigma_pre[col] + sig[col, 0]),
-                lam / trib,
-            )
-        if touched and force <= 0.0 and xv < 0.0:
-            end_s = k_step
-            break
-    assert peak_state is not None
-    sep = _separation(times, xs_h, vs_h, acc_h, f_h, dt, k_s, m_s, xg)
-    ES, EK, EI = np.asarray(es_h), np.asarray(ek_h), np.asarray(ei_h)
-    e_roll = float(EK[-1] + EI[-1])
-    e_damp_tot = scale * e_damp
-    k_pk, p_axis, p_contact = peak_state
-    col = roll.axis_elements
-    depth_axis = r_out - roll.r_centre[col]
-    order = np.argsort(depth_axis)
-    half = s_surf <= 10 * max(float(np.max(sep.x) - xg), 1e-6) + 5 * R_h
+    # the half model carries half the load per unit CMD length: per length -> whole head
+    striker = Striker.of(instrument, (2.0 if mesh_opts.half_model else 1.0) * L)
+    fe = _ImpactRoll2D(roll, opts, Newmark.of(opts, dt), striker, R_h, depth_scale)
+    run = timeloop.run_impact(fe, contact_time, opts.max_contact_times)
     return DynamicImpactResult(
-        **sep.striker_fields(
-            instrument,
-            peak=peak,
-            peak_step=k_pk,
-            dt=dt,
-            t_contact=t_c,
-            v_contact=v_c,
-            contact_position=xg,
-            energy_in=e_in,
-            energy_roll=e_roll,
-            energy_damped=e_damp_tot,
-            elastic=web.radial_unloading is None,
-            energies=(ES, EK, EI),
-        ),
-        axis_depth=depth_axis[order],
-        axis_pressure=p_axis[order],
-        axis_pressure_pre=-roll.sigma_pre[col][order],
-        contact_s=s_surf[half],
-        contact_pressure=p_contact[half],
-        time_step=dt,
-        n_steps=int(end_s or k_step),
-        n_dof=n + 1,
+        **timeloop.result_fields(run, fe, instrument),
+        n_dof=roll.n + 1,
         density=rho_roll,
         solve_time_s=time.perf_counter() - t_start,
         options=opts,
-        contact_position=xg,
     )
 
 

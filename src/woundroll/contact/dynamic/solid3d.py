@@ -57,12 +57,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from woundroll.contact.dynamic.plane_strain import (
-    DynamicImpactResult,
-    DynamicOptions,
-    _lcp,
-    _separation,
-)
+from woundroll.contact.dynamic import timeloop
+from woundroll.contact.dynamic.plane_strain import DynamicImpactResult, DynamicOptions
+from woundroll.contact.dynamic.timeloop import ImpactState, Increment, Newmark, Striker
 from woundroll.contact.heads import Head
 from woundroll.contact.solid3d.fem import lumped_mass, orthotropic_moduli, stresses
 from woundroll.contact.solid3d.solver import Contact3DOptions, Roll3D, build_roll3d
@@ -134,6 +131,17 @@ class Dynamic3DOptions:
     @property
     def newmark_beta(self) -> float:
         return 0.25 * (self.newmark_gamma + 0.5) ** 2
+
+    def as_2d(self) -> DynamicOptions:
+        """The shared settings as :class:`DynamicOptions` (what the result reports)."""
+        return DynamicOptions(
+            time_step=self.time_step,
+            steps_per_contact=self.steps_per_contact,
+            newmark_gamma=self.newmark_gamma,
+            rayleigh_mass=self.rayleigh_mass,
+            rayleigh_stiffness=self.rayleigh_stiffness,
+            update_modulus=self.update_modulus,
+        )
 
     @classmethod
     def from_2d(
@@ -256,6 +264,224 @@ class _Effective:
         return self.exact and bool(np.all(self.col_factor[cols] == self.n_factor))
 
 
+class _ImpactRoll3D:
+    """The 3D roll in the time loop (:class:`woundroll.contact.dynamic.timeloop.FeRoll`):
+    the moduli of a step, its modified-Newton solve with the contact (module docstring), the
+    roll's Newmark update and its stresses."""
+
+    label = "3D dynamic impact"
+    n_stress = 6
+
+    def __init__(
+        self,
+        roll: Roll3D,
+        web: Web,
+        head: Head,
+        m: FloatArray,
+        opts: Dynamic3DOptions,
+        nm: Newmark,
+        striker: Striker,
+        r_out: float,
+        depth_scale: float,
+    ) -> None:
+        self.roll, self.web, self.m, self.opts, self.nm = roll, web, m, opts, nm
+        self.striker = striker
+        self.eff = _Effective(roll, m, 1.0 + nm.c1 * nm.a1, nm.c0 + nm.c1 * nm.a0)
+        self.n = roll.asm.n_free
+        self.sigma_pre, self.r_centre = roll.sigma_pre, roll.r_centre
+        self.elastic = web.radial_unloading is None
+        mesh = roll.mesh
+        self.r_out, self.head_radius = r_out, head.radius
+        self.surface_s = r_out * mesh.theta
+        # surface geometry: radial-line gaps g = c - d w - u_r, w = 1 / cos(theta)
+        th = roll.surf_theta
+        cos_t = np.cos(th)
+        lift = head.lift(r_out * np.sin(th), roll.surf_z)
+        ok = np.isfinite(lift) & (cos_t > 0)
+        self.ok = ok
+        self.w = np.where(ok, 1.0 / np.where(ok, cos_t, 1.0), 0.0)
+        self.c_gap = np.full(th.size, np.inf)
+        self.c_gap[ok] = (r_out + lift[ok]) / cos_t[ok] - r_out
+        self.n_contact = th.size
+        self.line = np.arange(mesh.theta.size)  # surface nodes on z = 0 (k = 0)
+        axis_el = np.flatnonzero((mesh.element_index[1] == 0) & (mesh.element_index[2] == 0))
+        self.axis_elements = axis_el[np.argsort(mesh.element_index[0][axis_el])]
+        self.tol_gap = 1e-6 * max(float(depth_scale), 1e-9)
+        self.u_all = np.zeros(3 * mesh.n_nodes)
+        # largest pressure each element has seen at the start (the unloading law's memory)
+        p0 = np.maximum(-roll.sigma_pre, 0.0) if web.radial_unloading is not None else None
+        self.frozen = self.moduli(roll.sigma_pre, p0) if not opts.update_modulus else None
+        self.passes_total = 0
+        self.max_passes = 0
+
+    def mass_times(self, x: FloatArray) -> FloatArray:
+        return self.m * x
+
+    def contact_pressure(self, lam: FloatArray) -> FloatArray:
+        return lam[self.line] / self.roll.surf_area[self.line]
+
+    def moduli(self, sigma_r_total: FloatArray, p_hist: FloatArray | None) -> FloatArray:
+        """Element moduli at the total radial stress (Roll3D.moduli); with the web's
+        unloading law, elements below the largest pressure they have seen take the
+        unloading modulus (:mod:`woundroll.materials.unloading`, as the 2D model)."""
+        roll, web = self.roll, self.web
+        if p_hist is None:
+            return roll.moduli(sigma_r_total)
+        E_r = web.E_r(sigma_r_total)
+        P = -sigma_r_total
+        un = web.radial_unloading
+        E_r = np.where(P < p_hist * (1.0 - 1e-9), un.modulus_at_pressure(P), E_r)
+        return orthotropic_moduli(web, np.clip(E_r, roll.E_floor, roll.E_cap))
+
+    def _set_moduli(self, st: ImpactState, k_step: int) -> FloatArray:
+        """The step's moduli (at the extrapolated mid-step stress) in the step matrix; a
+        linear material keeps its matrix and factorisation."""
+        eff, frozen = self.eff, self.frozen
+        if frozen is not None:
+            D = frozen
+        else:
+            D = self.moduli(self.sigma_pre + st.sig[:, 0] + 0.5 * st.dsig_prev_r, st.p_hist)
+        if k_step == 1 or (frozen is None and not np.array_equal(D, eff.D)):
+            eff.set_moduli(D)
+        else:
+            D = eff.D
+        if k_step == 1:
+            eff.factor()
+        return D
+
+    def _gaps(self, st: ImpactState, du: FloatArray, dx: float) -> FloatArray:
+        sr = self.roll.sr
+        return self.c_gap - (st.x + dx - self.striker.xg) * self.w - (st.u[sr] + du[sr])
+
+    def _solve(self, st: ImpactState) -> tuple[FloatArray, float, FloatArray, int]:
+        """du, dx, lam of the step with the current A (modified Newton, docstring)."""
+        nm, opts, eff, m = self.nm, self.opts, self.eff, self.m
+        sr, w, ok = self.roll.sr, self.w, self.ok
+        a0, a1, tol_gap = nm.a0, nm.a1, self.tol_gap
+        s_eff = self.striker.stiffness(nm)
+        a_pred = nm.predicted_acceleration(st.v, st.acc)
+        v_pred = nm.predicted_velocity(st.v, st.acc, a_pred)
+        b = -st.f_int + m * a_pred
+        if a0 > 0 or a1 > 0:
+            b = b - a0 * m * v_pred - (a1 * eff.k_times(v_pred) if a1 > 0 else 0.0)
+        dx_free = self.striker.free_step(st, nm)
+        if not opts.reuse and not eff.exact:
+            eff.factor()
+        du = np.zeros(self.n)
+        lm = st.lam.copy()
+        scale_du = 0.0
+        for it in range(1, 61):
+            if it > opts.refactor_after and not eff.exact:
+                eff.factor()
+            fresh = not opts.reuse or it > opts.refresh_after
+            force = np.zeros(self.n)
+            force[sr] = -lm
+            res = b + force - eff.a_times(du)
+            delta = eff.solve(res)
+            du = du + delta
+            dx = dx_free - float(w @ lm) / s_eff
+            g = self._gaps(st, du, dx)
+            cand = self.roll._widen((g < tol_gap) | (lm > 0), 1) & ok
+            idx = np.flatnonzero(cand)
+            change = delta
+            exact = eff.exact
+            if idx.size:
+                cols = eff.columns(idx, fresh=fresh)
+                exact = eff.columns_exact(cols)
+                W = -eff.Z[sr[idx]][:, cols]
+                W = 0.5 * (W + W.T) + np.outer(w[idx], w[idx]) / s_eff
+                lam_c = timeloop.lcp(W, g[idx] - W @ lm[idx])
+                dl = np.zeros(eff.n_cols)
+                dl[cols] = lam_c - lm[idx]
+                corr = eff.Z[:, : eff.n_cols] @ dl
+                change = delta + corr
+                du = du + corr
+                lm = np.zeros(self.n_contact)
+                lm[idx] = lam_c
+                dx = dx_free - float(w @ lm) / s_eff
+                g = self._gaps(st, du, dx)
+            scale_du = max(scale_du, float(np.max(np.abs(du))))
+            feasible = bool(np.all(g[ok] >= -tol_gap)) and bool(
+                np.all(np.abs(g[lm > 0]) <= tol_gap)
+            )
+            small = float(np.max(np.abs(change))) <= opts.newton_rtol * max(scale_du, 1e-300)
+            if feasible and (small or (exact and it == 1)):
+                return du, dx, lm, it
+        raise ConvergenceError(
+            "3D dynamic impact: the modified-Newton passes of a step did not converge in 60; "
+            "use a smaller time step"
+        )
+
+    def _damping_force(self, x: FloatArray) -> FloatArray:
+        nm = self.nm
+        return nm.a0 * self.m * x + (nm.a1 * self.eff.k_times(x) if nm.a1 > 0 else 0.0)
+
+    def advance(self, st: ImpactState, k_step: int) -> Increment:
+        """The step's increment: moduli, solve, the roll's Newmark update, stresses."""
+        nm, eff, roll = self.nm, self.eff, self.roll
+        D = self._set_moduli(st, k_step)
+        du, dx, lam_new, passes = self._solve(st)
+        self.passes_total += passes
+        self.max_passes = max(self.max_passes, passes)
+        acc_new = nm.c0 * du - nm.predicted_acceleration(st.v, st.acc)
+        v_new = st.v + nm.dt * ((1.0 - nm.gamma) * st.acc + nm.gamma * acc_new)
+        f_int_new = st.f_int + eff.k_times(du)
+        damping = None
+        if nm.damped:
+            damping = (self._damping_force(st.v), self._damping_force(v_new))
+        self.u_all[roll.free] = du
+        dsig = stresses(D, roll.asm.centre_strains(self.u_all))
+        force = self.striker.scale * float(self.w @ lam_new)  # on the striker [N]
+        return Increment(du, dx, lam_new, acc_new, v_new, f_int_new, dsig, force, damping)
+
+    def stats(self) -> dict[str, Any]:
+        eff = self.eff
+        return {
+            "factorisations": eff.n_factor,
+            "rhs_solved": eff.n_solves,
+            "column_refreshes": eff.n_refresh,
+            "passes": self.passes_total,
+            "max_passes_per_step": self.max_passes,
+            "assembly_s": eff.t_assembly,
+            "factor_s": eff.t_factor,
+            "solve_s": eff.t_solve,
+            "mesh_elements": self.roll.mesh.n_elements,
+            "reuse": self.opts.reuse,
+        }
+
+
+def _indent3d_estimate(
+    web: Web,
+    core: Core,
+    r: FloatArray,
+    s: FloatArray,
+    instrument: Instrument,
+    hd: Head,
+    opts: Dynamic3DOptions,
+    depth_max: float,
+) -> tuple[float, float, float]:
+    """The energy model's depth on a coarse quasi-static 3D solve to ``depth_max``, the
+    roll's secant stiffness F(d)/d there and the cap of the depth scale (``depth_max``)
+    (:func:`woundroll.contact.dynamic.timeloop.estimates`)."""
+    from woundroll.contact.solid3d.solver import indent3d
+    from woundroll.instruments import TabulatedLaw, impact_energy
+
+    mesh_opts = opts.mesh if opts.mesh is not None else Contact3DOptions()
+    est = indent3d(
+        web,
+        core,
+        r,
+        s,
+        head=hd,
+        depth_max=depth_max,
+        update_modulus=opts.update_modulus,
+        options=replace(mesh_opts, n_steps=8),
+    )
+    law = TabulatedLaw(est.delta, est.force)
+    d_est = min(impact_energy(instrument, law).max_depth, float(est.delta[-1]))
+    return d_est, float(np.interp(d_est, est.delta, est.force)) / d_est, depth_max
+
+
 def impact_dynamic3d(
     web: Web,
     core: Core,
@@ -303,295 +529,32 @@ def impact_dynamic3d(
     hd = head if head is not None else Head.from_instrument(instrument)
     r = np.asarray(radius, dtype=float)
     s = np.asarray(sigma_r, dtype=float)
-    rho_roll = float(web.density if density is None else density)
-    if not (math.isfinite(rho_roll) and rho_roll > 0):
-        raise InputError(f"must be positive, got {density!r}", "contact.dynamic_density")
-    m_s, k_s = instrument.mass, instrument.spring_stiffness
-    xg = instrument.contact_position
+    rho_roll = timeloop.roll_density(web, density)
     r_out = float(r[-1])
     reach = 0.98 * min(0.5 * hd.radius, 0.25 * (r_out - core.outer_radius))
-    if contact_time is None or depth_scale is None:
-        from woundroll.contact.solid3d.solver import indent3d
-        from woundroll.instruments import TabulatedLaw, impact_energy
-
-        est = indent3d(
-            web,
-            core,
-            r,
-            s,
-            head=hd,
-            depth_max=reach if depth_scale is None else min(float(depth_scale), reach),
-            update_modulus=opts.update_modulus,
-            options=replace(mesh_opts, n_steps=8),
-        )
-        law = TabulatedLaw(est.delta, est.force)
-        d_est = min(impact_energy(instrument, law).max_depth, float(est.delta[-1]))
-        if depth_scale is None:
-            depth_scale = min(1.25 * d_est, reach)
-        if contact_time is None:
-            k_sec = float(np.interp(d_est, est.delta, est.force)) / d_est + k_s
-            contact_time = math.pi * math.sqrt(m_s / k_sec)
-    if not (math.isfinite(contact_time) and contact_time > 0):
-        raise InputError(f"must be positive, got {contact_time!r}", "contact_time")
-    dt = opts.time_step if opts.time_step is not None else contact_time / opts.steps_per_contact
-    if dt > contact_time / 20:
-        raise InputError(
-            f"{dt:.3g} s is too coarse: the contact lasts about {contact_time:.3g} s; use at "
-            f"most {contact_time / 20:.3g} s",
-            "contact.dynamic_options.time_step",
-        )
+    to = reach if depth_scale is None else min(float(depth_scale), reach)
+    contact_time, depth_scale = timeloop.estimates(
+        instrument,
+        contact_time,
+        depth_scale,
+        lambda: _indent3d_estimate(web, core, r, s, instrument, hd, opts, to),
+    )
+    dt = timeloop.time_step(opts, contact_time)
     roll = build_roll3d(
         web, core, r, s, head=hd, depth_max=min(float(depth_scale), reach), options=mesh_opts
     )
-    mesh = roll.mesh
-    asm = roll.asm
-    n = asm.n_free
-    m = lumped_mass(mesh, rho_roll)[roll.free]
-    sym = 4.0  # quarter model
-    ms, ks = m_s / sym, k_s / sym
-
-    gamma, beta = opts.newmark_gamma, opts.newmark_beta
-    c0 = 1.0 / (beta * dt * dt)
-    c1 = gamma / (beta * dt)
-    a0, a1 = opts.rayleigh_mass, opts.rayleigh_stiffness
-    eff = _Effective(roll, m, 1.0 + c1 * a1, c0 + c1 * a0)
-    s_eff = ks + c0 * ms
-
-    # surface geometry: radial-line gaps g = c - d w - u_r, w = 1 / cos(theta)
-    th, zz = roll.surf_theta, roll.surf_z
-    cos_t = np.cos(th)
-    lift = hd.lift(r_out * np.sin(th), zz)
-    ok = np.isfinite(lift) & (cos_t > 0)
-    w = np.where(ok, 1.0 / np.where(ok, cos_t, 1.0), 0.0)
-    c_gap = np.full(th.size, np.inf)
-    c_gap[ok] = (r_out + lift[ok]) / cos_t[ok] - r_out
-    sr = roll.sr
-    n_t = mesh.theta.size
-    line = np.arange(n_t)  # surface nodes on z = 0 (k = 0)
-    axis_el = np.flatnonzero((mesh.element_index[1] == 0) & (mesh.element_index[2] == 0))
-    axis_el = axis_el[np.argsort(mesh.element_index[0][axis_el])]
-    tol_gap = 1e-6 * max(float(depth_scale), 1e-9)
-
-    u = np.zeros(n)
-    v = np.zeros(n)
-    acc = np.zeros(n)
-    f_int = np.zeros(n)
-    u_all = np.zeros(3 * mesh.n_nodes)
-    sig = np.zeros((mesh.n_elements, 6))
-    dsig_prev_r = np.zeros(mesh.n_elements)
-    v_c = instrument.impact_speed
-    t_c = math.acos(-xg / instrument.release_position) / instrument.omega
-    x, xv, xa = xg, v_c, -k_s * xg / m_s
-    lam = np.zeros(th.size)
-    un = web.radial_unloading
-    # largest pressure each element has seen (the unloading law's memory, as in 2D)
-    p_hist = np.maximum(-roll.sigma_pre, 0.0) if un is not None else None
-
-    def moduli(sigma_r_total: FloatArray) -> FloatArray:
-        """Element moduli at the total radial stress (Roll3D.moduli); with the web's
-        unloading law, elements below the largest pressure they have seen take the
-        unloading modulus (:mod:`woundroll.materials.unloading`, as the 2D model)."""
-        if p_hist is None:
-            return roll.moduli(sigma_r_total)
-        E_r = web.E_r(sigma_r_total)
-        P = -sigma_r_total
-        E_r = np.where(P < p_hist * (1.0 - 1e-9), un.modulus_at_pressure(P), E_r)
-        return orthotropic_moduli(web, np.clip(E_r, roll.E_floor, roll.E_cap))
-
-    frozen = moduli(roll.sigma_pre) if not opts.update_modulus else None
-
-    e_in = 0.5 * m_s * v_c * v_c
-    e_int = 0.0
-    e_damp = 0.0
-    times = [t_c]
-    xs_h, vs_h, acc_h, f_h = [x], [xv], [k_s * x / m_s], [0.0]
-    es_h, ek_h, ei_h = [e_in + 0.5 * k_s * x * x], [0.0], [0.0]
-    peak = -math.inf
-    peak_state: tuple[Any, ...] | None = None
-    max_steps = int(opts.max_contact_times * contact_time / dt) + 10
-    touched = False
-    k_step = 0
-    passes_total = 0
-    max_passes = 0
-
-    def gaps(du: FloatArray, dx: float) -> FloatArray:
-        return c_gap - (x + dx - xg) * w - (u[sr] + du[sr])
-
-    def solve_step() -> tuple[FloatArray, float, FloatArray, int]:
-        """du, dx, lam of the step with the current A (modified Newton, docstring)."""
-        a_pred = v / (beta * dt) + (0.5 / beta - 1.0) * acc
-        v_pred = v + dt * (1.0 - gamma) * acc - dt * gamma * a_pred
-        b = -f_int + m * a_pred
-        if a0 > 0 or a1 > 0:
-            b = b - a0 * m * v_pred - (a1 * eff.k_times(v_pred) if a1 > 0 else 0.0)
-        xa_pred = xv / (beta * dt) + (0.5 / beta - 1.0) * xa
-        dx_free = (-ks * x + ms * xa_pred) / s_eff
-        if not opts.reuse and not eff.exact:
-            eff.factor()
-        du = np.zeros(n)
-        lm = lam.copy()
-        scale_du = 0.0
-        for it in range(1, 61):
-            if it > opts.refactor_after and not eff.exact:
-                eff.factor()
-            fresh = not opts.reuse or it > opts.refresh_after
-            force = np.zeros(n)
-            force[sr] = -lm
-            res = b + force - eff.a_times(du)
-            delta = eff.solve(res)
-            du = du + delta
-            dx = dx_free - float(w @ lm) / s_eff
-            g = gaps(du, dx)
-            cand = roll._widen((g < tol_gap) | (lm > 0), 1) & ok
-            idx = np.flatnonzero(cand)
-            change = delta
-            exact = eff.exact
-            if idx.size:
-                cols = eff.columns(idx, fresh=fresh)
-                exact = eff.columns_exact(cols)
-                W = -eff.Z[sr[idx]][:, cols]
-                W = 0.5 * (W + W.T) + np.outer(w[idx], w[idx]) / s_eff
-                lam_c = _lcp(W, g[idx] - W @ lm[idx])
-                dl = np.zeros(eff.n_cols)
-                dl[cols] = lam_c - lm[idx]
-                corr = eff.Z[:, : eff.n_cols] @ dl
-                change = delta + corr
-                du = du + corr
-                lm = np.zeros(th.size)
-                lm[idx] = lam_c
-                dx = dx_free - float(w @ lm) / s_eff
-                g = gaps(du, dx)
-            scale_du = max(scale_du, float(np.max(np.abs(du))))
-            feasible = bool(np.all(g[ok] >= -tol_gap)) and bool(
-                np.all(np.abs(g[lm > 0]) <= tol_gap)
-            )
-            small = float(np.max(np.abs(change))) <= opts.newton_rtol * max(scale_du, 1e-300)
-            if feasible and (small or (exact and it == 1)):
-                return du, dx, lm, it
-        raise ConvergenceError(
-            "3D dynamic impact: the modified-Newton passes of a step did not converge in 60; "
-            "use a smaller time step"
-        )
-
-    while True:
-        k_step += 1
-        if k_step > max_steps:
-            raise ConvergenceError(
-                f"3D dynamic impact: the striker did not leave the roll within {max_steps} "
-                f"steps ({max_steps * dt:.3g} s)"
-            )
-        if frozen is not None:
-            D = frozen
-        else:
-            D = moduli(roll.sigma_pre + sig[:, 0] + 0.5 * dsig_prev_r)
-        if k_step == 1 or (frozen is None and not np.array_equal(D, eff.D)):
-            eff.set_moduli(D)  # (a linear material keeps its matrix and factorisation)
-        else:
-            D = eff.D
-        if k_step == 1:
-            eff.factor()
-        du, dx, lam_new, passes = solve_step()
-        passes_total += passes
-        max_passes = max(max_passes, passes)
-        acc_new = c0 * du - (v / (beta * dt) + (0.5 / beta - 1.0) * acc)
-        v_new = v + dt * ((1.0 - gamma) * acc + gamma * acc_new)
-        kdu = eff.k_times(du)
-        f_int_new = f_int + kdu
-        if a0 > 0 or a1 > 0:
-            cv_old = a0 * m * v + (a1 * eff.k_times(v) if a1 > 0 else 0.0)
-            cv_new = a0 * m * v_new + (a1 * eff.k_times(v_new) if a1 > 0 else 0.0)
-            e_damp += 0.5 * float((cv_old + cv_new) @ du)
-        e_int += 0.5 * float((f_int + f_int_new) @ du)
-        xa_pred = xv / (beta * dt) + (0.5 / beta - 1.0) * xa
-        xa_new = c0 * dx - xa_pred
-        xv_new = xv + dt * ((1.0 - gamma) * xa + gamma * xa_new)
-        u_all[roll.free] = du
-        dsig = stresses(D, asm.centre_strains(u_all))
-        sig += dsig
-        dsig_prev_r = dsig[:, 0]
-        if p_hist is not None:
-            p_hist = np.maximum(p_hist, -(roll.sigma_pre + sig[:, 0]))
-        u += du
-        v, acc, f_int = v_new, acc_new, f_int_new
-        x, xv, xa = x + dx, xv_new, xa_new
-        lam = lam_new
-        t = t_c + k_step * dt
-        force = sym * float(w @ lam)  # on the striker, pushing it back [N]
-        decel = -xa
-        times.append(t)
-        xs_h.append(x)
-        vs_h.append(xv)
-        acc_h.append(decel)
-        f_h.append(force)
-        es_h.append(0.5 * m_s * xv * xv + 0.5 * k_s * x * x)
-        ek_h.append(sym * 0.5 * float(v @ (m * v)))
-        ei_h.append(sym * e_int)
-        if force > 0:
-            touched = True
-        if decel > peak:
-            peak = decel
-            peak_state = (
-                k_step,
-                -(roll.sigma_pre[axis_el] + sig[axis_el, 0]),
-                lam[line] / roll.surf_area[line],
-            )
-        if touched and force <= 0.0 and xv < 0.0:
-            break
-    assert peak_state is not None
-    sep = _separation(times, xs_h, vs_h, acc_h, f_h, dt, k_s, m_s, xg)
-    ES, EK, EI = np.asarray(es_h), np.asarray(ek_h), np.asarray(ei_h)
-    e_roll = float(EK[-1] + EI[-1])
-    e_damp_tot = sym * e_damp
-    k_pk, p_axis, p_line = peak_state
-    depth_axis = r_out - roll.r_centre[axis_el]
-    s_line = r_out * mesh.theta
-    half = s_line <= 10 * max(float(np.max(sep.x) - xg), 1e-6) + 5 * hd.radius
+    m = lumped_mass(roll.mesh, rho_roll)[roll.free]
+    striker = Striker.of(instrument, 4.0)  # quarter model
+    fe = _ImpactRoll3D(roll, web, hd, m, opts, Newmark.of(opts, dt), striker, r_out, depth_scale)
+    run = timeloop.run_impact(fe, contact_time, opts.max_contact_times)
+    fields = timeloop.result_fields(run, fe, instrument)
     wall = time.perf_counter() - t_start
     return DynamicImpactResult(
-        **sep.striker_fields(
-            instrument,
-            peak=peak,
-            peak_step=k_pk,
-            dt=dt,
-            t_contact=t_c,
-            v_contact=v_c,
-            contact_position=xg,
-            energy_in=e_in,
-            energy_roll=e_roll,
-            energy_damped=e_damp_tot,
-            elastic=un is None,
-            energies=(ES, EK, EI),
-        ),
-        axis_depth=depth_axis,
-        axis_pressure=p_axis,
-        axis_pressure_pre=-roll.sigma_pre[axis_el],
-        contact_s=s_line[half],
-        contact_pressure=p_line[half],
-        time_step=dt,
-        n_steps=k_step,
-        n_dof=n + 1,
+        **fields,
+        n_dof=fe.n + 1,
         density=rho_roll,
         solve_time_s=wall,
-        options=DynamicOptions(
-            time_step=opts.time_step,
-            steps_per_contact=opts.steps_per_contact,
-            newmark_gamma=opts.newmark_gamma,
-            rayleigh_mass=opts.rayleigh_mass,
-            rayleigh_stiffness=opts.rayleigh_stiffness,
-            update_modulus=opts.update_modulus,
-        ),
-        contact_position=xg,
+        options=opts.as_2d(),
         model="3D FE roll (quarter), implicit Newmark, frictionless contact",
-        stats={
-            "factorisations": eff.n_factor,
-            "rhs_solved": eff.n_solves,
-            "column_refreshes": eff.n_refresh,
-            "passes": passes_total,
-            "max_passes_per_step": max_passes,
-            "assembly_s": eff.t_assembly,
-            "factor_s": eff.t_factor,
-            "solve_s": eff.t_solve,
-            "mesh_elements": mesh.n_elements,
-            "reuse": opts.reuse,
-        },
+        stats=fe.stats(),
     )

@@ -39,7 +39,12 @@ from woundroll.contact.plane_strain.fem import (
     plane_strain_moduli,
 )
 from woundroll.contact.plane_strain.mesh import RollMesh, build_mesh
-from woundroll.contact.result import ContactResult, fit_spring, slip_factor
+from woundroll.contact.result import ContactResult
+from woundroll.contact.stepping import LoadHistory, depth_schedule, result_fields
+from woundroll.contact.stepping import check_profile as _check_profile
+from woundroll.contact.stepping import check_scalar as _check_scalar
+from woundroll.contact.stepping import half_width as _half_width
+from woundroll.contact.stepping import solve_lcp as _solve_lcp
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.materials.web import Core, Web
 from woundroll.units import to_si
@@ -249,126 +254,12 @@ def _check_slip_options(opts: Any) -> None:
         raise InputError(f"must be a positive integer, got {n!r}", "options.slip_max_passes")
 
 
-def _check_scalar(value: float | str, field: str, kind: str = "length") -> float:
-    """A positive finite SI value; strings with units (``"10 mm"``) are converted."""
-    if isinstance(value, bool):
-        raise InputError(f"must be a number, got {value!r}", field)
-    if isinstance(value, str):
-        v = to_si(value, kind, field)
-    else:
-        try:
-            v = float(value)
-        except (TypeError, ValueError):
-            raise InputError(f"must be a number, got {value!r}", field) from None
-    if not math.isfinite(v) or v <= 0:
-        raise InputError(f"must be a positive finite number, got {value!r}", field)
-    return v
-
-
-def _check_profile(
-    web: Web, core: Core, radius: object, sigma_r: object
-) -> tuple[FloatArray, FloatArray]:
-    try:
-        r = np.asarray(radius, dtype=float)
-        s = np.asarray(sigma_r, dtype=float)
-    except (TypeError, ValueError):
-        raise InputError("radius and sigma_r must be arrays of numbers", "radius") from None
-    if r.ndim != 1 or r.size < 2:
-        raise InputError("must be a 1D array of at least 2 radii [m]", "radius")
-    if s.ndim != 1 or s.size != r.size:
-        raise InputError(
-            f"must be a 1D array of the same length as radius ({r.size}), got shape {s.shape}",
-            "sigma_r",
-        )
-    if not np.all(np.isfinite(r)):
-        raise InputError("must hold finite numbers only", "radius")
-    if not np.all(np.isfinite(s)):
-        raise InputError("must hold finite numbers only (NaN or inf found)", "sigma_r")
-    if np.any(np.diff(r) <= 0):
-        raise InputError("must increase strictly from the core outward", "radius")
-    if r[0] < core.outer_radius - 1.01 * web.thickness:
-        raise InputError(
-            f"starts at {r[0]:g} m, inside the core (outer radius {core.outer_radius:g} m)",
-            "radius",
-        )
-    if r[-1] <= core.outer_radius + web.thickness:
-        raise InputError(
-            f"the outer radius {r[-1]:g} m leaves no wound layer on the core "
-            f"({core.outer_radius:g} m)",
-            "radius",
-        )
-    return r, s
-
-
 def _gap(pos: FloatArray, centre: FloatArray, head_radius: float) -> tuple[FloatArray, FloatArray]:
     """Signed gap [m] of points ``pos`` (n, 2) to the head circle and the unit normals (n, 2)
     pointing from the head axis to the points."""
     d = pos - centre
     dist = np.hypot(d[:, 0], d[:, 1])
     return dist - head_radius, d / dist[:, None]
-
-
-def _solve_lcp(W: FloatArray, q: FloatArray, start: NDArray[np.bool_] | None = None) -> FloatArray:
-    """Solve ``lam >= 0, g = q + W lam >= 0, lam . g = 0`` for symmetric positive definite W.
-
-    It is the optimality condition of ``min 1/2 lam W lam + q lam, lam >= 0``, solved exactly
-    by the finite active-set method of Lawson and Hanson (their NNLS algorithm written for
-    the quadratic form itself): the passive set grows by the most violated contact, and
-    where the unconstrained solution on it leaves a force negative, the step goes back to
-    the boundary and that node leaves. NumPy only (no scipy.optimize at import: start-up).
-
-    ``start`` (optional mask): a guess of the nodes in contact, e.g. the last increment's.
-    Where the unconstrained solution on it is positive everywhere it is the method's first
-    passive set (its invariant holds there), which saves the one-node-at-a-time growth up
-    to it; otherwise the method starts from no contact. The solution is the same either
-    way (the LCP's solution is unique for positive definite W).
-    """
-    W = 0.5 * (W + W.T)
-    m = q.size
-    scale = float(np.max(np.diag(W)))
-    Ws, qs = W / scale, q / scale  # lam is unchanged by the common scale
-    try:
-        np.linalg.cholesky(Ws)
-    except np.linalg.LinAlgError:
-        raise ConvergenceError(
-            "contact flexibility matrix is not positive definite "
-            "(mesh too coarse or roll not supported)"
-        ) from None
-    lam = np.zeros(m)
-    passive = np.zeros(m, dtype=bool)
-    tol = 1e-13 * max(float(np.max(np.abs(qs))), 1e-300)
-    if start is not None and np.any(start):
-        idx = np.flatnonzero(start)
-        z = np.linalg.solve(Ws[np.ix_(idx, idx)], -qs[idx])
-        if np.all(z > 0):
-            lam[idx] = z
-            passive[idx] = True
-    for _ in range(3 * m + 10):
-        w = -(qs + Ws @ lam)  # minus the gradient: > 0 where a force would lower the energy
-        w[passive] = -np.inf
-        j = int(np.argmax(w))
-        if w[j] <= tol:
-            return lam
-        passive[j] = True
-        for _ in range(3 * m + 10):
-            idx = np.flatnonzero(passive)
-            z = np.zeros(m)
-            z[idx] = np.linalg.solve(Ws[np.ix_(idx, idx)], -qs[idx])
-            if np.all(z[idx] > 0):
-                lam = z
-                break
-            # back along lam -> z to where the first force reaches zero; that node leaves
-            neg = idx[z[idx] <= 0]
-            denom = lam[neg] - z[neg]
-            ratio = np.where(denom > 0, lam[neg] / np.where(denom > 0, denom, 1.0), 0.0)
-            k = int(np.argmin(ratio))
-            lam = lam + ratio[k] * (z - lam)
-            passive[neg[k]] = False
-            passive &= lam > 0
-            lam[~passive] = 0.0
-        else:
-            break
-    raise ConvergenceError("contact active set did not settle")
 
 
 class _Roll:
@@ -852,13 +743,8 @@ def _newton_increment(
     hist_x: list[FloatArray] = []  # log E_used of the passes
     hist_f: list[FloatArray] = []  # log E_mid - log E_used
     for _ in range(8 * NEWTON_ITERATIONS):
-        deps = roll.strain_increment(step.du)
         # an exact pass was solved at mod_used and _step already has its stresses
-        dsig = step.dsig if exact else roll.stress_of_strain(mod_used, deps)
-        E_mid = roll.secant_modulus(start, start + dsig[:, 0])
-        w = np.abs(np.sum(dsig * deps, axis=1)) * roll.area
-        total = float(np.sum(w))
-        err = float(np.sum(w * np.abs(E_used / E_mid - 1.0))) / total if total > 0 else 0.0
+        dsig, E_mid, w, total, err = _secant_mismatch(roll, step, mod_used, exact, start, E_used)
         if du_prev is not None:
             scale = max(float(np.max(np.abs(step.du))), 1e-300)
             err = max(err, float(np.max(np.abs(step.du - du_prev))) / scale)
@@ -866,18 +752,7 @@ def _newton_increment(
             step.dsig = dsig
             return step, n_fact
         since += 1
-        x = np.log(E_used)
-        f = np.log(E_mid) - x
-        hist_x.append(x)
-        hist_f.append(f)
-        x_new = x + f
-        if ANDERSON > 0 and len(hist_x) >= 2:
-            del hist_x[: -ANDERSON - 1], hist_f[: -ANDERSON - 1]
-            sw = np.sqrt(w / total) if total > 0 else np.ones_like(w)
-            dF = np.diff(np.stack(hist_f, axis=1), axis=1)
-            dX = np.diff(np.stack(hist_x, axis=1), axis=1)
-            gamma = np.linalg.lstsq(dF * sw[:, None], f * sw, rcond=None)[0]
-            x_new = np.clip(x + f - (dX + dF) @ gamma, x - 3.0, x + 3.0)
+        x_new = _mixed_log_modulus(hist_x, hist_f, E_used, E_mid, w, total)
         E_used = np.clip(np.exp(x_new), roll.E_floor, roll.E_cap)
         mod_used = roll.moduli_at(E_used)
         if (
@@ -899,6 +774,52 @@ def _newton_increment(
     raise ConvergenceError(
         f"an increment's moduli did not settle in {8 * NEWTON_ITERATIONS} passes; use more n_steps"
     )
+
+
+def _secant_mismatch(
+    roll: _Roll,
+    step: _Step,
+    mod_used: tuple[FloatArray, ...],
+    exact: bool,
+    start: FloatArray,
+    E_used: FloatArray,
+) -> tuple[FloatArray, FloatArray, FloatArray, float, float]:
+    """A pass of :func:`_newton_increment` judged: its stresses at ``mod_used`` (``step``'s
+    own for an exact pass), the law's secant E_mid over them, the elements' strain-energy
+    increments (weights) and their total, and the weighted mismatch |E_used / E_mid - 1|."""
+    deps = roll.strain_increment(step.du)
+    dsig = step.dsig if exact else roll.stress_of_strain(mod_used, deps)
+    E_mid = roll.secant_modulus(start, start + dsig[:, 0])
+    w = np.abs(np.sum(dsig * deps, axis=1)) * roll.area
+    total = float(np.sum(w))
+    err = float(np.sum(w * np.abs(E_used / E_mid - 1.0))) / total if total > 0 else 0.0
+    return dsig, E_mid, w, total, err
+
+
+def _mixed_log_modulus(
+    hist_x: list[FloatArray],
+    hist_f: list[FloatArray],
+    E_used: FloatArray,
+    E_mid: FloatArray,
+    w: FloatArray,
+    total: float,
+) -> FloatArray:
+    """The next pass's log E: the fixed-point update log E_mid with Anderson mixing over
+    the last :data:`ANDERSON` passes (``hist_x``, ``hist_f`` kept here), weighted by the
+    strain-energy increments ``w``, the step limited to a factor e^3."""
+    x = np.log(E_used)
+    f = np.log(E_mid) - x
+    hist_x.append(x)
+    hist_f.append(f)
+    x_new = x + f
+    if ANDERSON > 0 and len(hist_x) >= 2:
+        del hist_x[: -ANDERSON - 1], hist_f[: -ANDERSON - 1]
+        sw = np.sqrt(w / total) if total > 0 else np.ones_like(w)
+        dF = np.diff(np.stack(hist_f, axis=1), axis=1)
+        dX = np.diff(np.stack(hist_x, axis=1), axis=1)
+        gamma = np.linalg.lstsq(dF * sw[:, None], f * sw, rcond=None)[0]
+        x_new = np.clip(x + f - (dX + dF) @ gamma, x - 3.0, x + 3.0)
+    return x_new
 
 
 def _slip_weight(
@@ -923,37 +844,312 @@ def _slip_weight(
     return np.maximum(np.where(slips, 1.0 - x, 0.0), before)
 
 
-def _half_width(
-    s: FloatArray, lam: FloatArray, gap: FloatArray, j0: int, sides: tuple[int, ...] = (1, -1)
-) -> float:
-    """Contact half-width [m] from the active set, interpolated between nodes.
+class _Loading:
+    """The head pressed into the roll increment by increment: the state between the
+    increments (displacements, contact-induced stresses, contact forces), the frozen
+    stiffness of ``update_modulus=False`` and the work counters."""
 
-    Beyond the last node in contact the gap of a Hertz-type contact opens as
-    (s - a)^(3/2); the edge ``a`` is placed where that law through the first two open
-    nodes' gaps vanishes, clamped between the last closed and the first open node.
-    """
-    if lam.max() <= 0:
-        return 0.0
-    active = lam > 1e-9 * lam.max()
-    out = []
-    for sign in sides:
-        j = j0
-        while 0 <= j + 2 * sign < s.size and active[j + sign]:
-            j += sign
-        if not active[j]:
-            out.append(0.0)
-            continue
-        j1, j2 = j + sign, j + 2 * sign
-        s0, s1, s2 = abs(s[j]), abs(s[j1]), abs(s[j2])
-        g1, g2 = gap[j1], gap[j2]
-        if g1 <= 0:
-            out.append(s1)
-        elif g2 <= g1:
-            out.append(0.5 * (s0 + s1))
+    def __init__(
+        self,
+        roll: _Roll,
+        opts: ContactOptions,
+        delta: FloatArray,
+        head_radius: float,
+        friction: float,
+        update_modulus: bool,
+    ) -> None:
+        self.roll, self.opts, self.delta = roll, opts, delta
+        self.head_radius, self.friction = head_radius, friction
+        mesh = roll.mesh
+        self.r_out = float(mesh.r[-1])
+        self.history = LoadHistory.start(delta, mesh.n_elements, roll.surface.size)
+        n_dof = 2 * mesh.n_nodes
+        self.u = np.zeros(n_dof)
+        self.sig = np.zeros((mesh.n_elements, 3))  # contact-induced (r, theta, r-theta) [Pa]
+        self.lam = np.zeros(roll.surface.size)
+        self.f_contact = np.zeros(n_dof)
+        self.centre = np.zeros(2)
+        self.slip_on = opts.slip == "reduced-shear"
+        if self.slip_on:
+            roll.slip_weight = np.zeros(mesh.n_elements)
+        self.frozen = roll.moduli(roll.sigma_pre) if not update_modulus else None
+        self.tol_gap = 1e-3 * delta[1]
+        self.step: _Step | None = None
+        self.lu_frozen = _factorize(roll, self.frozen) if self.frozen is not None else None
+        self.factorisations = int(self.lu_frozen is not None)
+        self.slip_passes = 0
+
+    def solve(
+        self, mod: tuple[FloatArray, ...], lu: _Factor, extra: FloatArray | None = None
+    ) -> _Step:
+        """The increment at fixed moduli (``lu`` their factorised stiffness)."""
+        return _step(
+            self.roll,
+            mod,
+            lu,
+            self.u,
+            self.f_contact,
+            self.lam,
+            self.centre,
+            self.head_radius,
+            self.tol_gap,
+            extra,
+        )
+
+    def _predicted_stress(self, k: int) -> FloatArray | None:
+        """The mid-step radial stress predicted from the last increments (None: none yet):
+        the parabola through the last three states for a law linear in pressure (the
+        stress under the head stiffens exponentially in depth), else the last increment's
+        rate."""
+        roll, delta, last, sig = self.roll, self.delta, self.step, self.sig
+        if last is None:
+            return None
+        if roll.linear_law is not None and k >= 3:
+            x0, x1, x2, x = delta[k - 3], delta[k - 2], delta[k - 1], delta[k]
+            l0 = (x - x1) * (x - x2) / ((x0 - x1) * (x0 - x2))
+            l1 = (x - x0) * (x - x2) / ((x1 - x0) * (x1 - x2))
+            l2 = (x - x0) * (x - x1) / ((x2 - x0) * (x2 - x1))
+            h = self.history.stress[:, :, 0]
+            end = l0 * h[k - 3] + l1 * h[k - 2] + l2 * h[k - 1]
+            return 0.5 * (sig[:, 0] + end)
+        ratio = (delta[k] - delta[k - 1]) / (delta[k - 1] - delta[k - 2])
+        return sig[:, 0] + 0.5 * ratio * last.dsig[:, 0]
+
+    def increment(self, k: int) -> tuple[_Step, int]:
+        """The increment at the current slip zone; (step, factorisations)."""
+        roll, opts = self.roll, self.opts
+        if self.frozen is not None and self.lu_frozen is not None:
+            return self.solve(self.frozen, self.lu_frozen), 0  # one factorisation for all
+        if opts.midpoint and opts.predictor:
+            predicted = self._predicted_stress(k)
+            if roll.linear_law is not None and opts.newton:
+                return _newton_increment(roll, self.sig[:, 0], predicted, opts.step_tol, self.solve)
+            return _predicted_increment(roll, self.sig[:, 0], predicted, opts.step_tol, self.solve)
+        step = _hypoelastic_increment(roll, self.sig[:, 0], opts.midpoint, self.solve)
+        return step, 2 if opts.midpoint else 1
+
+    def _refreeze(self) -> None:
+        """The frozen stiffness again at the new slip zone."""
+        self.frozen = self.roll.moduli(self.roll.sigma_pre)
+        self.lu_frozen = _factorize(self.roll, self.frozen)
+        self.factorisations += 1
+
+    def slip_increment(self, k: int) -> _Step:
+        """The increment with the slip emulation (Figure 19): the zone where the interlayer
+        shear reaches mu P, {23}, and each element's slipping share of the increment,
+        iterated until no share grows by more than SLIP_TOL (monotone: it cannot cycle)."""
+        roll, opts = self.roll, self.opts
+        assert roll.slip_weight is not None
+        before = roll.slip_weight.copy()
+        for _ in range(opts.slip_max_passes):
+            step, n_fact = self.increment(k)
+            self.factorisations += n_fact
+            self.slip_passes += 1
+            w = np.maximum(
+                _slip_weight(roll, self.sig, step.dsig, self.friction, before), roll.slip_weight
+            )
+            if np.max(w - roll.slip_weight) <= SLIP_TOL:
+                break
+            roll.slip_weight = w
+            if self.frozen is not None:
+                self._refreeze()
         else:
-            rho = (g1 / g2) ** (2.0 / 3.0)
-            out.append(float(np.clip((s1 - rho * s2) / (1.0 - rho), s0, s1)))
-    return float(np.mean(out))
+            raise ConvergenceError(
+                f"the slip zone did not settle in {opts.slip_max_passes} passes at depth "
+                f"{self.delta[k] * 1e3:.3g} mm ({int(np.count_nonzero(roll.slip_weight))} "
+                "elements slipping); raise options.slip_max_passes or use more n_steps"
+            )
+        # slipped within this increment: slipped for the rest of the loading
+        settled = np.where(roll.slip_weight > 0, 1.0, 0.0)
+        changed = not np.array_equal(settled, roll.slip_weight)
+        roll.slip_weight = settled
+        if self.frozen is not None and changed and k < self.delta.size - 1:
+            self._refreeze()
+        return step
+
+    def advance(self, k: int) -> _Step:
+        """Press the head to ``delta[k]``: the increment solved, the state updated."""
+        roll = self.roll
+        self.centre = np.array([self.r_out + self.head_radius - self.delta[k], 0.0])
+        if not self.slip_on:
+            step, n_fact = self.increment(k)
+            self.factorisations += n_fact
+        else:
+            step = self.slip_increment(k)
+        self.u += step.du
+        self.sig += step.dsig
+        self.lam = step.lam
+        self.f_contact = np.zeros(self.u.size)
+        fr, ft = roll.polar(step.normal * self.lam[:, None], roll.surface)
+        self.f_contact[2 * roll.surface] = fr
+        self.f_contact[2 * roll.surface + 1] = ft
+        self.step = step
+        return step
+
+
+def _indent_inputs(
+    web: Web,
+    core: Core,
+    radius: FloatArray,
+    sigma_r: FloatArray,
+    sizes: tuple[float | str, float | str, float | str, float | None],
+    friction: float,
+    options: ContactOptions | None,
+) -> tuple[tuple[float, float, float, float], float, FloatArray, FloatArray, ContactOptions]:
+    """The checked inputs of :func:`indent`: (head radius, head length, depth_max, deepest
+    depth), friction, the profile arrays and the options."""
+    if not isinstance(web, Web):
+        raise InputError("must be a woundroll.materials.Web", "web")
+    if not isinstance(core, Core):
+        raise InputError("must be a woundroll.materials.Core", "core")
+    head_radius = _check_scalar(sizes[0], "head_radius")
+    head_length = _check_scalar(sizes[1], "head_length")
+    depth_max = _check_scalar(sizes[2], "depth_max")
+    deepest = depth_max
+    if sizes[3] is not None:
+        deepest = max(_check_scalar(sizes[3], "extend_to"), depth_max)
+    friction = to_si(friction, "dimensionless", "friction")
+    if friction < 0:
+        raise InputError(f"must be zero or positive, got {friction:g}", "friction")
+    r, s = _check_profile(web, core, radius, sigma_r)
+    opts = options if options is not None else ContactOptions()
+    if not isinstance(opts, ContactOptions):
+        raise InputError("must be a ContactOptions", "options")
+    r_in, r_out = core.outer_radius, float(r[-1])
+    for value, name in ((depth_max, "depth_max"), (deepest, "extend_to")):
+        if value >= 0.5 * head_radius:
+            raise InputError(
+                f"must be below half the head radius ({0.5 * head_radius:g} m), got {value:g} m",
+                name,
+            )
+        if value >= 0.25 * (r_out - r_in):
+            raise InputError(
+                f"must be below a quarter of the wound thickness "
+                f"({0.25 * (r_out - r_in):g} m), got {value:g} m",
+                name,
+            )
+    return (head_radius, head_length, depth_max, deepest), friction, r, s, opts
+
+
+def contact_mesh(
+    web: Web,
+    core: Core,
+    r_out: float,
+    head_radius: float,
+    depth_max: float,
+    opts: ContactOptions,
+    *,
+    surface_layers: float = 0.5,
+    fine_zone: float = FINE_ZONE,
+    field: str = "options.surface_size",
+) -> RollMesh:
+    """The mesh for a head pressed to ``depth_max``: the surface ring ``surface_layers``
+    web layers thick, a fine zone of ``fine_zone`` a_geo (the geometric half-chord at
+    ``depth_max``), tangential size max(h/4, a_geo/40) there with h the web thickness
+    (:class:`ContactOptions` may set each). The dynamic model meshes with one layer and the
+    whole a_geo (:func:`woundroll.contact.dynamic.plane_strain.impact_dynamic`)."""
+    r_in = core.outer_radius
+    R_eff = 1.0 / (1.0 / head_radius + 1.0 / r_out)
+    a_geo = math.sqrt(2.0 * R_eff * depth_max)
+    given = opts.surface_size
+    surface_size = given if given is not None else surface_layers * web.thickness
+    t_ref = given if given is not None else web.thickness
+    t_size = (
+        opts.tangential_size
+        if opts.tangential_size is not None
+        else max(0.25 * t_ref, a_geo / 40.0)
+    )
+    fine = opts.fine_halfwidth if opts.fine_halfwidth is not None else fine_zone * a_geo
+    if surface_size >= 0.5 * (r_out - r_in):
+        raise InputError("is too large for the wound thickness", field)
+    return build_mesh(
+        r_in,
+        r_out,
+        surface_size=surface_size,
+        radial_growth=opts.radial_growth,
+        tangential_size=t_size,
+        fine_halfwidth=max(fine, t_size),
+        tangential_growth=opts.tangential_growth,
+        max_element_angle=opts.max_element_angle,
+        periodic=not opts.half_model,
+    )
+
+
+def _press(
+    load: _Loading,
+    sym: float,
+    head_length: float,
+    stop: Callable[[FloatArray, FloatArray], bool] | None,
+) -> tuple[LoadHistory, FloatArray, FloatArray]:
+    """The loading: every depth of ``load.delta`` in turn, recorded, until ``stop`` says
+    so. Returns the history, the surface deflection history and the surface nodes' arc
+    length."""
+    roll, delta, h = load.roll, load.delta, load.history
+    mesh = roll.mesh
+    half_model = not mesh.periodic
+    n = delta.size - 1
+    n_surf = roll.surface.size
+    s_surf = load.r_out * mesh.theta
+    trib = 0.5 * (np.roll(s_surf, -1) - np.roll(s_surf, 1))
+    if half_model:
+        trib[0] = 0.5 * s_surf[1]
+    u_hist = np.zeros((n + 1, n_surf))  # inward radial displacement of the surface nodes
+    for k in range(1, n + 1):
+        step = load.advance(k)
+        lam = step.lam
+        h.record(
+            k,
+            sym * float(np.sum(-lam * step.normal[:, 0])),
+            _half_width(s_surf, lam, step.gap, mesh.j0, (1,) if half_model else (1, -1)),
+            float(np.max(lam / trib)),
+            load.sig,
+            lam / trib,
+        )
+        u_hist[k] = -load.u[2 * roll.surface]
+        if stop is not None and k < n and stop(delta[: k + 1], h.force[: k + 1] * head_length):
+            # stopped early: the curve ends at the last depth solved
+            return h.up_to(k + 1), u_hist[: k + 1], s_surf
+    return h, u_hist, s_surf
+
+
+def _result2d(
+    load: _Loading,
+    h: LoadHistory,
+    u_hist: FloatArray,
+    s_surf: FloatArray,
+    head_length: float,
+    update_modulus: bool,
+    t0: float,
+) -> ContactResult:
+    """The result of :func:`indent` (``t0``: when it started)."""
+    roll, friction, head_radius = load.roll, load.friction, load.head_radius
+    mesh, r_out = roll.mesh, load.r_out
+    sig = load.sig
+    xy = roll.basis.centre_xy
+    return ContactResult(
+        **result_fields(
+            h,
+            force=h.force * head_length,
+            stress=(sig[:, 0], sig[:, 1], sig[:, 2]),
+            sigma_pre=roll.sigma_pre,
+            friction=friction,
+            elements=(xy[:, 0], xy[:, 1], roll.r_centre, np.arctan2(xy[:, 1], xy[:, 0])),
+            contact_s=s_surf,
+        ),
+        force_per_length=h.force,
+        head_radius=head_radius,
+        head_length=head_length,
+        outer_radius=r_out,
+        update_modulus=update_modulus,
+        n_elements=mesh.n_elements,
+        n_dof=int(roll.free.sum()),
+        mesh_shape=(mesh.n_r - 1, mesh.n_theta),
+        solve_time_s=time.perf_counter() - t0,
+        factorisations=load.factorisations,
+        slipped=None if roll.slip_weight is None else roll.slip_weight > 0,
+        slip_passes=load.slip_passes,
+        surface_deflection_history=u_hist,
+    )
 
 
 def indent(
@@ -1025,238 +1221,21 @@ def indent(
         The contact set does not settle or the stiffness is singular.
     """
     t0 = time.perf_counter()
-    if not isinstance(web, Web):
-        raise InputError("must be a woundroll.materials.Web", "web")
-    if not isinstance(core, Core):
-        raise InputError("must be a woundroll.materials.Core", "core")
-    head_radius = _check_scalar(head_radius, "head_radius")
-    head_length = _check_scalar(head_length, "head_length")
-    depth_max = _check_scalar(depth_max, "depth_max")
-    deepest = depth_max
-    if extend_to is not None and stop is not None:
-        deepest = max(_check_scalar(extend_to, "extend_to"), depth_max)
-    friction = to_si(friction, "dimensionless", "friction")
-    if friction < 0:
-        raise InputError(f"must be zero or positive, got {friction:g}", "friction")
-    r, s = _check_profile(web, core, radius, sigma_r)
-    opts = options if options is not None else ContactOptions()
-    if not isinstance(opts, ContactOptions):
-        raise InputError("must be a ContactOptions", "options")
-    r_in, r_out = core.outer_radius, float(r[-1])
-    for value, name in ((depth_max, "depth_max"), (deepest, "extend_to")):
-        if value >= 0.5 * head_radius:
-            raise InputError(
-                f"must be below half the head radius ({0.5 * head_radius:g} m), got {value:g} m",
-                name,
-            )
-        if value >= 0.25 * (r_out - r_in):
-            raise InputError(
-                f"must be below a quarter of the wound thickness "
-                f"({0.25 * (r_out - r_in):g} m), got {value:g} m",
-                name,
-            )
-    R_eff = 1.0 / (1.0 / head_radius + 1.0 / r_out)
-    a_geo = math.sqrt(2.0 * R_eff * depth_max)
-    surface_size = opts.surface_size if opts.surface_size is not None else 0.5 * web.thickness
-    t_ref = opts.surface_size if opts.surface_size is not None else web.thickness
-    t_size = (
-        opts.tangential_size
-        if opts.tangential_size is not None
-        else max(0.25 * t_ref, a_geo / 40.0)
+    sizes, friction, r, s, opts = _indent_inputs(
+        web,
+        core,
+        radius,
+        sigma_r,
+        (head_radius, head_length, depth_max, extend_to if stop is not None else None),
+        friction,
+        options,
     )
-    fine = opts.fine_halfwidth if opts.fine_halfwidth is not None else FINE_ZONE * a_geo
-    if surface_size >= 0.5 * (r_out - r_in):
-        raise InputError("is too large for the wound thickness", "options.surface_size")
-    mesh = build_mesh(
-        r_in,
-        r_out,
-        surface_size=surface_size,
-        radial_growth=opts.radial_growth,
-        tangential_size=t_size,
-        fine_halfwidth=max(fine, t_size),
-        tangential_growth=opts.tangential_growth,
-        max_element_angle=opts.max_element_angle,
-        periodic=not opts.half_model,
-    )
+    head_radius, head_length, depth_max, deepest = sizes
+    r_out = float(r[-1])
+    mesh = contact_mesh(web, core, r_out, head_radius, depth_max, opts)
     sym = 2.0 if opts.half_model else 1.0  # the half model carries half the load
     roll = _Roll(web, core, r, s, mesh, opts)
-
-    n_dof = 2 * mesh.n_nodes
-    n_surf = roll.surface.size
-    u = np.zeros(n_dof)
-    sig = np.zeros((mesh.n_elements, 3))  # contact-induced (r, theta, r-theta) [Pa]
-    lam = np.zeros(n_surf)
-    f_contact = np.zeros(n_dof)
-    s_surf = r_out * mesh.theta
-    j0 = mesh.j0
-    trib = 0.5 * (np.roll(s_surf, -1) - np.roll(s_surf, 1))
-    if opts.half_model:
-        trib[0] = 0.5 * s_surf[1]
-    n_per = int(opts.n_steps)
-    n = n_per
-    if deepest > depth_max:  # room to go on past depth_max (extend_to)
-        n = int(math.ceil(n_per * (deepest / depth_max) ** (1.0 / opts.step_exponent)))
-    delta = np.minimum(depth_max * (np.arange(n + 1) / n_per) ** opts.step_exponent, deepest)
-    force = np.zeros(n + 1)
-    half = np.zeros(n + 1)
-    p_peak = np.zeros(n + 1)
-    # fields at every recorded depth (row k at delta[k]; row 0 the pre-impact state)
-    sig_hist = np.zeros((n + 1, mesh.n_elements, 3))
-    p_hist = np.zeros((n + 1, n_surf))
-    slip_on = opts.slip == "reduced-shear"
-    if slip_on:
-        roll.slip_weight = np.zeros(mesh.n_elements)
-    u_hist = np.zeros((n + 1, n_surf))  # inward radial displacement of the surface nodes
-    frozen = roll.moduli(roll.sigma_pre) if not update_modulus else None
-    tol_gap = 1e-3 * delta[1]
-    step: _Step | None = None
-    lu_frozen = _factorize(roll, frozen) if frozen is not None else None
-    factorisations = int(lu_frozen is not None)
-    slip_passes = 0
-    n_done = n
-    for k in range(1, n + 1):
-        centre = np.array([r_out + head_radius - delta[k], 0.0])
-
-        def solve(
-            mod: tuple[FloatArray, ...],
-            lu: _Factor,
-            u: FloatArray = u,
-            f_contact: FloatArray = f_contact,
-            lam: FloatArray = lam,
-            centre: FloatArray = centre,
-            extra: FloatArray | None = None,
-        ) -> _Step:
-            return _step(roll, mod, lu, u, f_contact, lam, centre, head_radius, tol_gap, extra)
-
-        def increment(
-            frozen: tuple[FloatArray, ...] | None,
-            lu_frozen: _Factor | None,
-            k: int = k,
-            last: _Step | None = step,
-            sig: FloatArray = sig,
-        ) -> tuple[_Step, int]:
-            """The increment at the current slip zone; (step, factorisations)."""
-            if frozen is not None and lu_frozen is not None:
-                return solve(frozen, lu_frozen), 0  # one factorisation for all increments
-            if opts.midpoint and opts.predictor:
-                predicted = None
-                if last is not None and roll.linear_law is not None and k >= 3:
-                    # the end-of-step stress by the parabola through the last three
-                    # states (the stress under the head stiffens exponentially in depth)
-                    x0, x1, x2, x = delta[k - 3], delta[k - 2], delta[k - 1], delta[k]
-                    l0 = (x - x1) * (x - x2) / ((x0 - x1) * (x0 - x2))
-                    l1 = (x - x0) * (x - x2) / ((x1 - x0) * (x1 - x2))
-                    l2 = (x - x0) * (x - x1) / ((x2 - x0) * (x2 - x1))
-                    h = sig_hist[:, :, 0]
-                    end = l0 * h[k - 3] + l1 * h[k - 2] + l2 * h[k - 1]
-                    predicted = 0.5 * (sig[:, 0] + end)
-                elif last is not None:
-                    ratio = (delta[k] - delta[k - 1]) / (delta[k - 1] - delta[k - 2])
-                    predicted = sig[:, 0] + 0.5 * ratio * last.dsig[:, 0]
-                if roll.linear_law is not None and opts.newton:
-                    return _newton_increment(roll, sig[:, 0], predicted, opts.step_tol, solve)
-                return _predicted_increment(roll, sig[:, 0], predicted, opts.step_tol, solve)
-            step = _hypoelastic_increment(roll, sig[:, 0], opts.midpoint, solve)
-            return step, 2 if opts.midpoint else 1
-
-        if not slip_on:
-            step, n_fact = increment(frozen, lu_frozen)
-            factorisations += n_fact
-        else:
-            # slip emulation (Figure 19): the zone where the interlayer shear reaches mu P,
-            # {23}, and each element's slipping share of the increment, iterated until no
-            # share grows by more than SLIP_TOL (monotone: it cannot cycle)
-            assert roll.slip_weight is not None
-            before = roll.slip_weight.copy()
-            for _ in range(opts.slip_max_passes):
-                step, n_fact = increment(frozen, lu_frozen)
-                factorisations += n_fact
-                slip_passes += 1
-                w = np.maximum(
-                    _slip_weight(roll, sig, step.dsig, friction, before), roll.slip_weight
-                )
-                if np.max(w - roll.slip_weight) <= SLIP_TOL:
-                    break
-                roll.slip_weight = w
-                if frozen is not None:
-                    frozen = roll.moduli(roll.sigma_pre)
-                    lu_frozen = _factorize(roll, frozen)
-                    factorisations += 1
-            else:
-                raise ConvergenceError(
-                    f"the slip zone did not settle in {opts.slip_max_passes} passes at depth "
-                    f"{delta[k] * 1e3:.3g} mm ({int(np.count_nonzero(roll.slip_weight))} "
-                    "elements slipping); raise options.slip_max_passes or use more n_steps"
-                )
-            # slipped within this increment: slipped for the rest of the loading
-            settled = np.where(roll.slip_weight > 0, 1.0, 0.0)
-            changed = not np.array_equal(settled, roll.slip_weight)
-            roll.slip_weight = settled
-            if frozen is not None and changed and k < n:
-                frozen = roll.moduli(roll.sigma_pre)
-                lu_frozen = _factorize(roll, frozen)
-                factorisations += 1
-        u += step.du
-        sig += step.dsig
-        lam = step.lam
-        f_contact = np.zeros(n_dof)
-        fr, ft = roll.polar(step.normal * lam[:, None], roll.surface)
-        f_contact[2 * roll.surface] = fr
-        f_contact[2 * roll.surface + 1] = ft
-        force[k] = sym * float(np.sum(-lam * step.normal[:, 0]))
-        half[k] = _half_width(s_surf, lam, step.gap, j0, (1,) if opts.half_model else (1, -1))
-        p_peak[k] = float(np.max(lam / trib))
-        sig_hist[k] = sig
-        p_hist[k] = lam / trib
-        u_hist[k] = -u[2 * roll.surface]
-        if stop is not None and k < n and stop(delta[: k + 1], force[: k + 1] * head_length):
-            n_done = k
-            break
-    assert step is not None
-    if n_done < n:  # stopped early (``stop``): the curve ends at the last depth solved
-        m = n_done + 1
-        delta, force, half, p_peak = delta[:m], force[:m], half[:m], p_peak[:m]
-        sig_hist, p_hist, u_hist = sig_hist[:m], p_hist[:m], u_hist[:m]
-    sigma_r_total = roll.sigma_pre + sig[:, 0]
-    sf = slip_factor(sig[:, 2], sigma_r_total, friction)
-    alpha, beta, r2, max_res = fit_spring(delta, force * head_length)
-    xy = roll.basis.centre_xy
-    return ContactResult(
-        delta=delta,
-        force=force * head_length,
-        contact_pressure=p_hist[-1],
-        force_per_length=force,
-        half_width=half,
-        peak_pressure=p_peak,
-        alpha=alpha,
-        beta=beta,
-        fit_r2=r2,
-        fit_max_rel_residual=max_res,
-        contact_s=s_surf,
-        element_x=xy[:, 0],
-        element_y=xy[:, 1],
-        element_r=roll.r_centre,
-        element_theta=np.arctan2(xy[:, 1], xy[:, 0]),
-        sigma_r=sigma_r_total,
-        sigma_r_pre=roll.sigma_pre,
-        sigma_theta=sig[:, 1],
-        tau_r_theta=sig[:, 2],
-        slip_factor=sf,
-        sigma_r_history=roll.sigma_pre[None, :] + sig_hist[:, :, 0],
-        sigma_theta_history=sig_hist[:, :, 1],
-        tau_r_theta_history=sig_hist[:, :, 2],
-        contact_pressure_history=p_hist,
-        friction=friction,
-        head_radius=head_radius,
-        head_length=head_length,
-        outer_radius=r_out,
-        update_modulus=update_modulus,
-        n_elements=mesh.n_elements,
-        n_dof=int(roll.free.sum()),
-        mesh_shape=(mesh.n_r - 1, mesh.n_theta),
-        solve_time_s=time.perf_counter() - t0,
-        factorisations=factorisations,
-        slipped=None if roll.slip_weight is None else roll.slip_weight > 0,
-        slip_passes=slip_passes,
-        surface_deflection_history=u_hist,
-    )
+    delta = depth_schedule(depth_max, int(opts.n_steps), opts.step_exponent, deepest)
+    load = _Loading(roll, opts, delta, head_radius, friction, update_modulus)
+    h, u_hist, s_surf = _press(load, sym, head_length, stop)
+    return _result2d(load, h, u_hist, s_surf, head_length, update_modulus, t0)

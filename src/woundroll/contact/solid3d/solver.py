@@ -33,16 +33,15 @@ import numpy as np
 from numpy.typing import NDArray
 
 from woundroll.contact.heads import Head
-from woundroll.contact.plane_strain.solver import (
-    _check_profile,
-    _check_scalar,
-    _half_width,
-    _solve_lcp,
-)
-from woundroll.contact.result import ContactResult, fit_spring, slip_factor
+from woundroll.contact.result import ContactResult
 from woundroll.contact.solid3d.fem import Assembler3D, orthotropic_moduli, stresses
 from woundroll.contact.solid3d.linsolve import SOLVERS, make_solver
 from woundroll.contact.solid3d.mesh import RollMesh3D, build_mesh3d
+from woundroll.contact.stepping import LoadHistory, depth_schedule, result_fields
+from woundroll.contact.stepping import check_profile as _check_profile
+from woundroll.contact.stepping import check_scalar as _check_scalar
+from woundroll.contact.stepping import half_width as _half_width
+from woundroll.contact.stepping import solve_lcp as _solve_lcp
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.materials.web import Core, Web
 from woundroll.units import to_si
@@ -244,9 +243,7 @@ class Roll3D:
         mesh: RollMesh3D,
         opts: Contact3DOptions,
     ) -> None:
-        self.web = web
-        self.mesh = mesh
-        self.opts = opts
+        self.web, self.mesh, self.opts = web, mesh, opts
         #: elements whose interlayer shear reached Coulomb's limit (slip emulation)
         self.slipped: NDArray[np.bool_] | None = None
         n_r, n_t, n_z = mesh.shape
@@ -422,7 +419,7 @@ class Roll3D:
 
 def _edge(coord: FloatArray, active: NDArray[np.bool_], gap: FloatArray) -> float:
     """Contact extent along one line of surface nodes from its first node, interpolated as
-    in 2D (:func:`woundroll.contact.plane_strain.solver._half_width`: beyond the edge the gap opens
+    in 2D (:func:`woundroll.contact.stepping.half_width`: beyond the edge the gap opens
     as (s - a)^(3/2)); the line's end if the contact reaches it."""
     if not active[0]:
         return 0.0
@@ -457,7 +454,17 @@ def build_roll3d(
     opts = options if options is not None else Contact3DOptions()
     if not isinstance(opts, Contact3DOptions):
         raise InputError("must be a Contact3DOptions", "options")
-    r_in, r_out = core.outer_radius, float(r[-1])
+    _check_reach(web, core, float(r[-1]), head, depth_max, opts)
+    mesh = _mesh_under_the_head(web, core, float(r[-1]), head, depth_max, opts)
+    model = Roll3D(web, core, r, s, mesh, opts)
+    return model
+
+
+def _check_reach(
+    web: Web, core: Core, r_out: float, head: Head, depth_max: float, opts: Contact3DOptions
+) -> None:
+    """The head fits the roll's width, the depth the model's reach."""
+    r_in = core.outer_radius
     z_max = 0.5 * web.width
     if head.cmd_halfwidth >= z_max and opts.cmd_edges == "free":
         raise InputError(
@@ -476,6 +483,15 @@ def build_roll3d(
             f"({0.25 * (r_out - r_in):g} m), got {depth_max:g} m",
             "depth_max",
         )
+
+
+def _mesh_under_the_head(
+    web: Web, core: Core, r_out: float, head: Head, depth_max: float, opts: Contact3DOptions
+) -> RollMesh3D:
+    """The graded mesh sized by the head's geometric footprint at ``depth_max`` (half
+    extents a_y, a_z; :class:`Contact3DOptions` may set each size)."""
+    r_in = core.outer_radius
+    z_max = 0.5 * web.width
     a_y, a_z = head.footprint(depth_max, r_out)
     if a_y >= 0.25 * r_out:
         raise InputError("the head is too large for the roll's radius", "head.radius")
@@ -503,7 +519,7 @@ def build_roll3d(
             )
     if surface >= 0.5 * (r_out - r_in):
         raise InputError("is too large for the wound thickness", "options.surface_size")
-    mesh = build_mesh3d(
+    return build_mesh3d(
         r_in,
         r_out,
         z_max=z_max,
@@ -517,8 +533,191 @@ def build_roll3d(
         fine_halflength=max(fine_z, z_size),
         axial_growth=opts.axial_growth,
     )
-    model = Roll3D(web, core, r, s, mesh, opts)
-    return model
+
+
+class _Loading3D:
+    """The head pressed into the 3D roll increment by increment: the surface nodes' bounds
+    under the head, the state between the increments and the frozen stiffness of
+    ``update_modulus=False``."""
+
+    def __init__(
+        self,
+        model: Roll3D,
+        head: Head,
+        delta: FloatArray,
+        friction: float,
+        update_modulus: bool,
+    ) -> None:
+        self.model, self.delta, self.friction = model, delta, friction
+        mesh, r_out = model.mesh, model.R
+        th = model.surf_theta
+        self.cos_t = np.cos(th)
+        self.lift = head.lift(r_out * np.sin(th), model.surf_z)
+        self.reach = np.isfinite(self.lift) & (self.cos_t > 0)
+        n_el = mesh.n_elements
+        self.u = np.zeros(model.asm.n_free)
+        self.u_prev = np.zeros_like(self.u)
+        self.sig = np.zeros((n_el, 6))
+        self.f_surf = np.zeros(th.size)
+        self.tol = 1e-3 * delta[1]  # gap tolerance, as in 2D
+        if model.opts.slip == "reduced-shear":
+            model.slipped = np.zeros(n_el, dtype=bool)
+        self.D_frozen = model.moduli(model.sigma_pre) if not update_modulus else None
+        if self.D_frozen is not None:
+            model.factor(self.D_frozen)  # one factorisation for all increments
+        self.dsig_last: FloatArray | None = None
+        self.u_all = np.zeros(3 * mesh.n_nodes)
+
+    def bound_at(self, d: float) -> FloatArray:
+        """The radial displacement at which a surface node meets the head pressed to d."""
+        r_out, reach = self.model.R, self.reach
+        out = np.full(self.cos_t.size, np.inf)
+        out[reach] = (r_out - d + self.lift[reach]) / self.cos_t[reach] - r_out
+        return out
+
+    def solve(
+        self, D: FloatArray, bound: FloatArray, guess: NDArray[np.bool_]
+    ) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """The increment with the factorised K: (du, new contact forces, stresses)."""
+        model = self.model
+        du, f_new = model.solve_pass(bound, self.u[model.sr], self.f_surf, guess, self.tol)
+        self.u_all[model.free] = du
+        return du, f_new, stresses(D, model.asm.centre_strains(self.u_all))
+
+    def _moduli(self, bound: FloatArray, guess: NDArray[np.bool_], ratio: float) -> FloatArray:
+        """The increment's moduli, factorised: mid-step modulus (midpoint rule), the
+        mid-step stress from the last increment's stress rate (second order, no extra
+        solve), or from a trial solve at the start-of-step modulus on the first increment
+        and with ``predictor="trial"``."""
+        model, sig = self.model, self.sig
+        if self.D_frozen is not None:
+            return self.D_frozen
+        D = model.moduli(model.sigma_pre + sig[:, 0])
+        if model.opts.midpoint:
+            if self.dsig_last is None or model.opts.predictor == "trial":
+                model.factor(D)
+                _, _, trial = self.solve(D, bound, guess)
+                d_half = 0.5 * trial[:, 0]
+            else:
+                d_half = 0.5 * ratio * self.dsig_last[:, 0]
+            D = model.moduli(model.sigma_pre + sig[:, 0] + d_half)
+        model.factor(D)
+        return D
+
+    def _slip(self) -> None:
+        """Slip emulation (Figure 19): where the interlayer shear reaches mu P, {23}, the
+        transverse shear moduli drop for the rest of the loading."""
+        model, sig = self.model, self.sig
+        assert model.slipped is not None
+        tau = np.hypot(sig[:, 3], sig[:, 4])
+        grew = (tau >= self.friction * np.maximum(-(model.sigma_pre + sig[:, 0]), 0.0)) & (tau > 0)
+        if np.any(grew & ~model.slipped):
+            model.slipped |= grew
+            if self.D_frozen is not None:
+                self.D_frozen = model.moduli(model.sigma_pre)
+                model.factor(self.D_frozen)
+
+    def advance(self, k: int) -> FloatArray:
+        """Press the head to ``delta[k]``: the increment solved, the state updated; returns
+        the bounds of the surface nodes there."""
+        model, delta, u = self.model, self.delta, self.u
+        bound = self.bound_at(delta[k])
+        u_surf = u[model.sr]
+        # predicted contact: the last increment's motion extrapolated
+        ratio = (delta[k] - delta[k - 1]) / max(delta[k - 1] - delta[max(k - 2, 0)], 1e-300)
+        u_pred = u_surf + ratio * (u_surf - self.u_prev[model.sr]) if k > 1 else u_surf
+        guess = (self.f_surf < 0) | (bound - u_pred < 0)
+        D = self._moduli(bound, guess, ratio)
+        du, f_new, dsig = self.solve(D, bound, guess)
+        self.dsig_last = dsig
+        self.u_prev = u.copy()
+        self.u = u + du
+        self.sig += dsig
+        if model.slipped is not None:
+            self._slip()
+        self.f_surf = f_new
+        return bound
+
+
+def _press3d(load: _Loading3D) -> tuple[LoadHistory, FloatArray]:
+    """Every depth of ``load.delta`` in turn, recorded on the line z = 0 (quarter model:
+    forces times 4). Returns the history and the contact's half length along the CMD."""
+    model, delta = load.model, load.delta
+    mesh = model.mesh
+    n_t, n_z = mesh.theta.size, mesh.z.size
+    s_line = model.R * mesh.theta
+    h = LoadHistory.start(delta, mesh.n_elements, n_t)
+    half_len = np.zeros(delta.size)
+    for k in range(1, delta.size):
+        bound = load.advance(k)
+        f_new = load.f_surf
+        p = -f_new / model.surf_area
+        gap = (bound - load.u[model.sr]).reshape(n_z, n_t)
+        act = (f_new < 0).reshape(n_z, n_t)
+        h.record(
+            k,
+            -4.0 * float(np.sum(f_new * load.cos_t)),
+            _edge(s_line, act[0], gap[0]),
+            float(p.max()),
+            load.sig[:, [0, 1, 3]],
+            p.reshape(n_z, n_t)[0],
+        )
+        half_len[k] = _edge(mesh.z, act[:, 0], gap[:, 0])
+    return h, half_len
+
+
+def _result3d(
+    load: _Loading3D,
+    h: LoadHistory,
+    half_len: FloatArray,
+    head: Head,
+    update_modulus: bool,
+    times: tuple[float, float],
+) -> Contact3DResult:
+    """The result of :func:`indent3d` (``times``: its start and its setup's seconds)."""
+    model, friction = load.model, load.friction
+    mesh = model.mesh
+    t0, t_setup = times
+    sig, tc, n_t, n_z = load.sig, model.t_centre, mesh.theta.size, mesh.z.size
+    length = float(head.length) if head.shape == "cylinder" else 2.0 * head.cmd_halfwidth
+    elements = (model.r_centre * np.cos(tc), model.r_centre * np.sin(tc), model.r_centre, tc)
+    return Contact3DResult(
+        **result_fields(
+            h,
+            force=h.force,
+            stress=(sig[:, 0], sig[:, 1], sig[:, 3]),
+            sigma_pre=model.sigma_pre,
+            friction=friction,
+            elements=elements,
+            contact_s=model.R * mesh.theta,
+        ),
+        force_per_length=h.force / length,
+        head_radius=head.radius,
+        head_length=length,
+        outer_radius=model.R,
+        update_modulus=update_modulus,
+        n_elements=mesh.n_elements,
+        n_dof=model.asm.n_free,
+        mesh_shape=(mesh.r.size - 1, n_t - 1, n_z - 1),  # type: ignore[arg-type]
+        solve_time_s=time.perf_counter() - t0,
+        half_length=half_len,
+        element_z=model.z_centre,
+        sigma_z=sig[:, 2],
+        tau_r_z=sig[:, 4],
+        surface_pressure=(-load.f_surf / model.surf_area).reshape(n_z, n_t).T,
+        surface_theta=mesh.theta,
+        surface_z=mesh.z,
+        head=head.to_dict(),
+        stats={
+            "factorisations": model.n_factor,
+            "rhs_solved": model.n_solves,
+            "assembly_s": model.t_assembly,
+            "factor_s": model.t_factor,
+            "solve_s": model.t_solve,
+            "setup_s": t_setup,
+            "slipped_elements": 0 if model.slipped is None else int(model.slipped.sum()),
+        },
+    )
 
 
 def indent3d(
@@ -563,153 +762,9 @@ def indent3d(
     model = build_roll3d(
         web, core, radius, sigma_r, head=head, depth_max=depth_max, options=options
     )
-    mesh, opts, r_out = model.mesh, model.opts, model.R
+    opts = model.opts
     t_setup = time.perf_counter() - t0
-    n_t, n_z = mesh.theta.size, mesh.z.size
-    th, zz = model.surf_theta, model.surf_z
-    cos_t = np.cos(th)
-    lift = head.lift(r_out * np.sin(th), zz)
-    reach = np.isfinite(lift) & (cos_t > 0)
-
-    def bound_at(d: float) -> FloatArray:
-        # radial displacement at which a surface node meets the head pressed to depth d
-        out = np.full(th.size, np.inf)
-        out[reach] = (r_out - d + lift[reach]) / cos_t[reach] - r_out
-        return out
-
-    n = int(opts.n_steps)
-    delta = depth_max * (np.arange(n + 1) / n) ** opts.step_exponent
-    sym = 4.0  # quarter model: theta >= 0 and z >= 0
-    n_el = mesh.n_elements
-    u = np.zeros(model.asm.n_free)
-    u_prev = np.zeros_like(u)
-    sig = np.zeros((n_el, 6))
-    f_surf = np.zeros(th.size)
-    force = np.zeros(n + 1)
-    half = np.zeros(n + 1)
-    half_len = np.zeros(n + 1)
-    p_peak = np.zeros(n + 1)
-    sig_hist = np.zeros((n + 1, n_el, 3))
-    p_line_hist = np.zeros((n + 1, n_t))
-    tol = 1e-3 * delta[1]  # gap tolerance, as in 2D
-    s_line = r_out * mesh.theta
-    if opts.slip == "reduced-shear":
-        model.slipped = np.zeros(n_el, dtype=bool)
-    D_frozen = model.moduli(model.sigma_pre) if not update_modulus else None
-    if D_frozen is not None:
-        model.factor(D_frozen)  # one factorisation for all increments
-    dsig_last = None
-    u_all = np.zeros(3 * mesh.n_nodes)
-
-    def solve(D: FloatArray, bound: FloatArray, guess: NDArray[np.bool_]):
-        du, f_new = model.solve_pass(bound, u[model.sr], f_surf, guess, tol)
-        u_all[model.free] = du
-        return du, f_new, stresses(D, model.asm.centre_strains(u_all))
-
-    for k in range(1, n + 1):
-        bound = bound_at(delta[k])
-        u_surf = u[model.sr]
-        # predicted contact: the last increment's motion extrapolated
-        ratio = (delta[k] - delta[k - 1]) / max(delta[k - 1] - delta[max(k - 2, 0)], 1e-300)
-        u_pred = u_surf + ratio * (u_surf - u_prev[model.sr]) if k > 1 else u_surf
-        guess = (f_surf < 0) | (bound - u_pred < 0)
-        if D_frozen is not None:
-            D = D_frozen
-        else:
-            # mid-step modulus (midpoint rule): the mid-step stress from the last increment's
-            # stress rate (second order, no extra solve), or from a trial solve at the
-            # start-of-step modulus on the first increment and with ``predictor="trial"``
-            D = model.moduli(model.sigma_pre + sig[:, 0])
-            if opts.midpoint:
-                if dsig_last is None or opts.predictor == "trial":
-                    model.factor(D)
-                    _, _, trial = solve(D, bound, guess)
-                    d_half = 0.5 * trial[:, 0]
-                else:
-                    d_half = 0.5 * ratio * dsig_last[:, 0]
-                D = model.moduli(model.sigma_pre + sig[:, 0] + d_half)
-            model.factor(D)
-        du, f_new, dsig = solve(D, bound, guess)
-        dsig_last = dsig
-        u_prev = u.copy()
-        u = u + du
-        sig += dsig
-        if model.slipped is not None:
-            # slip emulation (Figure 19): where the interlayer shear reaches mu P, {23},
-            # the transverse shear moduli drop for the rest of the loading
-            tau = np.hypot(sig[:, 3], sig[:, 4])
-            grew = (tau >= friction * np.maximum(-(model.sigma_pre + sig[:, 0]), 0.0)) & (tau > 0)
-            if np.any(grew & ~model.slipped):
-                model.slipped |= grew
-                if D_frozen is not None:
-                    D_frozen = model.moduli(model.sigma_pre)
-                    model.factor(D_frozen)
-        f_surf = f_new
-        A = f_new < 0
-        force[k] = -sym * float(np.sum(f_new * cos_t))
-        p = -f_new / model.surf_area
-        p_peak[k] = float(p.max())
-        grid_p = p.reshape(n_z, n_t)
-        p_line_hist[k] = grid_p[0]
-        gap = (bound - u[model.sr]).reshape(n_z, n_t)
-        act = A.reshape(n_z, n_t)
-        half[k] = _edge(s_line, act[0], gap[0])
-        half_len[k] = _edge(mesh.z, act[:, 0], gap[:, 0])
-        sig_hist[k] = sig[:, [0, 1, 3]]
-    sigma_r_total = model.sigma_pre + sig[:, 0]
-    sf = slip_factor(sig[:, 3], sigma_r_total, friction)
-    length = float(head.length) if head.shape == "cylinder" else 2.0 * head.cmd_halfwidth
-    alpha, beta, r2, max_res = fit_spring(delta, force)
-    tc = model.t_centre
-    return Contact3DResult(
-        delta=delta,
-        force=force,
-        contact_pressure=p_line_hist[-1],
-        force_per_length=force / length,
-        half_width=half,
-        peak_pressure=p_peak,
-        alpha=alpha,
-        beta=beta,
-        fit_r2=r2,
-        fit_max_rel_residual=max_res,
-        contact_s=s_line,
-        element_x=model.r_centre * np.cos(tc),
-        element_y=model.r_centre * np.sin(tc),
-        element_r=model.r_centre,
-        element_theta=tc,
-        sigma_r=sigma_r_total,
-        sigma_r_pre=model.sigma_pre,
-        sigma_theta=sig[:, 1],
-        tau_r_theta=sig[:, 3],
-        slip_factor=sf,
-        sigma_r_history=model.sigma_pre[None, :] + sig_hist[:, :, 0],
-        sigma_theta_history=sig_hist[:, :, 1],
-        tau_r_theta_history=sig_hist[:, :, 2],
-        contact_pressure_history=p_line_hist,
-        friction=friction,
-        head_radius=head.radius,
-        head_length=length,
-        outer_radius=r_out,
-        update_modulus=update_modulus,
-        n_elements=n_el,
-        n_dof=model.asm.n_free,
-        mesh_shape=(mesh.r.size - 1, n_t - 1, n_z - 1),  # type: ignore[arg-type]
-        solve_time_s=time.perf_counter() - t0,
-        half_length=half_len,
-        element_z=model.z_centre,
-        sigma_z=sig[:, 2],
-        tau_r_z=sig[:, 4],
-        surface_pressure=(-f_surf / model.surf_area).reshape(n_z, n_t).T,
-        surface_theta=mesh.theta,
-        surface_z=mesh.z,
-        head=head.to_dict(),
-        stats={
-            "factorisations": model.n_factor,
-            "rhs_solved": model.n_solves,
-            "assembly_s": model.t_assembly,
-            "factor_s": model.t_factor,
-            "solve_s": model.t_solve,
-            "setup_s": t_setup,
-            "slipped_elements": 0 if model.slipped is None else int(model.slipped.sum()),
-        },
-    )
+    delta = depth_schedule(depth_max, int(opts.n_steps), opts.step_exponent)
+    load = _Loading3D(model, head, delta, friction, update_modulus)
+    h, half_len = _press3d(load)
+    return _result3d(load, h, half_len, head, update_modulus, (t0, t_setup))
