@@ -174,8 +174,10 @@ def test_case_with_contact_dynamic_reports_hardness_dynamic(tmp_path):
     assert len(at["depth_below_surface_m"]) == len(at["radial_pressure_Pa"]) > 10
     # the rebound is elastic without an unloading law, and the readout says so
     assert dyn["rebound"].startswith("elastic")
-    # beside the 1.5D models (same striker, same roll): within 25 % of the FD reading
-    assert dyn["rho_dynamic"] == pytest.approx(d["rho_fd"], rel=0.25)
+    # beside the 1.5D models (same striker, same roll): the FE impact reads PET1 10-15 %
+    # below the FD model (docs/dynamic.md, "Measured": 45.1 against 51.6 Rho at 400 steps;
+    # measured here at 100 steps: 44.67 against 51.20, -12.7 %)
+    assert -0.15 < dyn["rho_dynamic"] / d["rho_fd"] - 1 < -0.10
     files = res.write(tmp_path)
     assert tmp_path / "dynamic.png" in files and (tmp_path / "dynamic.png").stat().st_size > 0
 
