@@ -336,7 +336,7 @@ def assess_lanes(diagnosis: Diagnosis, case: Case, limits: DefectLimits) -> list
         crit = [c for c in crit if c.needs is None]  # unchecked: said once, for the roll
         entry["criteria"] = [c.to_dict() for c in crit]
         ratio = float(wot[i] / med) if med > 0 else math.nan
-        entry["wot_over_median"] = ratio
+        entry["wound_on_tension_over_median"] = ratio
         entry["slack_lane"] = bool(ratio < limits.slack_fraction) or any(
             c.name == "slack" and c.risk == "high" for c in crit
         )
@@ -385,7 +385,15 @@ class DefectReport:
             "unchecked": [{"name": n, "needs": k} for n, k in self.unchecked],
             "roll": [c.to_dict() for c in self.roll],
             "lanes": self.lanes,
-            "limits": {k: v for k, v in self.limits.__dict__.items()},
+            "limits": {
+                "core_strength_Pa": self.limits.core_strength,
+                "blocking_pressure_Pa": self.limits.blocking_pressure,
+                "friction": self.limits.friction,
+                "axial_acceleration_m_per_s2": self.limits.axial_acceleration,
+                "torque_N_m": self.limits.torque,
+                "slack_pressure_Pa": self.limits.slack_pressure,
+                "slack_fraction": self.limits.slack_fraction,
+            },
             "watch_margin": WATCH_MARGIN,
         }
 

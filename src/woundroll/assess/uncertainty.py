@@ -48,6 +48,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from woundroll.errors import InputError
+from woundroll.pipeline.vocabulary import versioned
 from woundroll.util.output import strict_json
 
 if TYPE_CHECKING:
@@ -245,7 +246,9 @@ class UncertaintyResult:
             if err is not None:
                 rows.append(("surrogate vs full runs, max error", f"{err:.2g} {self.scale}"))
         if self.profile is not None:
-            half = 0.5 * (np.array(self.profile["rho_high"]) - np.array(self.profile["rho_low"]))
+            half = 0.5 * (
+                np.array(self.profile["reading_high"]) - np.array(self.profile["reading_low"])
+            )
             rows.append(
                 (
                     f"CMD profile [{self.scale}], 95 % half-band",
@@ -296,14 +299,14 @@ class UncertaintyResult:
             p = self.profile
             fig3, ax = plt.subplots(figsize=(7.2, 3.8))
             zc = np.array(p["z_m"]) * 100
-            ax.fill_between(zc, p["rho_low"], p["rho_high"], color="C3", alpha=0.3, lw=0)
-            ax.plot(zc, p["rho_nominal"], color="C3", marker="o", ms=3, label=p["centre"])
+            ax.fill_between(zc, p["reading_low"], p["reading_high"], color="C3", alpha=0.3, lw=0)
+            ax.plot(zc, p["reading_nominal"], color="C3", marker="o", ms=3, label=p["centre"])
             ax.plot([], [], color="C3", alpha=0.3, lw=6, label="95 % band")
             off = np.array(p["outside_curve"], dtype=bool)
             if off.any():
                 ax.plot(
                     zc[off],
-                    np.array(p["rho_nominal"])[off],
+                    np.array(p["reading_nominal"])[off],
                     "x",
                     color="k",
                     ms=7,
@@ -335,7 +338,9 @@ class UncertaintyResult:
         out = Path(out_dir)
         try:
             out.mkdir(parents=True, exist_ok=True)
-            (out / "uncertainty.json").write_text(strict_json(self.to_dict()), encoding="utf-8")
+            (out / "uncertainty.json").write_text(
+                strict_json(versioned(self.to_dict())), encoding="utf-8"
+            )
             for fig in self.plot(out / "uncertainty"):
                 plt.close(fig)
         except OSError as exc:
@@ -515,7 +520,7 @@ def _reading_surrogate(
     for i in range(min(verify, n)):
         full = run({k: float(v[i]) for k, v in u.items()})
         tick()
-        checks.append({"sample": i, "full": full, "surrogate": float(reading[i])})
+        checks.append({"sample": i, "reading_full": full, "reading_surrogate": float(reading[i])})
     return reading, {
         "kind": "quadratic per standardised parameter, no cross terms",
         "step_sd": h,
@@ -524,7 +529,9 @@ def _reading_surrogate(
         "quadratic": b,
         "full_runs": 1 + 2 * len(names) + len(checks),
         "checks": checks,
-        "max_abs_error": max((abs(c["full"] - c["surrogate"]) for c in checks), default=None),
+        "max_abs_error": max(
+            (abs(c["reading_full"] - c["reading_surrogate"]) for c in checks), default=None
+        ),
     }
 
 
@@ -677,12 +684,12 @@ def _bands_dict(
     lo, mid, hi = np.percentile(samples, PERCENTILES, axis=0)
     return {
         "z_m": z.tolist(),
-        "rho_nominal": centre.tolist(),
+        "reading_nominal": centre.tolist(),
         "centre": source,
-        "rho_low": lo.tolist(),
-        "rho_p50": mid.tolist(),
-        "rho_high": hi.tolist(),
-        "rho_sd": samples.std(axis=0, ddof=1).tolist(),
+        "reading_low": lo.tolist(),
+        "reading_p50": mid.tolist(),
+        "reading_high": hi.tolist(),
+        "reading_sd": samples.std(axis=0, ddof=1).tolist(),
         "reduced_nominal": r0.tolist(),
         "outside_curve": [bool(x) for x in outside],
         "outside_note": "sectors whose near-surface pressure lies outside the forward "

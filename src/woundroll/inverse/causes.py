@@ -226,9 +226,9 @@ class CauseFit:
                 "thickness_low_m": (h - 1.96 * hsd).tolist(),
                 "thickness_high_m": (h + 1.96 * hsd).tolist(),
                 "position_m": self.readings.position.tolist(),
-                "rho_measured": self.readings.mean.tolist(),
-                "rho_fit": self.fitted.tolist(),
-                "rho_initial": self.initial.tolist(),
+                "reading_measured": self.readings.mean.tolist(),
+                "reading_fit": self.fitted.tolist(),
+                "reading_initial": self.initial.tolist(),
                 "residual_rms": self.residual_rms,
             },
             "parameters": [
@@ -720,8 +720,8 @@ def _full_level(
         "full_runs": len(offsets),
         "ln_s_levels": levels,
         "offsets": offsets,
-        "rho_full": readings,
-        "rho_reduced": fitted.tolist(),
+        "reading_full": readings,
+        "reading_reduced": fitted.tolist(),
         "full_slope": slope,
         "ln_s_correction": levels[-1] - ln_s,
     }
@@ -751,13 +751,13 @@ def _verify(model: ProfileModel, theta: FloatArray) -> dict[str, Any]:
             {
                 "z_m": float(z[j]),
                 "surface_pressure_Pa": float(ps[j]),
-                "map": float(model.reading_of_pressure(np.array([ps[j]]))[0]),
-                "contact_model": full,
+                "reading_map": float(model.reading_of_pressure(np.array([ps[j]]))[0]),
+                "reading_full": full,
             }
         )
     return {
         "sectors": out,
-        "max_abs_error": max(abs(o["map"] - o["contact_model"]) for o in out),
+        "max_abs_error": max(abs(o["reading_map"] - o["reading_full"]) for o in out),
     }
 
 

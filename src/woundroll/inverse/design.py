@@ -247,12 +247,21 @@ class Design:
 
     def to_dict(self) -> dict[str, Any]:
         w = self.winding
+        unit_keys = {  # the target's dimensional fields, with their SI unit in the key
+            "pressure_min": "pressure_min_Pa",
+            "pressure_max": "pressure_max_Pa",
+            "tension_min": "tension_min_Pa",
+            "tension_max": "tension_max_Pa",
+            "nip_min": "nip_min_N_per_m",
+            "nip_max": "nip_max_N_per_m",
+            "hoop_min": "hoop_min_Pa",
+        }
         return {
             "feasible": self.feasible,
             "violations": list(self.violations),
             "setpoints": self.setpoints(),
             "target": {
-                k: (None if isinstance(v, float) and not math.isfinite(v) else v)
+                unit_keys.get(k, k): (None if isinstance(v, float) and not math.isfinite(v) else v)
                 for k, v in self.target.__dict__.items()
             },
             "reading": self.reading,
@@ -260,7 +269,7 @@ class Design:
             "profiles": {
                 "radius_m": w.radius.tolist(),
                 "sigma_r_Pa": w.sigma_r.tolist(),
-                "wot_Pa": w.wot.tolist(),
+                "wound_on_tension_Pa": w.wot.tolist(),
                 "layer_radius_m": w.layer_mean_hoop_stress()[0].tolist(),
                 "layer_mean_hoop_stress_Pa": w.layer_mean_hoop_stress()[1].tolist(),
             },
@@ -906,13 +915,13 @@ def _relaxations(
         out.append(
             {
                 "constraint": name,
-                "slack": slack,
-                "limit_needed": value,
+                "normalised_slack": slack,
+                "limit_needed_Pa": value,
                 "sentence": text.format(value * unit),
             }
         )
     if not out and viol:
-        out.append({"constraint": "reading", "slack": None, "limit_needed": None,
+        out.append({"constraint": "reading", "normalised_slack": None, "limit_needed_Pa": None,
                     "sentence": "widen --tolerance or the tension range"})  # fmt: skip
     return out
 

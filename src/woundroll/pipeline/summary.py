@@ -42,8 +42,8 @@ def result_summary(result: RunResult) -> list[tuple[str, str]]:
                 "Rho (finite difference / energy)",
                 f"{_num(d['rho_fd'], '.1f')} / {_num(d['rho_energy'], '.1f')}",
             ),
-            ("impulse", f"{_num(d['impulse_Ns'], '.4f')} N s"),
-            ("max depth", f"{_num(d['delta_max_m'] * 1e3, '.3f')} mm"),
+            ("impulse", f"{_num(d['impulse_N_s'], '.4f')} N s"),
+            ("max depth", f"{_num(d['impact_depth_m'] * 1e3, '.3f')} mm"),
             ("contact time", f"{_num(d['contact_time_s'] * 1e3, '.2f')} ms"),
         ]
     c = result.contact

@@ -320,7 +320,7 @@ class ProfileResult:
             "scale": None if self.scale is None else list(self.scale),
             "roll_model": self.roll_model,
             "thickness_m": lst(self.thickness),
-            "wot_Pa": lst(self.wot),
+            "wound_on_tension_Pa": lst(self.wot),
             "sigma_r_outer_Pa": lst(self.sigma_r_outer),
             "sigma_r_core_Pa": lst(self.sigma_r_core),
             "alpha_N_per_m2": lst(self.alpha),
@@ -328,7 +328,7 @@ class ProfileResult:
             "stats": {
                 "reading": None if self.rho_stats is None else self.rho_stats.to_dict(),
                 "reading_n_saturated": int(sat.sum()),
-                "thickness": self.thickness_stats.to_dict(),
+                "thickness_m": self.thickness_stats.to_dict(),
             },
             "slack": [bool(x) for x in self.slack],
             "n_layers": self.winding.n_layers,

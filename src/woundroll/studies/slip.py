@@ -53,7 +53,7 @@ class SlipStudy:
     n_unbounded : int
         Elements within 3 a sheared with no interlayer pressure (SF = inf).
     emulation : tuple of dict
-        Figure 19: per roll ``case``, ``rho_fd``/``rho_energy``/``delta_max_m`` without slip
+        Figure 19: per roll ``case``, ``rho_fd``/``rho_energy``/``impact_depth_m`` without slip
         and the same with ``_slip`` appended with the reduced-shear emulation, and
         ``slipped_elements`` (empty unless asked for).
     emulation_model : str
@@ -86,7 +86,7 @@ class SlipStudy:
             "figures": "reference paper, Figure 18",
             "case": self.case,
             "friction": self.friction,
-            "impact_depth_m": self.row["delta_max_m"],
+            "impact_depth_m": self.row["impact_depth_m"],
             "fields_depth_m": self.fields_depth_m,
             "fields_source": self.fields_source,
             "semi_contact_width_m": self.row["semi_contact_width_m"],
@@ -130,7 +130,7 @@ class SlipStudy:
             (
                 self.case,
                 f"{self.friction:g}",
-                f"{self.row['delta_max_m'] * 1e3:.2f}",
+                f"{self.row['impact_depth_m'] * 1e3:.2f}",
                 f"{self.fields_depth_m * 1e3:.2f}",
                 f"{self.row['semi_contact_width_m'] * 1e3:.2f}",
                 _fmt(self.max_slip_factor),
@@ -165,8 +165,8 @@ class SlipStudy:
                             f"{100 * (r['rho_fd_slip'] / r['rho_fd'] - 1):+.0f}",
                             f"{r['rho_energy']:.1f}",
                             f"{r['rho_energy_slip']:.1f}",
-                            f"{r['delta_max_m'] * 1e3:.2f}",
-                            f"{r['delta_max_m_slip'] * 1e3:.2f}",
+                            f"{r['impact_depth_m'] * 1e3:.2f}",
+                            f"{r['impact_depth_slip_m'] * 1e3:.2f}",
                             f"{r['slipped_elements']}",
                         )
                         for r in self.emulation
@@ -271,7 +271,7 @@ def slip_factor_study(
     )
     row = out["row"]
     contact = out["contact"]
-    depth_at = min(row["delta_max_m"], float(contact.delta[-1]))
+    depth_at = min(row["impact_depth_m"], float(contact.delta[-1]))
     fields, source = contact.at_depth(depth_at), "at_depth"
     a = fields.semi_contact_width
     near = fields.outer_radius * np.abs(np.asarray(fields.element_theta)) <= 3.0 * a
@@ -340,10 +340,10 @@ def _emulation_rows(
                 "case": name,
                 "rho_fd": plain["rho_fd"],
                 "rho_energy": plain["rho_energy"],
-                "delta_max_m": plain["delta_max_m"],
+                "impact_depth_m": plain["impact_depth_m"],
                 "rho_fd_slip": slip["row"]["rho_fd"],
                 "rho_energy_slip": slip["row"]["rho_energy"],
-                "delta_max_m_slip": slip["row"]["delta_max_m"],
+                "impact_depth_slip_m": slip["row"]["impact_depth_m"],
                 "slipped_elements": n,
             }
         )

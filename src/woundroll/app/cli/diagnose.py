@@ -17,6 +17,7 @@ from rich.table import Table
 
 from woundroll.app.cli.options import CaseArg, JsonOpt, LaneWidthOpt, SetOpt, out_option
 from woundroll.errors import ConvergenceError, InputError
+from woundroll.pipeline.vocabulary import SCHEMA_VERSION, versioned
 from woundroll.util.output import strict_json, write_result_files
 
 
@@ -135,7 +136,7 @@ def readings_cmd(
     except ConvergenceError as exc:  # pragma: no cover - nothing iterative here
         fail(exc, 1)
     if as_json:
-        payload = r.to_dict()
+        payload = versioned(r.to_dict())
         payload["profile_check"] = None if check is None else check.to_dict()
         sys.stdout.write(strict_json(payload) + "\n")
         return
@@ -225,7 +226,7 @@ def _write_readings(out_dir: Path, r, check, unit) -> None:  # type: ignore[no-u
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 
-    payload = r.to_dict()
+    payload = versioned(r.to_dict())
     payload["profile_check"] = None if check is None else check.to_dict()
     u = unit or r.position_unit or "in"
     try:
@@ -267,14 +268,14 @@ def _readings_trend(  # type: ignore[no-untyped-def]
         try:
             out_dir.mkdir(parents=True, exist_ok=True)
             (out_dir / "trend.json").write_text(
-                strict_json(tr.to_dict(), indent=1), encoding="utf-8"
+                strict_json(versioned(tr.to_dict()), indent=1), encoding="utf-8"
             )
             (out_dir / "trend.csv").write_text(tr.to_csv(), encoding="utf-8")
             plt.close(tr.plot(out_dir / "trend.png"))
         except OSError as exc:
             raise InputError(f"cannot write to {out_dir}: {exc.strerror or exc}", "--out") from None
     if as_json:
-        sys.stdout.write(strict_json(tr.to_dict()) + "\n")
+        sys.stdout.write(strict_json(versioned(tr.to_dict())) + "\n")
         return
     s = tr.scale
     lots = any("lot" in c.ids for c in checks)
@@ -383,6 +384,7 @@ def diagnose_cmd(
 
         defects = defect_report(c, d)
         payload = {
+            "schema_version": SCHEMA_VERSION,
             "case": {"title": c.display_title},
             "readings": d.readings.to_dict(),
             "diagnosis": {**d.to_dict(), "defects": defects.to_dict()},
@@ -484,13 +486,13 @@ def defects_cmd(
         c = load_case(case, set_ or [])
         rep = defect_report(c)
         if out_dir is not None:
-            write_result_files(out_dir, "defects", rep)
+            write_result_files(out_dir, "defects", rep, versioned({}))
     except InputError as exc:
         fail(exc, 2)
     except ConvergenceError as exc:
         fail(exc, 1)
     if as_json:
-        sys.stdout.write(strict_json({"defects": rep.to_dict()}) + "\n")
+        sys.stdout.write(strict_json(versioned({"defects": rep.to_dict()})) + "\n")
         return
     _print_defects(rep)
 
@@ -667,13 +669,13 @@ def design_cmd(
         )
         d = design_setpoints(c, tgt)
         if out_dir is not None:
-            write_result_files(out_dir, "design", d)
+            write_result_files(out_dir, "design", d, versioned({}))
     except InputError as exc:
         fail(exc, 2)
     except ConvergenceError as exc:
         fail(exc, 1)
     if as_json:
-        sys.stdout.write(strict_json({"design": d.to_dict()}) + "\n")
+        sys.stdout.write(strict_json(versioned({"design": d.to_dict()})) + "\n")
         return
     tb = Table("quantity", "value", title=escape(f"{c.display_title or case}: setpoint design"))
     for name, value in d.summary():

@@ -661,7 +661,7 @@ def result_payload(
         "title": result.case.title,
         "case_hash": case_hash(result.case),
         "summary": [{"label": k, "value": v} for k, v in result_summary(result)],
-        "numbers": _scalars({k: v for k, v in d.items() if k != "case"}),
+        "numbers": _scalars({k: v for k, v in d.items() if k not in ("case", "schema_version")}),
         "notes": list(result.notes),
         "plots": plots,
         "measured": measured_rows,
