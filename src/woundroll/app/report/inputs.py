@@ -89,18 +89,14 @@ def _row(key: str, value: Any, kind: str, source: str) -> Row:
     return Row(key, text, unit, source)
 
 
-def input_sections(case: Case) -> list[tuple[str, list[Row]]]:
-    """The case's inputs in display units, by section, each with its source.
+_EITHER = "case file or default"
 
-    Source of a web value: ``preset NAME (its source)`` when it equals the preset's value,
-    ``case file`` when the case sets it, ``default`` when neither does. The instrument's
-    values carry the preset's own ``[sources]`` entry per field.
-    """
-    from woundroll.case import FROM_SET, FROM_WEB_FORM, WebSpec
+
+def _web_rows(web: Any) -> list[Row]:
+    """The web's values, each attributed to its preset, the case file or the default."""
+    from woundroll.case import WebSpec
     from woundroll.materials.presets import list_materials
 
-    sections: list[tuple[str, list[Row]]] = []
-    web = case.web
     preset_spec = None
     preset_label = ""
     if web.preset:
@@ -135,18 +131,21 @@ def input_sections(case: Case) -> list[tuple[str, list[Row]]]:
         else "case file"
     )
     rows.append(Row("web.radial_modulus", _law_text(law), "", law_src))
-    sections.append(("Web", rows))
+    return rows
 
+
+def _core_rows(core: Any) -> list[Row]:
     rows = []
     for name, kind in _CORE_FIELDS.items():
-        v = getattr(case.core, name)
+        v = getattr(core, name)
         if v is not None:
             rows.append(_row(f"core.{name}", v, kind, "case file"))
-    if case.core.rigid:
+    if core.rigid:
         rows.append(Row("core.rigid", "true", "", "case file"))
-    sections.append(("Core", rows))
+    return rows
 
-    w = case.winding
+
+def _winding_rows(w: Any) -> list[Row]:
     kind, t = w.tension
     tkind = {"force": "force", "force_per_length": "force_per_length", "pressure": "stress"}[kind]
     rows = [_row("winding.tension", t, tkind, "case file")]
@@ -154,37 +153,59 @@ def input_sections(case: Case) -> list[tuple[str, list[Row]]]:
         rows.append(_row("winding.outer_radius", w.outer_radius, "radius", "case file"))
     if w.length is not None:
         rows.append(Row("winding.length", f"{w.length:.5g}", "m", "case file"))
-    rows.append(Row("winding.taper", _taper_text(w.taper), "", "case file or default"))
-    rows.append(_row("winding.nip_load", w.nip_load, "force_per_length", "case file or default"))
-    rows.append(_row("winding.friction", w.friction, "dimensionless", "case file or default"))
+    rows.append(Row("winding.taper", _taper_text(w.taper), "", _EITHER))
+    rows.append(_row("winding.nip_load", w.nip_load, "force_per_length", _EITHER))
+    rows.append(_row("winding.friction", w.friction, "dimensionless", _EITHER))
     if w.thickness_profile:
         rows.append(Row("winding.thickness_profile", w.thickness_profile, "", "case file"))
-    sections.append(("Winding", rows))
+    return rows
 
-    setup = case.tester_setup
-    if setup is not None:
-        inst = setup.instrument
-        rows = [Row("tester.instrument", inst.title or inst.name, "", "preset " + inst.name)]
-        own = case.tester or {}
-        for name, kind in _INSTRUMENT_FIELDS.items():
-            v = getattr(inst, name, None)
-            if v is None:
-                continue
-            src = "case file" if name in own else inst.sources.get(name, "preset " + inst.name)
-            rows.append(_row(f"tester.{name}", v, kind, src))
-        rows.append(Row("tester.readout", inst.readout, "", "preset " + inst.name))
-        if not inst.calibrated:
-            rows.append(Row("tester.calibrated", "false", "", "no calibration data for rolls"))
-        sections.append(("Tester", rows))
-    c = case.contact
+
+def _tester_rows(case: Case, setup: Any) -> list[Row]:
+    """The instrument's values, each with the preset's own source or the case file."""
+    inst = setup.instrument
+    rows = [Row("tester.instrument", inst.title or inst.name, "", "preset " + inst.name)]
+    own = case.tester or {}
+    for name, kind in _INSTRUMENT_FIELDS.items():
+        v = getattr(inst, name, None)
+        if v is None:
+            continue
+        src = "case file" if name in own else inst.sources.get(name, "preset " + inst.name)
+        rows.append(_row(f"tester.{name}", v, kind, src))
+    rows.append(Row("tester.readout", inst.readout, "", "preset " + inst.name))
+    if not inst.calibrated:
+        rows.append(Row("tester.calibrated", "false", "", "no calibration data for rolls"))
+    return rows
+
+
+def _contact_rows(c: Any) -> list[Row]:
     rows = [
-        _row("contact.friction", c.friction, "dimensionless", "case file or default"),
-        Row("contact.no_update", str(c.no_update).lower(), "", "case file or default"),
+        _row("contact.friction", c.friction, "dimensionless", _EITHER),
+        Row("contact.no_update", str(c.no_update).lower(), "", _EITHER),
     ]
     if c.depth_max is not None:
         rows.append(_row("contact.depth_max", c.depth_max, "length", "case file"))
+    return rows
+
+
+def input_sections(case: Case) -> list[tuple[str, list[Row]]]:
+    """The case's inputs in display units, by section, each with its source.
+
+    Source of a web value: ``preset NAME (its source)`` when it equals the preset's value,
+    ``case file`` when the case sets it, ``default`` when neither does. The instrument's
+    values carry the preset's own ``[sources]`` entry per field.
+    """
+    from woundroll.case import FROM_SET, FROM_WEB_FORM
+
+    sections = [
+        ("Web", _web_rows(case.web)),
+        ("Core", _core_rows(case.core)),
+        ("Winding", _winding_rows(case.winding)),
+    ]
+    setup = case.tester_setup
     if setup is not None:
-        sections.append(("Contact model", rows))
+        sections.append(("Tester", _tester_rows(case, setup)))
+        sections.append(("Contact model", _contact_rows(case.contact)))
     # where each value came from, as the case recorded it: a value set over the case (--set,
     # the web form) says so, and "case file or default" becomes the one that applies
     for _, rows in sections:
@@ -193,9 +214,6 @@ def input_sections(case: Case) -> list[tuple[str, list[Row]]]:
             if src in (FROM_SET, FROM_WEB_FORM) or row.source in ("case file", _EITHER):
                 rows[i] = Row(row.key, row.value, row.unit, src)
     return sections
-
-
-_EITHER = "case file or default"
 
 
 def _law_text(law: Any) -> str:
