@@ -373,7 +373,7 @@ def diagnose_cmd(
     ] = 3,
 ) -> None:
     """Readings -> the effective wound-on tension and near-surface pressure at each position."""
-    from woundroll.app.cli.console import fail, out, with_progress
+    from woundroll.app.cli.console import fail, with_progress
     from woundroll.case import load_case
     from woundroll.inverse.diagnosis import diagnose
     from woundroll.io.readings import read_readings
@@ -401,17 +401,7 @@ def diagnose_cmd(
             "readings": d.readings.to_dict(),
             "diagnosis": {**d.to_dict(), "defects": defects.to_dict()},
         }
-        fit = None
-        if causes:
-            from woundroll.inverse.causes import fit_causes
-
-            fit = fit_causes(c, d.readings, n_bands=bands, full_level=full_level)
-            fd = fit.to_dict()
-            payload["diagnosis"]["profile"] = fd["profile"]
-            payload["diagnosis"]["causes"] = fd["causes"]
-            payload["diagnosis"]["cause_fit"] = {
-                k: fd[k] for k in ("parameters", "verification", "forward_runs", "notes")
-            }
+        fit = _causes_into(payload, c, d, bands, full_level) if causes else None
         written = _write(out_dir, payload, d, defects) if out_dir is not None else []
         if fit is not None and out_dir is not None:
             import matplotlib.pyplot as plt
@@ -427,6 +417,27 @@ def diagnose_cmd(
         return
     if quiet:
         return
+    _print_diagnosis(c.display_title or case, d, defects, fit, written)
+
+
+def _causes_into(payload: dict, c, d, bands: int | None, full_level: int):  # type: ignore[no-untyped-def]
+    """Fit the causes of the CMD profile and put them into the diagnosis payload."""
+    from woundroll.inverse.causes import fit_causes
+
+    fit = fit_causes(c, d.readings, n_bands=bands, full_level=full_level)
+    fd = fit.to_dict()
+    payload["diagnosis"]["profile"] = fd["profile"]
+    payload["diagnosis"]["causes"] = fd["causes"]
+    payload["diagnosis"]["cause_fit"] = {
+        k: fd[k] for k in ("parameters", "verification", "forward_runs", "notes")
+    }
+    return fit
+
+
+def _print_diagnosis(title: str, d, defects, fit, written: list[Path]) -> None:  # type: ignore[no-untyped-def]
+    """The diagnosis' sentence, its table, the defect risks and the causes, as tables."""
+    from woundroll.app.cli.console import out
+
     out.print(escape(d.sentence()), highlight=False, soft_wrap=True)
     # headers escaped: rich reads "[in]" and "[kPa]" as markup and drops them
     t = Table(
@@ -435,10 +446,7 @@ def diagnose_cmd(
         escape("wound-on tension [MPa]"),
         escape(f"P at {d.pressure_depth * 1e3:.1f} mm [kPa]"),
         "status",
-        title=escape(
-            f"{c.display_title or case}: diagnosis "
-            f"({100 * d.confidence:.0f} % intervals in brackets)"
-        ),
+        title=escape(f"{title}: diagnosis ({100 * d.confidence:.0f} % intervals in brackets)"),
     )
     for row in d.summary():
         t.add_row(*[escape(v) for v in row])
