@@ -10,6 +10,7 @@ dotted key (``web.thickness``); unknown keys are errors too, so a typo cannot pa
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from functools import cached_property, partial
@@ -68,6 +69,11 @@ class WebSpec(_Section):
     G_r_z: Q("pressure") | None = None
     G_theta_z: Q("pressure") | None = None
     radial_unloading: Any = None
+    alpha_r: float = 0.0  # 1/K, thermal expansion (woundroll.winding.storage)
+    alpha_theta: float = 0.0
+    beta_r: float = 0.0  # hygroscopic: strain per unit moisture content
+    beta_theta: float = 0.0
+    tensile_strength: Q("pressure") | None = None
 
     @model_validator(mode="before")
     @classmethod
@@ -116,6 +122,7 @@ class CoreSpec(_Section):
     inner_radius: Q("length", "nonnegative") | None = None
     E: Q("pressure") | None = None
     nu: Q("dimensionless", "nonnegative") | None = None
+    thermal_expansion: float = 0.0  # 1/K (woundroll.winding.storage)
 
     @model_validator(mode="after")
     def _one_way(self) -> CoreSpec:
@@ -140,10 +147,12 @@ class CoreSpec(_Section):
     def build(self) -> Core:
         """The :class:`~woundroll.materials.web.Core` of this section."""
         if self.rigid:
-            return Core(self.outer_radius, math.inf)
-        if self.stiffness is not None:
-            return Core(self.outer_radius, self.stiffness)
-        return Core.tube(self.outer_radius, self.inner_radius, self.E, self.nu)
+            core = Core(self.outer_radius, math.inf)
+        elif self.stiffness is not None:
+            core = Core(self.outer_radius, self.stiffness)
+        else:
+            core = Core.tube(self.outer_radius, self.inner_radius, self.E, self.nu)
+        return dataclasses.replace(core, thermal_expansion=self.thermal_expansion)
 
 
 class TaperSpec(_Section):
