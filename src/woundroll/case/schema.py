@@ -516,6 +516,40 @@ class DefectsSpec(_Section):
     slack_fraction: float = Field(default=0.7, gt=0.0, lt=1.0)
 
 
+def _kelvin(value: Any) -> Any:
+    """A temperature change: a number [K] or text with ``K`` / ``degC`` / ``°C`` (a change
+    of one degree Celsius is one kelvin)."""
+    if isinstance(value, str):
+        text = value.strip()
+        for unit in ("degC", "°C", "K"):
+            if text.endswith(unit):
+                text = text[: -len(unit)].strip()
+                break
+        try:
+            return float(text)
+        except ValueError:
+            raise ValueError(f"must be a number of kelvin such as '-20 K', got {value!r}") from None
+    return value
+
+
+class StorageSpec(_Section):
+    """``[storage]``: temperature and moisture after winding
+    (:mod:`woundroll.winding.storage`): ``temperature_change`` [K], roll and core in storage
+    minus at winding; ``moisture_change`` [-], the web's moisture content change (mass
+    fraction, ``"1 %"`` accepted). The web's and core's expansion coefficients are
+    ``web.alpha_r``, ``web.alpha_theta``, ``web.beta_r``, ``web.beta_theta`` and
+    ``core.thermal_expansion``."""
+
+    temperature_change: Annotated[float, BeforeValidator(_kelvin)] = 0.0
+    moisture_change: Q("dimensionless", "any") = 0.0
+
+    def build(self) -> Any:
+        """The :class:`~woundroll.winding.storage.StorageChange` of this section."""
+        from woundroll.winding.storage import StorageChange
+
+        return StorageChange(self.temperature_change, self.moisture_change)
+
+
 class Case(_Section):
     """A whole case: ``title``, ``[web]``, ``[core]``, ``[winding]``, optional ``[tester]``,
     ``[contact]``, ``[profile]`` (their tables are passed to the models that own them)."""
@@ -530,6 +564,7 @@ class Case(_Section):
     readings: ReadingsSpec | None = None
     uncertainty: UncertaintySpec | None = None
     defects: DefectsSpec | None = None
+    storage: StorageSpec | None = None
     _base_dir: Path | None = PrivateAttr(default=None)
     _warnings: tuple[str, ...] = PrivateAttr(default=())
     _given: dict[str, Any] = PrivateAttr(default_factory=dict)

@@ -13,7 +13,6 @@ from typing import Any
 
 from woundroll.errors import InputError
 
-
 #: preset keys that document the material and are not web keys
 _INFO_KEYS = frozenset({"description", "source", "friction"})
 
