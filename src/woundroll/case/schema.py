@@ -84,7 +84,10 @@ class WebSpec(_Section):
             from woundroll.materials.unloading import unloading_from_spec
 
             data = dict(data)
-            data["radial_unloading"] = unloading_from_spec(data["radial_unloading"])
+            un = data["radial_unloading"]
+            # "elastic": no unloading law (unloading follows E_r), over a preset's law
+            elastic = isinstance(un, str) and un.strip().lower() == "elastic"
+            data["radial_unloading"] = None if elastic else unloading_from_spec(un)
         if isinstance(data, dict) and isinstance(data.get("radial_modulus"), dict):
             _check_tabulated_types(data["radial_modulus"])
             data = dict(data)
