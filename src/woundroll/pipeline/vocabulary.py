@@ -43,6 +43,7 @@ UNIT_SUFFIXES: dict[str, str] = {
     "m/s^2": "_m_per_s2",
     "N s": "_N_s",
     "N m": "_N_m",
+    "K": "_K",
     "pli": "_pli",  # lbf/in: the US copy of a tension per width beside its SI key
 }
 
