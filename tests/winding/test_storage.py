@@ -169,3 +169,21 @@ def test_cli_bad_storage_exit_2_one_line(tmp_path, line, field):
     assert res.exit_code == 2, res.output
     errors = [x for x in res.output.splitlines() if x.strip() and not x.startswith("warning")]
     assert len(errors) == 1 and errors[0].startswith(f"error: {field}"), res.output
+
+
+def test_run_flags_overstress_and_notes_the_change(tmp_path):
+    # winding only (no tester): heated by 150 K, PET's hoop stress passes a 5 MPa strength
+    from woundroll.pipeline import run
+
+    path = tmp_path / "hot.toml"
+    path.write_text(
+        '[web]\npreset = "PET1"\ntensile_strength = "5 MPa"\n'
+        '[core]\nrigid = true\nouter_radius = "4.45 cm"\n'
+        '[winding]\nouter_radius = "6 cm"\ntension = "26.7 N"\n'
+        '[storage]\ntemperature_change = "150 K"\n'
+    )
+    res = run(path)
+    assert res.flags["storage_overstress"] is True
+    assert any(w.startswith("storage:") for w in res.warnings)
+    assert any(n.startswith("storage:") for n in res.notes)
+    assert res.to_dict()["winding"]["storage"]["temperature_change_K"] == 150.0

@@ -148,8 +148,15 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         result = _run_contact(case, winding, setup, web, core, r_out, max_p, report)
     if case.storage is None:
         return result
+    st = winding.storage
+    note = (
+        f"storage: temperature change {st['temperature_change_K']:g} K, moisture change "
+        f"{st['moisture_change']:g}: core pressure {st['core_pressure_before_Pa'] / 1e3:.4g} -> "
+        f"{st['core_pressure_Pa'] / 1e3:.4g} kPa; stresses and reading are after the change"
+    )
     return replace(
         result,
+        notes=(*result.notes, note),
         warnings=result.warnings + storage_warnings,
         flags={**result.flags, "storage_overstress": bool(storage_warnings)},
     )
