@@ -81,7 +81,7 @@ CASES = ("newsprint-300Nm", "coated-paper-500Nm", "aluminium-foil-8MPa", "nonwov
 @pytest.mark.slow
 @pytest.mark.parametrize("case", CASES)
 def test_bundled_case_reads_on_the_scale(case):
-    # 10-30 s each on the shared machine: slow. Measured: 37.3, 64.8, 84.2, 12.1 Rho
+    # 3-10 s CPU each on the shared machine: slow. Measured: 42.9, 64.8, 84.2, 12.1 Rho
     from woundroll.pipeline import run
 
     res = run(case)
