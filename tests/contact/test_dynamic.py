@@ -20,8 +20,10 @@ from woundroll.winding.hakiel import WindingOptions, wind
 
 @pytest.fixture(scope="module")
 def pet1():
-    """PET1 wound at 26.7 N (Hakiel profile), the Rho-meter, and its quasi-static spring."""
-    case = load_case("pet1-26.7N")
+    """PET1 wound at 26.7 N (Hakiel profile), the Rho-meter, and its quasi-static spring; the
+    roll elastic (``web.radial_unloading = "elastic"``: the tests compare the FE model with
+    elastic limits, and add an unloading law where they need one)."""
+    case = load_case("pet1-26.7N", ["web.radial_unloading='elastic'"])
     web, core = case.web.build(), case.core.build()
     r_out = case.winding.final_radius(web, core)
     w = wind(
@@ -157,9 +159,15 @@ def test_case_with_contact_dynamic_reports_hardness_dynamic(tmp_path):
     import woundroll
     from woundroll.case import load_case
 
+    # the elastic roll (the PET1 preset's typical unloading law removed): the FE-FD gap of
+    # docs/dynamic.md is the elastic one; with the preset's law the FE reads 48.7 (-4.9 %)
     case = load_case(
         "pet1-26.7N",
-        ["contact.dynamic=true", "contact.dynamic_options.steps_per_contact=100"],
+        [
+            "contact.dynamic=true",
+            "contact.dynamic_options.steps_per_contact=100",
+            "web.radial_unloading='elastic'",
+        ],
     )
     res = woundroll.run(case)
     d = json.loads(res.to_json())["hardness"]
