@@ -369,6 +369,24 @@ def _numpy_kernels_suffice(n_nodes: int, options: WindingOptions) -> bool:
     return n_nodes * options.load_substeps * max(window / 8.0, 1.0) <= _NUMPY_MAX_NODES
 
 
+def _kernels_for(n_nodes: int, options: WindingOptions) -> Any:
+    """The kernels for a roll of ``n_nodes``: NumPy for a small roll, else numba's machine
+    code loaded without numba (:mod:`woundroll.winding._kernels_aot`, ~0.1 s), else numba's
+    dispatcher (if llvmlite cannot load the code here)."""
+    if _numpy_kernels_suffice(n_nodes, options):
+        from woundroll.winding import _kernels_numpy  # no compiler cost (docs/winding.md)
+
+        return _kernels_numpy
+    from woundroll.winding import _kernels_aot
+
+    aot = _kernels_aot.load()
+    if aot is not None:
+        return aot
+    from woundroll.winding import _kernels
+
+    return _kernels
+
+
 def wind(
     web: Web,
     core: Core,
@@ -411,10 +429,7 @@ def wind(
         raise InputError(f"expected WindingOptions, got {type(options).__name__}", "options")
     prob = build_problem(web, core, outer_radius, tension, options)
     nn = prob.r.size
-    if _numpy_kernels_suffice(nn, options):
-        from woundroll.winding import _kernels_numpy as K  # no compiler cost (docs/winding.md)
-    else:
-        from woundroll.winding import _kernels as K
+    K = _kernels_for(nn, options)
     ws = _Workspace.for_problem(prob, options)
     n_groups = prob.gnode.size - 1
     n_chunks = 1 if progress is None else min(n_groups, 50)
