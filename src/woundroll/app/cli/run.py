@@ -14,7 +14,6 @@ from woundroll.app.cli import diagnose
 from woundroll.app.cli.console import err, fail, out, warn, with_progress
 from woundroll.app.cli.options import CaseArg, JsonOpt, SetOpt, out_option
 from woundroll.errors import ConvergenceError, InputError
-from woundroll.pipeline.results import DEFAULT_FIELDS
 from woundroll.pipeline.summary import result_summary
 
 
@@ -38,13 +37,14 @@ def run(
         bool, typer.Option("--report", help="With --out: also write the HTML report.html.")
     ] = False,
     fields: Annotated[
-        str,
+        str | None,
         typer.Option(
             "--fields",
-            help="compact: arrays over 4,000 points go to result.npz (--out) and are left "
-            "out of the JSON (listed in arrays_omitted); full: every array in the JSON.",
+            help="compact (the default): arrays over 4,000 points go to result.npz (--out) "
+            "and are left out of the JSON (listed in arrays_omitted); full: every array in "
+            "the JSON.",
         ),
-    ] = DEFAULT_FIELDS,
+    ] = None,
     no_update: Annotated[
         bool,
         typer.Option(
@@ -62,7 +62,10 @@ def run(
         try:
             if report and out_dir is None:
                 raise InputError("the report goes into the --out directory: give --out", "--report")
-            if fields not in ("compact", "full"):
+            from woundroll.pipeline.results import DEFAULT_FIELDS, FIELDS
+
+            fields = DEFAULT_FIELDS if fields is None else fields
+            if fields not in FIELDS:
                 raise InputError(f"--fields is compact or full, got {fields!r}", "--fields")
             flags = [("contact.no_update=true", "--no-update")] if no_update else []
             c = load_case(case, [*(set_ or []), *flags])
