@@ -15,6 +15,7 @@ $(STAMP): pyproject.toml | $(BIN)/python
 	touch $(STAMP)
 
 demo: $(STAMP)
+	$(BIN)/python -c "from woundroll.winding import _kernels_aot as A; print('compiled winding kernels:', 'loaded' if A.load() else 'unavailable: numba loads them')"
 	MPLBACKEND=Agg $(BIN)/woundroll run pet1-26.7N --out out/demo
 	@echo "Figures and result.json written to out/demo/"
 

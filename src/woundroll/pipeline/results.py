@@ -10,6 +10,63 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+#: the output's fields: "compact" (the default: every key but arrays longer than
+#: :data:`COMPACT_MAX_POINTS`, which go to result.npz with --out) or "full" (every array in
+#: the JSON as text); one default for every entry point (CLI --fields, RunResult.write)
+FIELDS = ("compact", "full")
+DEFAULT_FIELDS = "compact"
+#: arrays longer than this are left out of a compact result (a 10,000-layer roll's five
+#: per-node arrays are 1.6 MB of JSON text; docs/performance.md). 4,000 keeps a Table 2
+#: roll's (1,779 nodes, 2,080 impact steps: 0.39 MB) in the JSON as before.
+COMPACT_MAX_POINTS = 4000
+
+
+def compact(doc: dict[str, Any], max_points: int = COMPACT_MAX_POINTS) -> tuple[
+    dict[str, Any], dict[str, np.ndarray]
+]:  # fmt: skip
+    """``doc`` without its numeric arrays longer than ``max_points`` (at any depth), and
+    those arrays by dotted key (``"winding.sigma_r_Pa"``). The compact document lists the
+    keys left out under ``"arrays_omitted"`` (absent when none was)."""
+    arrays: dict[str, np.ndarray] = {}
+
+    def walk(d: Any, path: str) -> Any:
+        if isinstance(d, dict):
+            out = {}
+            for k, v in d.items():
+                key = f"{path}.{k}" if path else str(k)
+                a = _long_numeric(v, max_points)
+                if a is not None:
+                    arrays[key] = a
+                else:
+                    out[k] = walk(v, key)
+            return out
+        return d
+
+    small = walk(doc, "")
+    if arrays:
+        small["arrays_omitted"] = sorted(arrays)
+    return small, arrays
+
+
+def _long_numeric(v: Any, max_points: int) -> np.ndarray | None:
+    """``v`` as a float array (None: NaN) if it is a flat list of numbers longer than
+    ``max_points``, else None."""
+    if not isinstance(v, list) or len(v) <= max_points:
+        return None
+    try:
+        a = np.array(v, dtype=float)  # None -> nan; nested lists give a 2D array
+    except (TypeError, ValueError):
+        return None
+    return a if a.ndim == 1 else None
+
+
+def _check_fields(fields: str) -> None:
+    from woundroll.errors import InputError
+
+    if fields not in FIELDS:
+        raise InputError(f"fields must be one of {', '.join(FIELDS)}, got {fields!r}", "--fields")
+
+
 if TYPE_CHECKING:
     from woundroll.case import Case
     from woundroll.contact import RollStiffness
@@ -96,14 +153,24 @@ class RunResult:
             out["notes"] = list(self.notes)
         return out
 
-    def to_json(self, **kw: Any) -> str:
-        """Standard JSON: NaN and infinities are written as null."""
+    def to_json(self, fields: str = "full", **kw: Any) -> str:
+        """Standard JSON: NaN and infinities are written as null. ``fields="full"`` (the
+        Python API's default: :meth:`to_dict` as is); ``"compact"`` (the CLI's and
+        result.json's default, :data:`DEFAULT_FIELDS`) leaves out the arrays longer than
+        :data:`COMPACT_MAX_POINTS` (listed under ``arrays_omitted``)."""
         from woundroll.util.output import strict_json
 
-        return strict_json(self.to_dict(), **kw)
+        _check_fields(fields)
+        d = self.to_dict()
+        return strict_json(d if fields == "full" else compact(d)[0], **kw)
 
-    def write(self, out_dir: str | Path) -> list[Path]:
+    def write(self, out_dir: str | Path, fields: str = DEFAULT_FIELDS) -> list[Path]:
         """Write ``result.json`` and the PNG plots into ``out_dir``; return the paths.
+
+        ``fields="compact"`` (the default): the arrays longer than
+        :data:`COMPACT_MAX_POINTS` go to ``result.npz`` (NumPy's archive, one array per
+        dotted key, ``numpy.load``) instead of the JSON, which lists them under
+        ``arrays_omitted``; ``"full"``: every array in ``result.json``, no npz.
 
         Every file is written to a temporary directory inside ``out_dir`` and moved into
         place atomically, ``result.json`` last; it lists the run's files under ``"files"``.
@@ -119,6 +186,7 @@ class RunResult:
 
         from woundroll.util.output import OutputDir
 
+        _check_fields(fields)
         matplotlib.use("Agg", force=False)
         import matplotlib.pyplot as plt
 
@@ -141,8 +209,14 @@ class RunResult:
             if self.dynamic is not None:
                 fd = self.hardness.fd if self.hardness is not None else None
                 plt.close(self.dynamic.plot(od.tmp / "dynamic.png", fd=fd))
-            names = sorted(p.name for p in od.tmp.glob("*.png")) + ["result.json"]
             data = self.to_dict()
+            arrays: dict[str, np.ndarray] = {}
+            if fields == "compact":
+                data, arrays = compact(data)
+            if arrays:
+                np.savez(od.tmp / "result.npz", **arrays)
+            names = sorted(p.name for p in od.tmp.glob("*.png"))
+            names += ["result.npz"] * bool(arrays) + ["result.json"]
             data["files"] = names
             from woundroll.util.output import strict_json
 

@@ -128,6 +128,7 @@ _TERMS: tuple[Term, ...] = (
     _s("warnings", "what the flags mean, one sentence each"),
     _s("notes", "remarks on the run"),
     _s("files", "the files the run wrote into --out"),
+    _s("arrays_omitted", "dotted keys of the arrays a compact result leaves out (in result.npz with --out; --fields full: in the JSON)"),  # noqa: E501
     _o("uncertainty", "Monte Carlo bands of the case's [uncertainty]"),
     _o("readings", "a sheet of measured readings: mean and scatter per position"),
     _o("diagnosis", "readings -> wound-on tension and near-surface pressure per position"),

@@ -5,10 +5,11 @@ agree with the compiled kernels to rounding, ~1e-12): the element coefficients, 
 predicted moduli and the flushes of the deep levels are vectorised; the Riccati recursion
 (a serial division chain) runs as a Python loop over floats.
 
-Why it exists: numba's import and cache load cost 0.5-2 s per process (measured in
-``docs/winding.md``), while a roll of a few thousand layers takes a few milliseconds
-compiled and ~0.1-0.5 s here. :func:`woundroll.winding.hakiel.wind` uses this module for
-rolls up to ``_NUMPY_MAX_NODES`` nodes and imports numba only above that.
+Why it exists: loading the compiled kernels costs ~0.1 s per process (llvmlite,
+:mod:`woundroll.winding._kernels_aot`; numba's own import 0.5-2 s), while a roll of 100
+layers takes ~0.1 s here. :func:`woundroll.winding.hakiel.wind` uses this module for rolls
+up to ``_NUMPY_MAX_NODES`` nodes, and up to ``_BUILD_MIN_NODES`` when the compiled kernels
+are not built on this machine yet.
 """
 
 from __future__ import annotations

@@ -87,10 +87,15 @@ FloatArray = NDArray[np.float64]
 _MODES = {"midpoint": 0.5, "end": 1.0, "explicit": 0.0}
 _MAX_NODES = 20_000_000
 _MAX_LEVELS = 48
-#: Rolls up to this many nodes are wound by the NumPy kernels (no numba import, whose cost
-#: of 0.5-2 s per process exceeds the NumPy solve below this size; docs/winding.md), unless
-#: the lazy deep part is off (``window_layers=None``, O(N^2): a check, compiled).
-_NUMPY_MAX_NODES = 4001
+#: Rolls up to this many nodes (x load substeps x window / 8 layers) are wound by the NumPy
+#: kernels: below it they beat loading the compiled kernels (~0.1 s with llvmlite,
+#: :mod:`woundroll.winding._kernels_aot`; break-even ~120 two-node layers, measured
+#: 2026-11-26 in docs/performance.md). ``window_layers=None`` (O(N^2), a check) is compiled.
+_NUMPY_MAX_NODES = 250
+#: Up to this size the compiled kernels are used only if already built on this machine (the
+#: NumPy twin otherwise: a first small roll never waits for the one-off build, ~15 s);
+#: above it a missing build is made (the NumPy kernels' 0.1-0.5 s per 1000 layers).
+_BUILD_MIN_NODES = 4001
 _NEW_LAYER = ("laid_on", "elastic")
 
 
@@ -356,17 +361,35 @@ def _result(
     )
 
 
-def _numpy_kernels_suffice(n_nodes: int, options: WindingOptions) -> bool:
-    """Small roll, default-sized window: the NumPy kernels beat numba's per-process cost.
-
-    The NumPy kernels' time grows with nodes x load substeps x window size (Python loops
-    over the window); ``_NUMPY_MAX_NODES`` is the break-even for the default window
-    (8 layers) and one load step. ``window_layers=None`` (O(N^2), a check) stays compiled.
-    """
+def _numpy_work(n_nodes: int, options: WindingOptions) -> float:
+    """The NumPy kernels' work: nodes x load substeps x window size (Python loops over the
+    window) relative to the default window (8 layers); inf for ``window_layers=None``
+    (O(N^2), a check: always compiled)."""
     if options.window_layers is None:
-        return False
+        return math.inf
     window = max(options.window_layers, 2 * options.flush_interval * options.layers_per_increment)
-    return n_nodes * options.load_substeps * max(window / 8.0, 1.0) <= _NUMPY_MAX_NODES
+    return n_nodes * options.load_substeps * max(window / 8.0, 1.0)
+
+
+def _kernels_for(n_nodes: int, options: WindingOptions) -> Any:
+    """The kernels for a roll of ``n_nodes``: NumPy for a small roll, else numba's machine
+    code loaded without numba (:mod:`woundroll.winding._kernels_aot`, ~0.1 s), else numba's
+    dispatcher (if llvmlite cannot load the code here)."""
+    from woundroll.winding import _kernels_numpy
+
+    work = _numpy_work(n_nodes, options)
+    if work <= _NUMPY_MAX_NODES:
+        return _kernels_numpy  # no load cost (docs/winding.md)
+    from woundroll.winding import _kernels_aot
+
+    aot = _kernels_aot.load(build=work > _BUILD_MIN_NODES)
+    if aot is not None:
+        return aot
+    if work <= _BUILD_MIN_NODES:
+        return _kernels_numpy
+    from woundroll.winding import _kernels
+
+    return _kernels
 
 
 def wind(
@@ -411,10 +434,7 @@ def wind(
         raise InputError(f"expected WindingOptions, got {type(options).__name__}", "options")
     prob = build_problem(web, core, outer_radius, tension, options)
     nn = prob.r.size
-    if _numpy_kernels_suffice(nn, options):
-        from woundroll.winding import _kernels_numpy as K  # no compiler cost (docs/winding.md)
-    else:
-        from woundroll.winding import _kernels as K
+    K = _kernels_for(nn, options)
     ws = _Workspace.for_problem(prob, options)
     n_groups = prob.gnode.size - 1
     n_chunks = 1 if progress is None else min(n_groups, 50)

@@ -36,6 +36,15 @@ def run(
     report: Annotated[
         bool, typer.Option("--report", help="With --out: also write the HTML report.html.")
     ] = False,
+    fields: Annotated[
+        str | None,
+        typer.Option(
+            "--fields",
+            help="compact (the default): arrays over 4,000 points go to result.npz (--out) "
+            "and are left out of the JSON (listed in arrays_omitted); full: every array in "
+            "the JSON.",
+        ),
+    ] = None,
     no_update: Annotated[
         bool,
         typer.Option(
@@ -53,6 +62,11 @@ def run(
         try:
             if report and out_dir is None:
                 raise InputError("the report goes into the --out directory: give --out", "--report")
+            from woundroll.pipeline.results import DEFAULT_FIELDS, FIELDS
+
+            fields = DEFAULT_FIELDS if fields is None else fields
+            if fields not in FIELDS:
+                raise InputError(f"--fields is compact or full, got {fields!r}", "--fields")
             flags = [("contact.no_update=true", "--no-update")] if no_update else []
             c = load_case(case, [*(set_ or []), *flags])
             if out_dir is not None:
@@ -68,7 +82,7 @@ def run(
                 result = run_case(c)
             else:
                 result = with_progress(lambda progress: run_case(c, progress=progress))
-            written = result.write(out_dir) if out_dir is not None else []
+            written = result.write(out_dir, fields) if out_dir is not None else []
             uq = diagnose.run_uncertainty(
                 c, uncertainty, out_dir, written, quiet or as_json, result.profile
             )
@@ -93,13 +107,24 @@ def run(
         if w not in c.warnings:
             warn(w)
     if as_json:
-        sys.stdout.write(diagnose.json_with_uncertainty(result, uq) + "\n")
+        sys.stdout.write(_json(result, uq, fields) + "\n")
         return
     if not quiet:
         _summary(result)
         diagnose.print_uncertainty(uq)
         for p in written:
             out.print(f"wrote {escape(str(p))}")
+
+
+def _json(result, uq, fields: str) -> str:  # type: ignore[no-untyped-def]
+    """The run's JSON (with ``uncertainty`` when it was propagated), compact or full."""
+    from woundroll.pipeline.results import compact
+    from woundroll.util.output import strict_json
+
+    d = result.to_dict()
+    if uq is not None:
+        d["uncertainty"] = uq.to_dict()
+    return strict_json(d if fields == "full" else compact(d)[0])
 
 
 def _inputs(case) -> None:  # type: ignore[no-untyped-def]
