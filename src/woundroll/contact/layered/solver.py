@@ -124,11 +124,11 @@ class LayeredOptions:
         if d is not None and not (
             isinstance(d, int | float | np.number) and math.isfinite(d) and d > 0
         ):
-            raise InputError(f"must be a positive length, got {d!r}", "contact.layered_depth")
+            raise InputError(f"must be a positive length, got {d!r}", "layered_depth")
         n = self.layers_per_shell
         if not isinstance(n, int | np.integer) or isinstance(n, bool) or n < 1:
             raise InputError(
-                f"must be a positive integer, got {n!r}", "contact.layers_per_shell"
+                f"must be a positive integer, got {n!r}", "layers_per_shell"
             )
         for name in ("penalty", "tol"):
             v = getattr(self, name)
@@ -156,7 +156,7 @@ def layered_radii(
     """Ring radii [m], core to surface: ``n_shells`` uniform shells of thickness ``shell``
     under the surface, then sizes graded from ``shell`` by ``growth`` toward the core."""
     below = graded_sizes(
-        r_out - r_in - n_shells * shell, shell, growth, "contact.layered_depth"
+        r_out - r_in - n_shells * shell, shell, growth, "layered_depth"
     )
     sizes = np.concatenate([np.full(n_shells, shell), below])
     r = r_out - np.concatenate([[0.0], np.cumsum(sizes)])[::-1]
@@ -459,14 +459,14 @@ def layered_mesh_inputs(
         raise InputError(
             f"the layered zone ({depth * 1e3:.4g} mm) must be shallower than the wound "
             f"thickness ({(r_out - r_in) * 1e3:.4g} mm)",
-            "contact.layered_depth",
+            "layered_depth",
         )
     n_shells = max(1, round(depth / shell))
     if n_shells * shell >= 0.9 * (r_out - r_in):
         raise InputError(
             f"the layered zone ({n_shells * shell * 1e3:.4g} mm) must leave a continuum below "
             f"it (wound thickness {(r_out - r_in) * 1e3:.4g} mm)",
-            "contact.layered_depth",
+            "layered_depth",
         )
     r = layered_radii(r_in, r_out, shell, n_shells, base.radial_growth)
     t_size = (
@@ -536,7 +536,7 @@ def indent_layered(
         raise InputError(
             f"must be positive for the layered model (sheets with no friction carry no "
             f"shear between them), got {mu:g}",
-            "contact.friction",
+            "friction",
         )
     head_radius, head_length, depth_max, deepest = sizes
     r_out = float(r[-1])
