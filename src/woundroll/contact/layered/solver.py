@@ -73,6 +73,9 @@ IntArray = NDArray[np.int64]
 #: head's geometric intersection with the roll at ``depth_max``) -- the depth over which the
 #: head's load is carried in the continuum (docs/contact.md, "The layered roll").
 LAYERED_DEPTH = 1.0
+#: A slipping pair returns to stick when its jump increment runs against its force by more
+#: than this fraction of the largest displacement increment (hysteresis of the active set).
+BACK_TOL = 1e-5
 
 
 @dataclass(frozen=True)
@@ -307,6 +310,7 @@ class _LayeredLoading(_Loading):
         self.T_trial = self.T
         self.slip = np.zeros(roll.pair_a.size)  # accumulated |slip| [m]
         self.slip_trial = self.slip
+        self.g_trial = np.zeros(roll.pair_a.size)
         self.passes = 0
 
     def bound(self) -> FloatArray:
@@ -370,7 +374,7 @@ class _LayeredLoading(_Loading):
             # the active set: a stick pair over its limit slips along its force; a slipping
             # pair that moves against its force sticks
             over = stick & (np.abs(T) > g * (1.0 + 1e-9))
-            back = ~stick & (s * sign < -tol * scale)
+            back = ~stick & (s * sign < -BACK_TOL * scale)
             if not np.any(over) and not np.any(back):
                 break
             sign = np.where(over, np.sign(T), sign)
@@ -384,6 +388,7 @@ class _LayeredLoading(_Loading):
             raise self._unsettled("stick and slip zones")
         step.dsig = roll.stress_increment(mod, step.du)
         self.T_trial = T
+        self.g_trial = g
         self.slip_trial = self.slip + np.where(stick, 0.0, np.abs(s))
         return step
 
@@ -425,6 +430,8 @@ class LayeredState:
         Interface shear traction T / A.
     slip : ndarray [m]
         Accumulated slip |q| summed over the increments.
+    limit : ndarray [Pa]
+        Coulomb's limit mu P of the last increment (P at its start: explicit).
     passes : int
         ALG2 passes over the whole loading.
     n_shells : int
@@ -436,6 +443,7 @@ class LayeredState:
     pressure: FloatArray
     shear: FloatArray
     slip: FloatArray
+    limit: FloatArray
     passes: int
     n_shells: int
 
@@ -546,7 +554,13 @@ def indent_layered(
     roll = _LayeredRoll(web, core, r, s, mesh, cut, lopts)
     delta = depth_schedule(depth_max, int(lopts.base.n_steps), lopts.base.step_exponent, deepest)
     load = _LayeredLoading(roll, lopts, delta, head_radius, mu, update_modulus)
-    h, u_hist, s_surf = _press(load, 2.0, head_length, stop)
+    # one BLAS thread: the many small banded factorisations of the active-set passes ran
+    # 10-100x slower with OpenBLAS's threads on the loaded 2-core machine (a 5-sheet test
+    # roll: 72 s against 2.3 s)
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=1, user_api="blas"):
+        h, u_hist, s_surf = _press(load, 2.0, head_length, stop)
     res = _result2d(load, h, u_hist, s_surf, head_length, update_modulus, t0)
     res = dataclasses.replace(res, mesh_shape=(mesh.n_r - 1, mesh.n_theta))
     if state is not None:
@@ -558,6 +572,7 @@ def indent_layered(
                 pressure=p,
                 shear=load.T / roll.pair_arc,
                 slip=load.slip,
+                limit=load.g_trial / roll.pair_arc,
                 passes=load.passes,
                 n_shells=n_shells,
             )
