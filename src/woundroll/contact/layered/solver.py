@@ -46,19 +46,19 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from woundroll.contact.plane_strain.fem import Assembler, element_basis
+from woundroll.contact.plane_strain.fem import Assembler
 from woundroll.contact.plane_strain.mesh import RollMesh, build_mesh, graded_sizes
 from woundroll.contact.plane_strain.solver import (
     FINE_ZONE,
     ContactOptions,
     _Factor,
+    _factorize,
     _indent_inputs,
     _Loading,
     _press,
     _result2d,
     _Roll,
     _Step,
-    _factorize,
     _step,
 )
 from woundroll.contact.result import ContactResult
@@ -130,9 +130,7 @@ class LayeredOptions:
             raise InputError(f"must be a positive length, got {d!r}", "layered_depth")
         n = self.layers_per_shell
         if not isinstance(n, int | np.integer) or isinstance(n, bool) or n < 1:
-            raise InputError(
-                f"must be a positive integer, got {n!r}", "layers_per_shell"
-            )
+            raise InputError(f"must be a positive integer, got {n!r}", "layers_per_shell")
         for name in ("penalty", "tol"):
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):
@@ -158,9 +156,7 @@ def layered_radii(
 ) -> FloatArray:
     """Ring radii [m], core to surface: ``n_shells`` uniform shells of thickness ``shell``
     under the surface, then sizes graded from ``shell`` by ``growth`` toward the core."""
-    below = graded_sizes(
-        r_out - r_in - n_shells * shell, shell, growth, "layered_depth"
-    )
+    below = graded_sizes(r_out - r_in - n_shells * shell, shell, growth, "layered_depth")
     sizes = np.concatenate([np.full(n_shells, shell), below])
     r = r_out - np.concatenate([[0.0], np.cumsum(sizes)])[::-1]
     r[0] = r_in
@@ -172,8 +168,9 @@ class _CutAssembler(Assembler):
     pair (free indices ``fa`` below, ``fb`` above); ``rho`` per pair is ``penalty`` times
     the mean stiffness diagonal of the pair, set at each assembly (:attr:`rho`)."""
 
-    def __init__(self, basis: Any, free: Any, diagonal: Any, fa: IntArray, fb: IntArray,
-                 penalty: float) -> None:
+    def __init__(
+        self, basis: Any, free: Any, diagonal: Any, fa: IntArray, fb: IntArray, penalty: float
+    ) -> None:
         super().__init__(basis, free, diagonal)
         self.fa, self.fb, self.penalty = fa, fb, penalty
         self.rho = np.zeros(fa.size)
@@ -330,8 +327,18 @@ class _LayeredLoading(_Loading):
         n_pairs = roll.pair_a.size
 
         def contact(load: FloatArray | None, lu: _Factor) -> _Step:
-            return _step(roll, mod, lu, self.u, self.f_contact, self.lam, self.centre,
-                         self.head_radius, self.tol_gap, load)
+            return _step(
+                roll,
+                mod,
+                lu,
+                self.u,
+                self.f_contact,
+                self.lam,
+                self.centre,
+                self.head_radius,
+                self.tol_gap,
+                load,
+            )
 
         if n_pairs == 0 or not self.lopts.interfaces:
             step = contact(extra, lu)
