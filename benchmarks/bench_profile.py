@@ -157,7 +157,7 @@ def whole_process(cases: list[str], before: str | None, repeat: int) -> None:
                     wall, cpu, js = run_process(args, env)
                     tm = js["profile"].get("timings_s", {})
                     if tree not in best or wall < best[tree][0]:
-                        best[tree] = (wall, cpu, tm, np.asarray(js["profile"]["rho"]))
+                        best[tree] = (wall, cpu, tm, np.asarray(js["profile"]["reading_model"]))
                     loads.append(os.getloadavg()[0])
             print(f"  {case}  (load average {min(loads):.1f}-{max(loads):.1f} during the runs)")
             for tree, (wall, cpu, tm, _) in best.items():

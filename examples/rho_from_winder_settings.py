@@ -24,7 +24,7 @@ result = woundroll.run(case)
 h = result.hardness.to_dict()
 print(
     f"{case.title}: Rho {h['rho_fd']:.1f} (FD), {h['rho_energy']:.1f} (energy), "
-    f"impulse {h['impulse_Ns']:.3f} N s"
+    f"impulse {h['impulse_N_s']:.3f} N s"
 )
 
 # 2. a tension sweep (US units welcome: the case parses them)

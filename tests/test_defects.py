@@ -179,7 +179,7 @@ def test_lanes_flag_the_slack_lane():
     rep = defect_report(case, d)
     # 0.9 / 1.75 = 0.51 of the median < 0.7
     assert [ln["slack_lane"] for ln in rep.lanes] == [False, False, True]
-    assert rep.lanes[2]["wot_over_median"] == pytest.approx(0.9 / 1.75)
+    assert rep.lanes[2]["wound_on_tension_over_median"] == pytest.approx(0.9 / 1.75)
     # criteria without a limit are the roll's, said once there, not again per lane
     assert all(c["needs"] is None for ln in rep.lanes for c in ln["criteria"])
     assert {c["name"] for c in rep.lanes[0]["criteria"]} == {"starring", "buckling", "slack"}

@@ -28,21 +28,21 @@ def pet1():
 def test_coupled_json_has_every_documented_key(pet1):
     d = json.loads(pet1.to_json())
     c, h = d["contact"], d["hardness"]
-    n = len(c["delta_m"])
+    n = len(c["depth_m"])
     assert n >= 10 and len(c["force_N"]) == n and len(c["half_width_m"]) == n
     for key in ("alpha_N_per_m2", "beta_N_per_m", "semi_contact_width_m", "impact_depth_m"):
         assert np.isfinite(c[key]) and c[key] > 0
     for key in (
         "rho_energy",
         "rho_fd",
-        "impulse_Ns",
-        "delta_max_m",
+        "impulse_N_s",
+        "impact_depth_m",
         "peak_force_N",
         "contact_time_s",
     ):
         assert np.isfinite(h[key]) and h[key] > 0
     assert len(h["time_s"]) == len(h["force_N"]) == len(h["deceleration_m_per_s2"])
-    assert {"rho_fd", "rho_energy", "impulse_Ns"} <= set(d["no_update"])
+    assert {"rho_fd", "rho_energy", "impulse_N_s"} <= set(d["no_update"])
 
 
 def test_contact_fields_are_reported_at_the_impact_depth(pet1):
@@ -54,7 +54,7 @@ def test_contact_fields_are_reported_at_the_impact_depth(pet1):
     assert at["depth_m"] < c["depth_max_m"]
     assert c["semi_contact_width_m"] == pytest.approx(at["semi_contact_width_m"], rel=1e-12)
     # the force there is the computed F(d) interpolated at that depth
-    f = np.interp(at["depth_m"], c["delta_m"], c["force_N"])
+    f = np.interp(at["depth_m"], c["depth_m"], c["force_N"])
     assert at["force_N"] == pytest.approx(f, rel=1e-9)
     assert at["max_slip_factor_near_contact"] >= 1.0  # Figure 18: slip around the head
 
@@ -80,7 +80,7 @@ def test_striker_depth_lies_within_the_fitted_range(pet1):
     assert c.impact_depth <= c.contact.delta[-1]
     assert c.spring.fit_depth >= c.impact_depth
     assert c.spring.max_depth == pytest.approx(
-        pet1.hardness.to_dict()["delta_max_energy_m"], rel=1e-9
+        pet1.hardness.to_dict()["impact_depth_energy_m"], rel=1e-9
     )
 
 
@@ -224,7 +224,7 @@ def test_profile_json_and_plots(tmp_path):
     assert res.exit_code == 0, res.output
     p = json.loads(res.stdout)["profile"]
     keys = ("z_m", "reading", "reading_model", "saturated", "reading_energy", "thickness_m")
-    for key in (*keys, "wot_Pa", "sigma_r_outer_Pa", "sigma_r_core_Pa"):
+    for key in (*keys, "wound_on_tension_Pa", "sigma_r_outer_Pa", "sigma_r_core_Pa"):
         assert len(p[key]) == 3, key
     # a 2 % thickness spread on a 1.5 cm pile keeps every lane taut: nothing flagged
     assert p["slack"] == [False, False, False]

@@ -175,6 +175,9 @@ def _check(command: str, out: str, workdir: Path) -> None:
         # the bundled head is calibrated in the default model: it stays where it is
         assert re.search(r"head_radius\s*│\s*7\.820 mm -> 7\.820 mm", out), out
         assert re.search(r"calibrated\s*│\s*77\.00 Rho", out), out
+    elif args[0] == "schema":  # the JSON Schema of result.json, from the vocabulary
+        d = json.loads(out)
+        assert d["$schema"].endswith("2020-12/schema") and "impulse_N_s" in d["$defs"]
     elif args[1:] == ["--help"]:
         assert f"Usage: woundroll {args[0]}" in out
     else:  # pragma: no cover - a README line this test does not know

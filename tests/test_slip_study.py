@@ -30,7 +30,7 @@ def test_emulation_rows_read_lower_with_slip(study) -> None:
     assert row["case"] == "pet2-53.4N"
     assert row["rho_fd_slip"] < 0.8 * row["rho_fd"]
     assert row["rho_energy_slip"] < 0.8 * row["rho_energy"]
-    assert row["delta_max_m_slip"] > row["delta_max_m"]
+    assert row["impact_depth_slip_m"] > row["impact_depth_m"]
     assert row["slipped_elements"] > 0
     assert row["rho_fd"] == pytest.approx(study.row["rho_fd"], rel=1e-9)
 

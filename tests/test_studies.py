@@ -96,8 +96,8 @@ def test_no_update_reads_markedly_lower(subset):
 def test_impulse_near_manual_and_below_elastic_bound(subset):
     for r in subset.rows():
         # 2 m v with m = 0.1253 kg and v = 1.1409 m/s (NOTES.md: 0.286 N s), to 0.5 %
-        assert r["elastic_impulse_bound_Ns"] == pytest.approx(0.286, rel=5e-3)
-        assert IMPULSE_MIN < r["impulse_Ns"] < r["elastic_impulse_bound_Ns"], r["case"]
+        assert r["elastic_impulse_bound_N_s"] == pytest.approx(0.286, rel=5e-3)
+        assert IMPULSE_MIN < r["impulse_N_s"] < r["elastic_impulse_bound_N_s"], r["case"]
 
 
 def test_rows_are_si_with_units_in_keys(subset):
@@ -109,7 +109,7 @@ def test_rows_are_si_with_units_in_keys(subset):
     assert r["pile_height_m"] == pytest.approx(0.0889, rel=1e-9)
     # a and the depth are of the order of a millimetre (not cm, not um)
     assert 1e-4 < r["semi_contact_width_m"] < 1e-2
-    assert 1e-4 < r["delta_max_m"] < 1e-2
+    assert 1e-4 < r["impact_depth_m"] < 1e-2
 
 
 def test_summary_is_plain_tables(subset, slip, piles):
@@ -144,7 +144,7 @@ def test_write_produces_json_and_pngs(subset, slip, piles, tmp_path):
         data = json.loads((out / "study.json").read_text(encoding="utf-8"))
         assert data["study"] == name
         # strict JSON: the file was written with allow_nan=False, check a round trip
-        assert data == json.loads(json.dumps(study.to_dict()))
+        assert data == {"schema_version": 2, **json.loads(json.dumps(study.to_dict()))}
 
 
 def test_slip_factor_exceeds_one_around_the_impact(slip):
@@ -157,8 +157,8 @@ def test_slip_factor_exceeds_one_around_the_impact(slip):
     assert d["friction"] == 0.3
     # the fields are taken at the FD model's maximum depth, which lies inside the computed
     # curve (the pipeline deepens the contact solve until the striker is covered)
-    assert slip.fields_depth_m == pytest.approx(slip.row["delta_max_m"], rel=1e-12)
-    assert slip.fields_depth_m < slip.row["contact_depth_max_m"]
+    assert slip.fields_depth_m == pytest.approx(slip.row["impact_depth_m"], rel=1e-12)
+    assert slip.fields_depth_m < slip.row["depth_max_m"]
     assert d["max_slip_factor_near_contact"] == pytest.approx(slip.max_slip_factor)
 
 
@@ -230,7 +230,7 @@ def test_full_table2_study_and_all(tmp_path):
     for r in tension.rows():
         assert r["rho_energy"] == pytest.approx(r["rho_fd"], rel=FD_ENERGY_RTOL), r["case"]
         assert r["rho_fd_no_update"] < NO_UPDATE_MAX_RATIO * r["rho_fd"], r["case"]
-        assert IMPULSE_MIN < r["impulse_Ns"] < r["elastic_impulse_bound_Ns"], r["case"]
+        assert IMPULSE_MIN < r["impulse_N_s"] < r["elastic_impulse_bound_N_s"], r["case"]
     written = result.write(tmp_path)
     assert {p.name for p in written} == {
         "study.json",
@@ -252,4 +252,4 @@ def test_process_pool_gives_the_serial_numbers():
     pooled = tension_study(cases, workers=2).rows()
     for a, b in zip(serial, pooled, strict=True):
         assert b["rho_fd"] == pytest.approx(a["rho_fd"], rel=1e-12)
-        assert b["impulse_Ns"] == pytest.approx(a["impulse_Ns"], rel=1e-12)
+        assert b["impulse_N_s"] == pytest.approx(a["impulse_N_s"], rel=1e-12)

@@ -83,8 +83,8 @@ def test_surrogate_against_full_monte_carlo():
         ["uncertainty.K2=8", "uncertainty.thickness='3 %'", "uncertainty.tension='4 %'"],
     )
     res = propagate(case, 40, verify=12)
-    errs = [abs(c["full"] - c["surrogate"]) for c in res.surrogate["checks"]]
-    full = np.array([c["full"] for c in res.surrogate["checks"]])
+    errs = [abs(c["reading_full"] - c["reading_surrogate"]) for c in res.surrogate["checks"]]
+    full = np.array([c["reading_full"] for c in res.surrogate["checks"]])
     assert max(errs) < 0.3
     # the surrogate's SD over the same 12 samples matches the full runs' to 10 %
     sur = res.reading[:12]
@@ -147,24 +147,24 @@ def test_profile_band_against_brute_force_monte_carlo(tmp_path):
     err = np.abs(sur - brute)[:, inside]
     assert np.all(err.max(axis=0) < 0.15 * sd[inside] + 0.05), (err.max(axis=0), sd)
     # the SD over the same 60 samples: measured within 0.3 %
-    np.testing.assert_allclose(np.array(bands["rho_sd"])[inside], sd[inside], rtol=0.03)
+    np.testing.assert_allclose(np.array(bands["reading_sd"])[inside], sd[inside], rtol=0.03)
     # the 95 % band against the brute force's percentiles (same samples): measured 0.1 Rho
     lo, hi = np.percentile(brute, [2.5, 97.5], axis=0)
-    np.testing.assert_allclose(np.array(bands["rho_low"])[inside], lo[inside], atol=0.3)
-    np.testing.assert_allclose(np.array(bands["rho_high"])[inside], hi[inside], atol=0.3)
+    np.testing.assert_allclose(np.array(bands["reading_low"])[inside], lo[inside], atol=0.3)
+    np.testing.assert_allclose(np.array(bands["reading_high"])[inside], hi[inside], atol=0.3)
     # 5 % tension: the loaded lanes read a few Rho wider (dRho/dlnT ~ 40-80 Rho)
-    assert np.all(np.array(bands["rho_sd"])[inside] > 1.0)
+    assert np.all(np.array(bands["reading_sd"])[inside] > 1.0)
     # sectors outside the curve's pressures (slack lanes) get no band, and say so
-    assert np.allclose(np.array(bands["rho_sd"])[~inside], 0.0)
+    assert np.allclose(np.array(bands["reading_sd"])[~inside], 0.0)
     # JSON and plot: the band rides on a result (here the linear roll's, for speed)
     from dataclasses import replace
 
     res = replace(propagate(load_case(LINEAR), 10), profile=bands)
     paths = res.write(tmp_path)
     d = json.loads((tmp_path / "uncertainty.json").read_text())["profile"]
-    assert len(d["rho_low"]) == len(d["rho_high"]) == 5 and "_samples" not in d
+    assert len(d["reading_low"]) == len(d["reading_high"]) == 5 and "_samples" not in d
     assert d["centre"] == "reduced model"
-    assert np.all(np.array(d["rho_low"]) <= np.array(d["rho_high"]))
+    assert np.all(np.array(d["reading_low"]) <= np.array(d["reading_high"]))
     assert tmp_path / "uncertainty_profile.png" in paths
     assert any("CMD profile" in k for k, _ in res.summary())
 

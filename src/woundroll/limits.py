@@ -276,10 +276,38 @@ def check_built(
         if w:
             warnings.append(w)
 
+    _check_radial_modulus(web, warnings)
+    by_length = size_field == "winding.length"
+    what = "outer radius (from the length)" if by_length else "value"
+    add(check("winding.outer_radius", r_out, field=size_field, what=what))
+    _check_solve_size(web, core, r_out, options, size_field, warnings)
+    # wound-on stress: tapered tension + mu N / h, as a strain of the web
+    s = np.linspace(core.outer_radius, r_out, 64)
+    T = np.asarray(
+        schedule.wound_on_tension(s, core.outer_radius, r_out, web.thickness), dtype=float
+    )
+    strain = float(np.max(T)) / web.E_theta
+    nip = schedule.friction * schedule.nip_load / web.thickness
+    extra = f", of which mu N / h = {nip / 1e6:.3g} MPa" if nip > 0 else ""
+    add(
+        check(
+            "winding.tension",
+            strain,
+            what=f"wound-on stress {float(np.max(T)) / 1e6:.3g} MPa{extra}, a strain of",
+        )
+    )
+    return warnings
+
+
+def _check_radial_modulus(web: Any, warnings: list[str]) -> None:
+    """E_r finite at zero and at 100 MPa pressure, within its limits, below E_theta (a
+    warning), and the Poisson ratios' compliance positive definite."""
     E_r0 = float(np.asarray(web.E_r(0.0)))
     if not math.isfinite(E_r0):
         raise InputError("E_r of the unloaded stack is not a finite number", "web.radial_modulus")
-    add(check("web.radial_modulus", E_r0, what="E_r at zero pressure"))
+    w = check("web.radial_modulus", E_r0, what="E_r at zero pressure")
+    if w:
+        warnings.append(w)
     E_r_big = float(np.asarray(web.E_r(-100e6)))
     if not math.isfinite(E_r_big) or E_r_big > 1e15:
         raise InputError(
@@ -309,9 +337,12 @@ def check_built(
             f"{E_r0 / 1e6:.3g} MPa; the ratios allow E_r up to {e_max / 1e6:.3g} MPa)",
             "web.nu_theta_r",
         )
-    by_length = size_field == "winding.length"
-    what = "outer radius (from the length)" if by_length else "value"
-    add(check("winding.outer_radius", r_out, field=size_field, what=what))
+
+
+def _check_solve_size(
+    web: Any, core: Any, r_out: float, options: Any, size_field: str, warnings: list[str]
+) -> None:
+    """The winding increments: at most MAX_INCREMENTS, a warning for a long run."""
     n = int(round((r_out - core.outer_radius) / web.thickness))
     inc = math.ceil(n / options.layers_per_increment)
     if inc > MAX_INCREMENTS:
@@ -328,22 +359,6 @@ def check_built(
             f"long run: {n:,} layers ({inc:,} winding increments) take about "
             f"{fmt_seconds(t)} to wind (winding.options.layers_per_increment lumps layers)"
         )
-    # wound-on stress: tapered tension + mu N / h, as a strain of the web
-    s = np.linspace(core.outer_radius, r_out, 64)
-    T = np.asarray(
-        schedule.wound_on_tension(s, core.outer_radius, r_out, web.thickness), dtype=float
-    )
-    strain = float(np.max(T)) / web.E_theta
-    nip = schedule.friction * schedule.nip_load / web.thickness
-    extra = f", of which mu N / h = {nip / 1e6:.3g} MPa" if nip > 0 else ""
-    add(
-        check(
-            "winding.tension",
-            strain,
-            what=f"wound-on stress {float(np.max(T)) / 1e6:.3g} MPa{extra}, a strain of",
-        )
-    )
-    return warnings
 
 
 #: Contact-model times measured on the development machine (2 cores, loaded), per solution:

@@ -143,7 +143,7 @@ def test_pipeline_json_names_the_model() -> None:
     assert auto["model"] == MODEL_NAME
     cs = auto["cmd_spread"]
     assert (cs["basin_factor_c_b"], cs["end_factor_c_a"]) == (BASIN_FACTOR, END_FACTOR)
-    n = len(auto["delta_m"])
+    n = len(auto["depth_m"])
     assert len(cs["decay_length_m"]) == len(cs["length_ratio"]) == n
     # the corrected force is the plane-strain force times L_eff / L
     np.testing.assert_allclose(

@@ -691,7 +691,7 @@ def test_fit_quality_on_the_model(pet_default: ContactResult) -> None:
 def test_result_dict_and_plots(pet_default: ContactResult, tmp_path) -> None:
     d = pet_default.to_dict()
     for key in (
-        "delta_m",
+        "depth_m",
         "force_N",
         "half_width_m",
         "alpha_N_per_m2",

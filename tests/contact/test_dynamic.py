@@ -164,7 +164,7 @@ def test_case_with_contact_dynamic_reports_hardness_dynamic(tmp_path):
     res = woundroll.run(case)
     d = json.loads(res.to_json())["hardness"]
     dyn = d["dynamic"]
-    for key in ("rho", "impulse_Ns", "contact_time_s", "delta_max_m"):
+    for key in ("rho_dynamic", "impulse_N_s", "contact_time_s", "impact_depth_m"):
         assert np.isfinite(dyn[key]) and dyn[key] > 0
     n = len(dyn["time_s"])
     assert n > 50
@@ -174,8 +174,10 @@ def test_case_with_contact_dynamic_reports_hardness_dynamic(tmp_path):
     assert len(at["depth_below_surface_m"]) == len(at["radial_pressure_Pa"]) > 10
     # the rebound is elastic without an unloading law, and the readout says so
     assert dyn["rebound"].startswith("elastic")
-    # beside the 1.5D models (same striker, same roll): within 25 % of the FD reading
-    assert dyn["rho"] == pytest.approx(d["rho_fd"], rel=0.25)
+    # beside the 1.5D models (same striker, same roll): the FE impact reads PET1 10-15 %
+    # below the FD model (docs/dynamic.md, "Measured": 45.1 against 51.6 Rho at 400 steps;
+    # measured here at 100 steps: 44.67 against 51.20, -12.7 %)
+    assert -0.15 < dyn["rho_dynamic"] / d["rho_fd"] - 1 < -0.10
     files = res.write(tmp_path)
     assert tmp_path / "dynamic.png" in files and (tmp_path / "dynamic.png").stat().st_size > 0
 
@@ -289,7 +291,7 @@ def test_dynamic_study_row_pet2():
 
     r = dynamic_study(["pet2-80N"], block=False).rolls[0]
     assert r["rho_dynamic"] == pytest.approx(r["rho_fd"], rel=0.05)
-    assert r["impulse_dynamic_Ns"] < r["impulse_fd_Ns"]
+    assert r["impulse_dynamic_N_s"] < r["impulse_fd_N_s"]
     assert 0.5 < r["active_mass_fe_kg"] / r["active_mass_column_kg"] < 2.0
     # E_r frozen (no update): a linear roll gives most of the energy back (measured e 0.91
     # against 0.75 with the update) and reads softer (20.1 against 28.8)

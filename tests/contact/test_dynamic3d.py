@@ -211,7 +211,7 @@ def test_bad_options_name_the_field() -> None:
 def test_case_with_3d_contact_runs_the_3d_dynamic_impact(tmp_path) -> None:
     """``contact.dynamic = true`` with ``contact.model = '3d'`` runs the 3D impact beside the
     1.5D models on the same (coarse here) 3D mesh: JSON keys, histories, the plot; the FE
-    reading within 25 % of the FD model's on the 3D spring (measured on PET1 26.7 N:
+    reading within 10 % of the FD model's on the 3D spring (measured on PET1 26.7 N:
     docs/dynamic.md)."""
     import json
 
@@ -239,7 +239,10 @@ def test_case_with_3d_contact_runs_the_3d_dynamic_impact(tmp_path) -> None:
     assert n > 20
     for key in ("deceleration_m_per_s2", "position_m", "velocity_m_per_s", "contact_force_N"):
         assert len(dyn[key]) == n
-    assert dyn["rho"] == pytest.approx(d["rho_fd"], rel=0.25)
+    # on the 3D spring the FE impact reads like the FD model: 0.7 % apart on the default mesh
+    # (docs/dynamic.md: 80.13 against 80.67 Rho); on this coarse mesh measured +6.2 %
+    # (81.18 against 76.44): 10 % leaves room for the coarse mesh, not for a broken coupling
+    assert dyn["rho_dynamic"] == pytest.approx(d["rho_fd"], rel=0.10)
     files = res.write(tmp_path)
     assert tmp_path / "dynamic.png" in files
 
@@ -256,4 +259,4 @@ def test_calibration_block_in_3d() -> None:
     r = _measure_block("block", (), "3d")
     assert 0.95 * r["rho_fd"] < r["rho_dynamic"] < r["rho_fd"]
     assert r["restitution_dynamic"] > 0.97
-    assert r["impulse_dynamic_Ns"] == pytest.approx(r["impulse_fd_Ns"], rel=0.01)
+    assert r["impulse_dynamic_N_s"] == pytest.approx(r["impulse_fd_N_s"], rel=0.01)

@@ -80,8 +80,8 @@ def test_hardness_from_spring_dict_and_models():
     for key in (
         "rho_energy",
         "rho_fd",
-        "impulse_Ns",
-        "delta_max_m",
+        "impulse_N_s",
+        "impact_depth_m",
         "peak_force_N",
         "contact_time_s",
         "time_s",

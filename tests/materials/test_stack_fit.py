@@ -150,7 +150,7 @@ def test_cli_fit_stack_example_fits_every_law():
     res = CliRunner().invoke(app, ["fit-stack", str(EXAMPLE_CSV), "--json"])
     assert res.exit_code == 0, res.output
     data = json.loads(res.stdout)
-    assert set(data) == {"pfeiffer", "polynomial", "constant"}
+    assert set(data) == {"schema_version", "pfeiffer", "polynomial", "constant"}
     assert data["pfeiffer"]["r2"] > 0.999
 
 

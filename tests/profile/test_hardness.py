@@ -102,7 +102,14 @@ def test_to_dict_and_plot(tmp_path: Path) -> None:
         workers=1,
     )
     d = res.to_dict()
-    keys = ("z_m", "reading", "reading_model", "thickness_m", "wot_Pa", "sigma_r_outer_Pa")
+    keys = (
+        "z_m",
+        "reading",
+        "reading_model",
+        "thickness_m",
+        "wound_on_tension_Pa",
+        "sigma_r_outer_Pa",
+    )
     for key in (*keys, "sigma_r_core_Pa"):
         assert len(d[key]) == 11 and all(np.isfinite(d[key]))
     # a readout callable has no scale: nothing saturates, the reading is the model's

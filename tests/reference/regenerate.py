@@ -1,7 +1,9 @@
 """Regenerate the stored references the tests compare with (after a deliberate model change).
 
 ``python tests/reference/regenerate.py examples`` runs every example in examples/ and stores
-the numbers it prints in tests/reference/examples.json. Commit the new file with the reason.
+the numbers it prints in tests/reference/examples.json; ``... pipeline`` stores the headline
+numbers of the rolls of tests/test_pipeline_reference.py in tests/reference/pipeline.json.
+Commit the new file with the reason.
 """
 
 from __future__ import annotations
@@ -15,6 +17,8 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
 
 from test_examples import EXAMPLES, REFERENCE, numbers, run_example  # noqa: E402
+from test_pipeline_reference import REFERENCE as PIPELINE  # noqa: E402
+from test_pipeline_reference import ROLLS, headline  # noqa: E402
 
 
 def examples() -> None:
@@ -26,5 +30,11 @@ def examples() -> None:
     REFERENCE.write_text(json.dumps(refs, indent=1) + "\n")
 
 
+def pipeline() -> None:
+    refs = {roll: headline(*ROLLS[roll]) for roll in sorted(ROLLS)}
+    PIPELINE.write_text(json.dumps(refs, indent=1) + "\n")
+    print(f"{len(refs)} rolls")
+
+
 if __name__ == "__main__":
-    {"examples": examples}[sys.argv[1] if len(sys.argv) > 1 else "examples"]()
+    {"examples": examples, "pipeline": pipeline}[sys.argv[1] if len(sys.argv) > 1 else "examples"]()

@@ -453,7 +453,7 @@ def test_no_convergence_raises() -> None:
 def test_result_outputs(tmp_path, pet1_default: WindingResult) -> None:
     res = pet1_default
     d = json.loads(json.dumps(res.to_dict()))
-    for key in ("radius_m", "sigma_r_Pa", "sigma_theta_Pa", "E_r_Pa", "wot_Pa"):
+    for key in ("radius_m", "sigma_r_Pa", "sigma_theta_Pa", "E_r_Pa", "wound_on_tension_Pa"):
         assert len(d[key]) == res.radius.size
     assert d["core_pressure_Pa"] == pytest.approx(res.core_pressure)
     assert d["n_layers"] == 889

@@ -16,8 +16,9 @@
   :func:`woundroll.pipeline.run`; a roll that fails (bad value, no convergence, any other
   error) gets its message in the ``error`` column and NaN results, the sweep goes on;
 * the **table**: one row per roll, a column per varied input (``winding.tension [N]``) and
-  per scalar result of the run's JSON, named by its dotted key with the unit taken from the
-  key's suffix (``winding.core_pressure [Pa]``, ``hardness.reading [rho]``), then ``error``;
+  per scalar result of the run's JSON, named by its dotted key with the unit its description
+  in :mod:`woundroll.pipeline.vocabulary` gives (``winding.core_pressure [Pa]``,
+  ``hardness.reading [rho]``), then ``error``;
 * with ``uncertainty=N`` (``--uncertainty N``) each roll also propagates the case's
   ``[uncertainty]`` (:func:`woundroll.assess.uncertainty.propagate`, as ``woundroll run
   --uncertainty N``) and the table gets the 95 % bands: ``winding.core_pressure_low [Pa]``
@@ -233,24 +234,10 @@ def design_points(
     return list(zip(*cols, strict=True))
 
 
-# JSON key suffix -> unit of the column
-_SUFFIX_UNITS = (
-    ("_N_per_m2", "N/m^2"),
-    ("_N_per_m", "N/m"),
-    ("_m_per_s2", "m/s^2"),
-    ("_m_per_s", "m/s"),
-    ("_Ns", "N s"),
-    ("_Pa", "Pa"),
-    ("_kg", "kg"),
-    ("_m", "m"),
-    ("_N", "N"),
-    ("_s", "s"),
-)
-_SCALE_KEYS = {"rho_fd": "rho", "rho_energy": "rho", "peak_g": "g", "rebound_R": "R"}
-_SCALE_KEYS["parotester_L"] = "L"
 # parts of the JSON that echo inputs or solver bookkeeping, or vary run to run
 _SKIP = re.compile(
-    r"^(case|winding\.(inputs|options|stats)|notes)\b|solve_time|timings|\.n_dof$|\.n_elements$"
+    r"^(schema_version|case|winding\.(inputs|options|stats)|notes)\b|solve_time|timings|\.n_dof$"
+    r"|\.n_elements$"
 )
 
 
@@ -274,16 +261,11 @@ def result_columns(d: dict[str, Any]) -> dict[str, Any]:
 
 
 def _column_name(key: str, readout: str | None) -> str:
-    head, _, last = key.rpartition(".")
-    prefix = f"{head}." if head else ""
-    if last in ("reading", "reading_model") and readout:
-        return f"{key} [{readout}]"
-    if last in _SCALE_KEYS:
-        return f"{key} [{_SCALE_KEYS[last]}]"
-    for suffix, unit in _SUFFIX_UNITS:
-        if last.endswith(suffix) and len(last) > len(suffix):
-            return f"{prefix}{last.removesuffix(suffix)} [{unit}]"
-    return f"{key} [-]"
+    """The column of a dotted JSON key: its unit from the vocabulary
+    (:func:`woundroll.pipeline.vocabulary.column_name`), not parsed from the key's name."""
+    from woundroll.pipeline.vocabulary import column_name
+
+    return column_name(key, readout)
 
 
 #: Percentiles of the band columns of ``--uncertainty`` (a 95 % band).

@@ -153,154 +153,103 @@ def assess_roll(
     pressure_depth: float = 0.0065,
 ) -> list[Criterion]:
     """Every roll-level criterion (module docstring) for one 1D winding result."""
-    from woundroll.inverse.diagnosis import near_surface_pressure
+    out = _starring(winding, web, core)
+    out.append(_core_crush(winding, limits))
+    out.extend(_slip(winding, web, limits))
+    out.append(_blocking(winding, limits))
+    out.append(_slack(winding, limits, pressure_depth))
+    return out
 
-    out: list[Criterion] = []
+
+def _starring(winding: WindingResult, web: Web, core: Core) -> list[Criterion]:
+    """Starring (practical rule) and buckling (wrinkling estimate): the smooth (layer-mean)
+    hoop stress. Two criteria, so that each risk agrees with its own margin: the rule has
+    none (any compression is "watch"), the estimate's risk follows its margin."""
     r = winding.radius
-    P = -winding.sigma_r
-    # starring (practical rule) and buckling (wrinkling estimate): the smooth (layer-mean)
-    # hoop stress. Two criteria, so that each risk agrees with its own margin: the rule has
-    # none (any compression is "watch"), the estimate's risk follows its margin.
     rm, st = winding.layer_mean_hoop_stress()
     i = int(np.argmin(st))
     smin = float(st[i])
     src_star = "docs/diagnosis.md#starring-and-buckling"
     if smin >= 0:
-        out.append(
+        return [
             Criterion(
-                "starring",
-                "low",
-                None,
-                0.0,
-                None,
-                "Pa",
-                None,
-                "no negative hoop stress anywhere in the roll",
-                src_star,
+                "starring", "low", None, 0.0, None, "Pa", None,
+                "no negative hoop stress anywhere in the roll", src_star,
             )
-        )
-    else:
-        E_r = float(np.interp(rm[i], r, winding.E_r))
-        G = web.G_r_theta if web.G_r_theta is not None else 2.0 * E_r
-        s_cr = buckling_stress(web.E_theta, E_r, G)
-        margin = s_cr / -smin
-        depth = (rm[i] - core.outer_radius) / (r[-1] - core.outer_radius)
-        out.append(
-            Criterion(
-                "starring",
-                "watch",
-                None,
-                -smin,
-                None,
-                "Pa",
-                float(rm[i]),
-                f"negative hoop stress {smin / 1e3:.3g} kPa at r = {rm[i] * 100:.2f} cm "
-                f"({100 * depth:.0f} % of the wound thickness from the core): a starring risk "
-                "if layers slip (practical rule: any compression is watched; no margin)",
-                src_star,
-            )
-        )
-        out.append(
-            Criterion(
-                "buckling",
-                _risk(margin),
-                margin,
-                -smin,
-                s_cr,
-                "Pa",
-                float(rm[i]),
-                f"hoop compression {-smin / 1e3:.3g} kPa against the wrinkling estimate "
-                f"{s_cr / 1e6:.3g} MPa of layers that do not slip (margin {margin:.3g})",
-                src_star,
-            )
-        )
-    # core crush
+        ]  # fmt: skip
+    E_r = float(np.interp(rm[i], r, winding.E_r))
+    G = web.G_r_theta if web.G_r_theta is not None else 2.0 * E_r
+    s_cr = buckling_stress(web.E_theta, E_r, G)
+    margin = s_cr / -smin
+    depth = (rm[i] - core.outer_radius) / (r[-1] - core.outer_radius)
+    return [
+        Criterion(
+            "starring", "watch", None, -smin, None, "Pa", float(rm[i]),
+            f"negative hoop stress {smin / 1e3:.3g} kPa at r = {rm[i] * 100:.2f} cm "
+            f"({100 * depth:.0f} % of the wound thickness from the core): a starring risk "
+            "if layers slip (practical rule: any compression is watched; no margin)",
+            src_star,
+        ),
+        Criterion(
+            "buckling", _risk(margin), margin, -smin, s_cr, "Pa", float(rm[i]),
+            f"hoop compression {-smin / 1e3:.3g} kPa against the wrinkling estimate "
+            f"{s_cr / 1e6:.3g} MPa of layers that do not slip (margin {margin:.3g})",
+            src_star,
+        ),
+    ]  # fmt: skip
+
+
+def _core_crush(winding: WindingResult, limits: DefectLimits) -> Criterion:
+    r0 = float(winding.radius[0])
     pc = float(winding.core_pressure)
     if limits.core_strength is None:
-        out.append(
-            Criterion(
-                "core crush",
-                "n/a",
-                None,
-                pc,
-                None,
-                "Pa",
-                float(r[0]),
-                f"core pressure {pc / 1e3:.3g} kPa; not checked without defects.core_strength",
-                "docs/diagnosis.md#core-crush",
-                needs="defects.core_strength",
-            )
-        )
-    else:
-        m = limits.core_strength / pc if pc > 0 else math.inf
-        out.append(
-            Criterion(
-                "core crush",
-                _risk(m),
-                m,
-                pc,
-                limits.core_strength,
-                "Pa",
-                float(r[0]),
-                f"core pressure {pc / 1e3:.3g} kPa against a core strength of "
-                f"{limits.core_strength / 1e3:.3g} kPa (margin {m:.3g})",
-                "docs/diagnosis.md#core-crush",
-            )
-        )
-    # slip / telescoping
-    out.extend(_slip(winding, web, limits))
-    # blocking
+        return Criterion(
+            "core crush", "n/a", None, pc, None, "Pa", r0,
+            f"core pressure {pc / 1e3:.3g} kPa; not checked without defects.core_strength",
+            "docs/diagnosis.md#core-crush", needs="defects.core_strength",
+        )  # fmt: skip
+    m = limits.core_strength / pc if pc > 0 else math.inf
+    return Criterion(
+        "core crush", _risk(m), m, pc, limits.core_strength, "Pa", r0,
+        f"core pressure {pc / 1e3:.3g} kPa against a core strength of "
+        f"{limits.core_strength / 1e3:.3g} kPa (margin {m:.3g})",
+        "docs/diagnosis.md#core-crush",
+    )  # fmt: skip
+
+
+def _blocking(winding: WindingResult, limits: DefectLimits) -> Criterion:
+    r = winding.radius
+    P = -winding.sigma_r
     k = int(np.argmax(P))
     if limits.blocking_pressure is None:
-        out.append(
-            Criterion(
-                "blocking",
-                "n/a",
-                None,
-                float(P[k]),
-                None,
-                "Pa",
-                float(r[k]),
-                f"largest interlayer pressure {P[k] / 1e3:.3g} kPa; not checked without "
-                "defects.blocking_pressure",
-                "docs/diagnosis.md#blocking",
-                needs="defects.blocking_pressure",
-            )
-        )
-    else:
-        m = limits.blocking_pressure / float(P[k]) if P[k] > 0 else math.inf
-        out.append(
-            Criterion(
-                "blocking",
-                _risk(m),
-                m,
-                float(P[k]),
-                limits.blocking_pressure,
-                "Pa",
-                float(r[k]),
-                f"largest interlayer pressure {P[k] / 1e3:.3g} kPa at r = {r[k] * 100:.2f} cm "
-                f"against the blocking limit {limits.blocking_pressure / 1e3:.3g} kPa",
-                "docs/diagnosis.md#blocking",
-            )
-        )
-    # slack (near-surface)
+        return Criterion(
+            "blocking", "n/a", None, float(P[k]), None, "Pa", float(r[k]),
+            f"largest interlayer pressure {P[k] / 1e3:.3g} kPa; not checked without "
+            "defects.blocking_pressure",
+            "docs/diagnosis.md#blocking", needs="defects.blocking_pressure",
+        )  # fmt: skip
+    m = limits.blocking_pressure / float(P[k]) if P[k] > 0 else math.inf
+    return Criterion(
+        "blocking", _risk(m), m, float(P[k]), limits.blocking_pressure, "Pa", float(r[k]),
+        f"largest interlayer pressure {P[k] / 1e3:.3g} kPa at r = {r[k] * 100:.2f} cm "
+        f"against the blocking limit {limits.blocking_pressure / 1e3:.3g} kPa",
+        "docs/diagnosis.md#blocking",
+    )  # fmt: skip
+
+
+def _slack(winding: WindingResult, limits: DefectLimits, pressure_depth: float) -> Criterion:
+    """The near-surface pressure against the slack limit."""
+    from woundroll.inverse.diagnosis import near_surface_pressure
+
+    r = winding.radius
     ps = near_surface_pressure(r, winding.sigma_r, pressure_depth)
     m = ps / limits.slack_pressure
-    out.append(
-        Criterion(
-            "slack",
-            _risk(m),
-            m,
-            limits.slack_pressure,
-            ps,
-            "Pa",
-            float(r[-1] - pressure_depth),
-            f"interlayer pressure {ps / 1e3:.3g} kPa at {pressure_depth * 1e3:.1f} mm below "
-            f"the surface (slack below {limits.slack_pressure / 1e3:.3g} kPa)",
-            "docs/diagnosis.md#slack",
-        )
-    )
-    return out
+    return Criterion(
+        "slack", _risk(m), m, limits.slack_pressure, ps, "Pa", float(r[-1] - pressure_depth),
+        f"interlayer pressure {ps / 1e3:.3g} kPa at {pressure_depth * 1e3:.1f} mm below "
+        f"the surface (slack below {limits.slack_pressure / 1e3:.3g} kPa)",
+        "docs/diagnosis.md#slack",
+    )  # fmt: skip
 
 
 def _slip(winding: WindingResult, web: Web, limits: DefectLimits) -> list[Criterion]:
@@ -387,7 +336,7 @@ def assess_lanes(diagnosis: Diagnosis, case: Case, limits: DefectLimits) -> list
         crit = [c for c in crit if c.needs is None]  # unchecked: said once, for the roll
         entry["criteria"] = [c.to_dict() for c in crit]
         ratio = float(wot[i] / med) if med > 0 else math.nan
-        entry["wot_over_median"] = ratio
+        entry["wound_on_tension_over_median"] = ratio
         entry["slack_lane"] = bool(ratio < limits.slack_fraction) or any(
             c.name == "slack" and c.risk == "high" for c in crit
         )
@@ -436,7 +385,15 @@ class DefectReport:
             "unchecked": [{"name": n, "needs": k} for n, k in self.unchecked],
             "roll": [c.to_dict() for c in self.roll],
             "lanes": self.lanes,
-            "limits": {k: v for k, v in self.limits.__dict__.items()},
+            "limits": {
+                "core_strength_Pa": self.limits.core_strength,
+                "blocking_pressure_Pa": self.limits.blocking_pressure,
+                "friction": self.limits.friction,
+                "axial_acceleration_m_per_s2": self.limits.axial_acceleration,
+                "torque_N_m": self.limits.torque,
+                "slack_pressure_Pa": self.limits.slack_pressure,
+                "slack_fraction": self.limits.slack_fraction,
+            },
             "watch_margin": WATCH_MARGIN,
         }
 

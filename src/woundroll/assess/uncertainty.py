@@ -48,6 +48,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from woundroll.errors import InputError
+from woundroll.pipeline.vocabulary import versioned
 from woundroll.util.output import strict_json
 
 if TYPE_CHECKING:
@@ -245,7 +246,9 @@ class UncertaintyResult:
             if err is not None:
                 rows.append(("surrogate vs full runs, max error", f"{err:.2g} {self.scale}"))
         if self.profile is not None:
-            half = 0.5 * (np.array(self.profile["rho_high"]) - np.array(self.profile["rho_low"]))
+            half = 0.5 * (
+                np.array(self.profile["reading_high"]) - np.array(self.profile["reading_low"])
+            )
             rows.append(
                 (
                     f"CMD profile [{self.scale}], 95 % half-band",
@@ -296,14 +299,14 @@ class UncertaintyResult:
             p = self.profile
             fig3, ax = plt.subplots(figsize=(7.2, 3.8))
             zc = np.array(p["z_m"]) * 100
-            ax.fill_between(zc, p["rho_low"], p["rho_high"], color="C3", alpha=0.3, lw=0)
-            ax.plot(zc, p["rho_nominal"], color="C3", marker="o", ms=3, label=p["centre"])
+            ax.fill_between(zc, p["reading_low"], p["reading_high"], color="C3", alpha=0.3, lw=0)
+            ax.plot(zc, p["reading_nominal"], color="C3", marker="o", ms=3, label=p["centre"])
             ax.plot([], [], color="C3", alpha=0.3, lw=6, label="95 % band")
             off = np.array(p["outside_curve"], dtype=bool)
             if off.any():
                 ax.plot(
                     zc[off],
-                    np.array(p["rho_nominal"])[off],
+                    np.array(p["reading_nominal"])[off],
                     "x",
                     color="k",
                     ms=7,
@@ -335,7 +338,9 @@ class UncertaintyResult:
         out = Path(out_dir)
         try:
             out.mkdir(parents=True, exist_ok=True)
-            (out / "uncertainty.json").write_text(strict_json(self.to_dict()), encoding="utf-8")
+            (out / "uncertainty.json").write_text(
+                strict_json(versioned(self.to_dict())), encoding="utf-8"
+            )
             for fig in self.plot(out / "uncertainty"):
                 plt.close(fig)
         except OSError as exc:
@@ -375,8 +380,7 @@ def propagate(
         ``profile``; :func:`profile_bands`): 1 (default), 2 or 0.
     """
     from woundroll.case import Case, load_case
-    from woundroll.inverse.diagnosis import RollModel, near_surface_pressure
-    from woundroll.winding.hakiel import WindingOptions, wind
+    from woundroll.inverse.diagnosis import RollModel
 
     if not isinstance(case, Case):
         case = load_case(case)
@@ -385,9 +389,43 @@ def propagate(
     params = uncertain_parameters(case)
     u = draw_samples(case, n, seed)
     web0 = case.web.build()
+    sched0 = case.winding.schedule(web0)
+    # the stresses: every sample wound
+    result = _winding_samples(case, web0, sched0, params, u, n, progress)
+    setup = case.tester_setup
+    if setup is None or setup.roll_spring is not None:
+        note = "no [tester]" if setup is None else "explicit [tester.roll_spring]"
+        return replace(result, notes=(*result.notes, f"{note}: no reading band"))
+    # the reading: a surrogate of the contact and impact steps, checked by full runs
+    model = RollModel.from_case(case)
+    reading, sur = _reading_surrogate(model, web0, sched0, params, u, n, verify, progress)
+    result = replace(
+        result, reading=reading, reading_nominal=sur["nominal"], scale=model.scale, surrogate=sur
+    )
+    if case.winding.thickness_profile is None:
+        return result
+    # across the roll: the profile band
+    bands = profile_bands(
+        case, model, u, params, full=profile, progress=progress, calibrate=calibrate
+    )
+    return replace(result, profile=bands)
+
+
+def _winding_samples(
+    case: Case,
+    web0: Any,
+    sched0: Any,
+    params: dict[str, float],
+    u: dict[str, FloatArray],
+    n: int,
+    progress: Callable[[str, float], None] | None,
+) -> UncertaintyResult:
+    """The nominal roll and every sample wound by the 1D model, on the nominal radii."""
+    from woundroll.inverse.diagnosis import near_surface_pressure
+    from woundroll.winding.hakiel import WindingOptions, wind
+
     core = case.core.build()
     r_out = case.winding.final_radius(web0, core)
-    sched0 = case.winding.schedule(web0)
     options = WindingOptions.from_dict(case.winding.options, "winding.options")
     setup = case.tester_setup
     depth = setup.instrument.head_radius if setup is not None else 0.0065
@@ -414,7 +452,7 @@ def propagate(
         min_hoop[i] = float(w.sigma_theta.min())
         if progress is not None and (i % 10 == 0 or i == n - 1):
             progress("winding samples", (i + 1) / n)
-    result = UncertaintyResult(
+    return UncertaintyResult(
         n=n,
         parameters=params,
         samples=u,
@@ -429,10 +467,21 @@ def propagate(
         pressure_depth=depth,
         notes=tuple(notes),
     )
-    if setup is None or setup.roll_spring is not None:
-        note = "no [tester]" if setup is None else "explicit [tester.roll_spring]"
-        return replace(result, notes=(*notes, f"{note}: no reading band"))
-    model = RollModel.from_case(case)
+
+
+def _reading_surrogate(
+    model: Any,
+    web0: Any,
+    sched0: Any,
+    params: dict[str, float],
+    u: dict[str, FloatArray],
+    n: int,
+    verify: int,
+    progress: Callable[[str, float], None] | None,
+) -> tuple[FloatArray, dict[str, Any]]:
+    """The reading of every sample from a quadratic surrogate per standardised parameter
+    (central differences of full forward runs), checked by full runs at the first
+    ``verify`` samples. Returns the readings and the surrogate's description."""
     names = list(params)
     total = 1 + 2 * len(names) + verify
 
@@ -471,8 +520,8 @@ def propagate(
     for i in range(min(verify, n)):
         full = run({k: float(v[i]) for k, v in u.items()})
         tick()
-        checks.append({"sample": i, "full": full, "surrogate": float(reading[i])})
-    sur = {
+        checks.append({"sample": i, "reading_full": full, "reading_surrogate": float(reading[i])})
+    return reading, {
         "kind": "quadratic per standardised parameter, no cross terms",
         "step_sd": h,
         "nominal": r0,
@@ -480,15 +529,10 @@ def propagate(
         "quadratic": b,
         "full_runs": 1 + 2 * len(names) + len(checks),
         "checks": checks,
-        "max_abs_error": max((abs(c["full"] - c["surrogate"]) for c in checks), default=None),
+        "max_abs_error": max(
+            (abs(c["reading_full"] - c["reading_surrogate"]) for c in checks), default=None
+        ),
     }
-    result = replace(result, reading=reading, reading_nominal=r0, scale=model.scale, surrogate=sur)
-    if case.winding.thickness_profile is None:
-        return result
-    bands = profile_bands(
-        case, model, u, params, full=profile, progress=progress, calibrate=calibrate
-    )
-    return replace(result, profile=bands)
 
 
 def reduced_profile(
@@ -596,15 +640,7 @@ def profile_bands(
     p_s = reduced_profile(case, model, curve, params, {}, ns, pressure=True)[1]
     outside = (p_s < curve.surface_pressure.min()) | (p_s > curve.surface_pressure.max())
     tick()
-    a, b, plus = {}, {}, {}
-    for name in names:
-        rp = sector_readings({name: h})[1]
-        tick()
-        rm = sector_readings({name: -h})[1]
-        tick()
-        a[name] = (rp - rm) / (2 * h)
-        b[name] = (rp - 2 * r0 + rm) / h**2
-        plus[name] = rp - r0
+    a, b, plus = _sector_sensitivities(names, sector_readings, r0, h, tick)
     a_reduced = {k: v.copy() for k, v in a.items()}
     calibration = None
     covered = {name: ~outside for name in names}
@@ -614,13 +650,7 @@ def profile_bands(
         )
         a["tension"], b["tension"] = _apply_calibration(a["tension"], b["tension"], calibration, h)
         covered["tension"] = np.ones(z.size, dtype=bool)
-    delta = np.zeros((np.asarray(next(iter(u.values()))).size, z.size))
-    for name in names:
-        uu = np.asarray(u[name])[:, None]
-        term = a[name][None, :] * uu + 0.5 * b[name][None, :] * uu**2
-        # slack or off-curve lanes: the reduced model says nothing (the calibrated tension
-        # term does: it is the full model's own change)
-        delta = delta + np.where(covered[name][None, :], term, 0.0)
+    delta = _surrogate_delta(u, names, a, b, covered, z.size)
     if full is not None:
         centre = np.interp(z, full.z, full.rho)
         source = "full profile run"
@@ -628,30 +658,85 @@ def profile_bands(
         centre = r0
         source = "reduced model"
     samples = centre[None, :] + delta
+    surrogate = {
+        "kind": "reduced profile model, quadratic per standardised parameter",
+        "step_sd": h,
+        "linear": {k: v.tolist() for k, v in a.items()},
+        "quadratic": {k: v.tolist() for k, v in b.items()},
+        "curve_runs": len(curve.points) * (1 + len(curves)),
+        "linear_reduced": {k: v.tolist() for k, v in a_reduced.items()},
+        "tension_calibration": calibration,
+    }
+    return _bands_dict(z, centre, source, samples, r0, outside, surrogate)
+
+
+def _bands_dict(
+    z: FloatArray,
+    centre: FloatArray,
+    source: str,
+    samples: FloatArray,
+    r0: FloatArray,
+    outside: NDArray[np.bool_],
+    surrogate: dict[str, Any],
+) -> dict[str, Any]:
+    """The ``uncertainty.profile`` dictionary: percentiles and SD of the sampled readings
+    per sector, the per-sample readings under the private key ``_samples``."""
     lo, mid, hi = np.percentile(samples, PERCENTILES, axis=0)
     return {
         "z_m": z.tolist(),
-        "rho_nominal": centre.tolist(),
+        "reading_nominal": centre.tolist(),
         "centre": source,
-        "rho_low": lo.tolist(),
-        "rho_p50": mid.tolist(),
-        "rho_high": hi.tolist(),
-        "rho_sd": samples.std(axis=0, ddof=1).tolist(),
+        "reading_low": lo.tolist(),
+        "reading_p50": mid.tolist(),
+        "reading_high": hi.tolist(),
+        "reading_sd": samples.std(axis=0, ddof=1).tolist(),
         "reduced_nominal": r0.tolist(),
         "outside_curve": [bool(x) for x in outside],
         "outside_note": "sectors whose near-surface pressure lies outside the forward "
         "curve's (slack lanes) get no band (low = high = nominal)",
-        "surrogate": {
-            "kind": "reduced profile model, quadratic per standardised parameter",
-            "step_sd": h,
-            "linear": {k: v.tolist() for k, v in a.items()},
-            "quadratic": {k: v.tolist() for k, v in b.items()},
-            "curve_runs": len(curve.points) * (1 + len(curves)),
-            "linear_reduced": {k: v.tolist() for k, v in a_reduced.items()},
-            "tension_calibration": calibration,
-        },
+        "surrogate": surrogate,
         "_samples": samples,
     }
+
+
+def _sector_sensitivities(
+    names: list[str],
+    sector_readings: Callable[[dict[str, float]], tuple[FloatArray, FloatArray]],
+    r0: FloatArray,
+    h: float,
+    tick: Callable[[], None],
+) -> tuple[dict[str, FloatArray], dict[str, FloatArray], dict[str, FloatArray]]:
+    """Per parameter and sector: the linear and quadratic terms of the surrogate (central
+    differences of step ``h`` SD) and the change at +h SD."""
+    a, b, plus = {}, {}, {}
+    for name in names:
+        rp = sector_readings({name: h})[1]
+        tick()
+        rm = sector_readings({name: -h})[1]
+        tick()
+        a[name] = (rp - rm) / (2 * h)
+        b[name] = (rp - 2 * r0 + rm) / h**2
+        plus[name] = rp - r0
+    return a, b, plus
+
+
+def _surrogate_delta(
+    u: dict[str, FloatArray],
+    names: list[str],
+    a: dict[str, FloatArray],
+    b: dict[str, FloatArray],
+    covered: dict[str, NDArray[np.bool_]],
+    n_sectors: int,
+) -> FloatArray:
+    """The surrogate's change of each sector's reading at each sample (n, sectors)."""
+    delta = np.zeros((np.asarray(next(iter(u.values()))).size, n_sectors))
+    for name in names:
+        uu = np.asarray(u[name])[:, None]
+        term = a[name][None, :] * uu + 0.5 * b[name][None, :] * uu**2
+        # slack or off-curve lanes: the reduced model says nothing (the calibrated tension
+        # term does: it is the full model's own change)
+        delta = delta + np.where(covered[name][None, :], term, 0.0)
+    return delta
 
 
 #: A sector's reduced-model change at +2 SD below this [reading units] is too small to

@@ -155,7 +155,7 @@ class ModelCalibration:
             "block_reading": self.block.reading,
             "block_reading_energy": self.block.reading_energy,
             "block_reading_before": self.block_before.reading,
-            "block_max_depth_m": self.block.max_depth,
+            "block_impact_depth_m": self.block.max_depth,
             "evaluations": self.evaluations,
             "source": self.source,
         }

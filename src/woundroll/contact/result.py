@@ -361,7 +361,7 @@ class ContactResult:
         """
         last = self.at_depth(float(self.delta[-1])).to_dict()  # the fields at depth_max
         return {
-            "delta_m": self.delta.tolist(),
+            "depth_m": self.delta.tolist(),
             "force_N": self.force.tolist(),
             "force_per_length_N_per_m": self.force_per_length.tolist(),
             "half_width_m": self.half_width.tolist(),

@@ -312,14 +312,30 @@ def calibrate_head(
     )
     R = math.exp(log_r)
     inst = instrument.with_overrides(head_radius=R)
-    spring = source(inst)
+    return _calibrated(
+        inst, R, source(inst), block, contact is None, collision, effective_mass, model
+    )
+
+
+def _calibrated(
+    inst: Instrument,
+    R: float,
+    spring: RollSpring,
+    block: CalibrationBlock,
+    hertz: bool,
+    collision: str,
+    effective_mass: float,
+    model: str,
+) -> HeadCalibration:
+    """The calibrated head's readings on the block (FD, energy, and the FD reading of the
+    fitted quadratic spring); the Hertz half-width when the block is the Hertz contact."""
     fd = impact_fd(inst, spring, collision=collision)
     en = impact_energy(inst, spring)
     alpha, beta = fit_quadratic(spring.law, fd.max_depth)
     fit = impact_fd(inst, RollSpring.quadratic(alpha, beta, effective_mass), collision=collision)
     a = (
         float(HertzLineContact(R, inst.head_length, block).half_width(fd.peak_force))
-        if contact is None
+        if hertz
         else math.nan
     )
     return HeadCalibration(

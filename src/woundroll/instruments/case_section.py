@@ -168,6 +168,59 @@ def _get_str(spec: dict[str, Any], key: str, fld: str) -> str:
     return v
 
 
+def _impact_option(spec: dict[str, Any], key: str, value: Any, fld: str) -> Any:
+    """One option of the impact: the collision model, the FD resolution, or a quantity of
+    :data:`_OPTION_KINDS` in SI (checked)."""
+    if key == "collision":
+        v = _get_str(spec, key, fld)
+        if v not in COLLISIONS:
+            raise InputError(f"must be one of {', '.join(COLLISIONS)}, got {v!r}", fld)
+        return v
+    if key == "steps_per_contact":
+        if (
+            isinstance(value, bool)
+            or not isinstance(value, int)
+            or not 20 <= value <= MAX_STEPS_PER_CONTACT
+        ):
+            raise InputError(
+                f"must be an integer from 20 to {MAX_STEPS_PER_CONTACT:,}, got {value!r} "
+                f"(the FD error falls as 1/N^2: the default 2000 is converged to 1e-6; each "
+                "step is kept in the impact's history)",
+                fld,
+            )
+        return value
+    v = to_si(value, _OPTION_KINDS[key], fld)
+    if key == "restitution":
+        if not 0.0 < v <= 1.0:
+            raise InputError(f"must lie in (0, 1], got {v:g}", fld)
+    elif key == "active_mass":
+        if not (math.isfinite(v) and v >= 0):
+            raise InputError(f"must be zero or positive, got {v:g}", fld)
+    elif v <= 0:
+        raise InputError(f"must be positive, got {v:g}", fld)
+    return v
+
+
+def _overridden(inst: Any, overrides: dict[str, Any], field: str) -> Any:
+    """The instrument with the case's overrides, every limited field checked, also those
+    derived from an override (mass from omega {1})."""
+    inst = inst.with_overrides(field_prefix=field, **overrides)
+    for key in ("mass", "spring_stiffness", "release_position", "head_radius", "head_length"):
+        if getattr(inst, key) is not None:
+            fld = (
+                key
+                if key in overrides or "natural_frequency" not in overrides
+                else ("natural_frequency")
+            )
+            check_limit(
+                f"tester.{key}",
+                getattr(inst, key),
+                field=f"{field}.{fld}",
+                what=key.replace("_", " "),
+            )
+    return inst
+
+
 def tester_from_spec(spec: dict[str, Any], field: str = "tester") -> TesterSetup:
     """Read a case file's ``[tester]`` table (module docstring) into a :class:`TesterSetup`.
 
@@ -199,35 +252,8 @@ def tester_from_spec(spec: dict[str, Any], field: str = "tester") -> TesterSetup
             continue
         if key in _INSTRUMENT_FIELDS:
             overrides[key] = value
-        elif key == "collision":
-            v = _get_str(spec, key, fld)
-            if v not in COLLISIONS:
-                raise InputError(f"must be one of {', '.join(COLLISIONS)}, got {v!r}", fld)
-            opts[key] = v
-        elif key == "steps_per_contact":
-            if (
-                isinstance(value, bool)
-                or not isinstance(value, int)
-                or not 20 <= value <= MAX_STEPS_PER_CONTACT
-            ):
-                raise InputError(
-                    f"must be an integer from 20 to {MAX_STEPS_PER_CONTACT:,}, got {value!r} "
-                    f"(the FD error falls as 1/N^2: the default 2000 is converged to 1e-6; each "
-                    "step is kept in the impact's history)",
-                    fld,
-                )
-            opts[key] = value
-        elif key in _OPTION_KINDS:
-            v = to_si(value, _OPTION_KINDS[key], fld)
-            if key == "restitution":
-                if not 0.0 < v <= 1.0:
-                    raise InputError(f"must lie in (0, 1], got {v:g}", fld)
-            elif key == "active_mass":
-                if not (math.isfinite(v) and v >= 0):
-                    raise InputError(f"must be zero or positive, got {v:g}", fld)
-            elif v <= 0:
-                raise InputError(f"must be positive, got {v:g}", fld)
-            opts[key] = v
+        elif key in ("collision", "steps_per_contact") or key in _OPTION_KINDS:
+            opts[key] = _impact_option(spec, key, value, fld)
         elif key == "roll_spring":
             roll_spring = value  # built below, once the restitution is known
         else:
@@ -244,21 +270,7 @@ def tester_from_spec(spec: dict[str, Any], field: str = "tester") -> TesterSetup
             roll_spring, f"{field}.roll_spring", opts.get("restitution", 1.0)
         )
     if overrides:
-        inst = inst.with_overrides(field_prefix=field, **overrides)
-        # every limited field, also those derived from an override (mass from omega {1})
-        for key in ("mass", "spring_stiffness", "release_position", "head_radius", "head_length"):
-            if getattr(inst, key) is not None:
-                fld = (
-                    key
-                    if key in overrides or "natural_frequency" not in overrides
-                    else ("natural_frequency")
-                )
-                check_limit(
-                    f"tester.{key}",
-                    getattr(inst, key),
-                    field=f"{field}.{fld}",
-                    what=key.replace("_", " "),
-                )
+        inst = _overridden(inst, overrides, field)
     return TesterSetup(
         instrument=inst,
         roll_spring=roll_spring,
@@ -392,9 +404,9 @@ class HardnessResult:
             "peak_g": float(fd.peak_g),
             "rebound_R": float(fd.rebound_r),
             "parotester_L": float(fd.rebound_l),
-            "impulse_Ns": float(fd.impulse),
-            "delta_max_m": float(fd.max_depth),
-            "delta_max_energy_m": float(self.energy.max_depth),
+            "impulse_N_s": float(fd.impulse),
+            "impact_depth_m": float(fd.max_depth),
+            "impact_depth_energy_m": float(self.energy.max_depth),
             "peak_force_N": float(fd.peak_force),
             "peak_force_energy_N": float(self.energy.peak_force),
             "peak_deceleration_m_per_s2": float(fd.peak_deceleration),

@@ -508,17 +508,27 @@ def impact_fd(
             f"must be one of {', '.join(COLLISIONS)}, got {collision!r}", "tester.collision"
         )
     spring = as_roll_spring(roll)
-    law = spring.law
-    m_s, k = instrument.mass, instrument.spring_stiffness
-    xi, xg = instrument.release_position, instrument.contact_position
-    m_r = spring.effective_mass
-    M = m_s + m_r
-    omega = instrument.omega
+    m_s = instrument.mass
+    M = m_s + spring.effective_mass
+    # free flight (exact) up to the contact at t_c, then the collision
+    t_c = math.acos(-instrument.contact_position / instrument.release_position) / instrument.omega
     v_c = instrument.impact_speed
-    t_c = math.acos(-xg / xi) / omega
     v0 = v_c if collision == "keep-velocity" else m_s * v_c / M
+    dt, T_est = _fd_time_step(instrument, spring.law, M, time_step, steps_per_contact)
+    c = _contact_phase(instrument, spring, M, v0, dt, int(50 * T_est / dt) + 100)
+    return _impact_result(instrument, spring, M, c, t_c, dt, collision)
 
-    # time step from an estimated contact duration
+
+def _fd_time_step(
+    instrument: Instrument,
+    law: Any,
+    M: float,
+    time_step: float | None,
+    steps_per_contact: int,
+) -> tuple[float, float]:
+    """The time step, and the contact duration estimated from the secant stiffness at the
+    energy model's depth (``pi sqrt(M / k)``)."""
+    k = instrument.spring_stiffness
     d_est = _energy_depth_law(instrument, law)
     k_sec = float(law.force(d_est)) / d_est + k
     T_est = math.pi * math.sqrt(M / k_sec)
@@ -540,8 +550,37 @@ def impact_fd(
                 f"{T_est / 20:.3g} s (20 steps per contact)",
                 "tester.time_step",
             )
-    max_steps = int(50 * T_est / dt) + 100
+    return dt, T_est
 
+
+@dataclass
+class _ContactPhase:
+    """The FD contact phase: steps taken, the end-of-contact fraction ``s`` of the last
+    step, the last two states, the running impulse and peaks, the turning point."""
+
+    i: int
+    s: float
+    x: float
+    x_last: float
+    v_now: float
+    v_last: float
+    f_last: float
+    impulse: float
+    f_max: float
+    a_max: float
+    d_max: float
+    x_max: float
+    hist: _History
+
+
+def _contact_phase(
+    instrument: Instrument, spring: Any, M: float, v0: float, dt: float, max_steps: int
+) -> _ContactPhase:
+    """Central differences {9} from the contact to the separation (module docstring)."""
+    law = spring.law
+    m_s, k = instrument.mass, instrument.spring_stiffness
+    xg = instrument.contact_position
+    m_r = spring.effective_mass
     Fs = getattr(law, "force_scalar", None)
     if Fs is None:
 
@@ -601,26 +640,46 @@ def impact_fd(
                 f"impact_fd: contact did not end within {max_steps} steps "
                 f"({max_steps * dt:.3g} s); the roll spring may not push the striker back"
             )
+    return _ContactPhase(
+        i, s, x, x_last, v_now, v_last, f_last, impulse, f_max, a_max, d_max, x_max, hist
+    )
 
+
+def _impact_result(
+    instrument: Instrument,
+    spring: Any,
+    M: float,
+    c: _ContactPhase,
+    t_c: float,
+    dt: float,
+    collision: str,
+) -> ImpactResult:
+    """The exact end point, the histories, the peaks at the refined maximum depth and the
+    rebound (the striker alone on its spring after separation, exact)."""
+    m_s, k = instrument.mass, instrument.spring_stiffness
+    xi, xg = instrument.release_position, instrument.contact_position
+    m_r = spring.effective_mass
+    v_c = instrument.impact_speed
     # the exact end point, interpolated between the last two steps
-    t_end = t_c + dt * (i - 1 + s)
-    x_sep = x_last + s * (x - x_last)
-    v_sep = v_last + s * (v_now - v_last)
-    impulse += 0.5 * f_last * s * dt
-    step_h, x_h, v_h, f_h = hist.arrays()
+    s = c.s
+    t_end = t_c + dt * (c.i - 1 + s)
+    x_sep = c.x_last + s * (c.x - c.x_last)
+    v_sep = c.v_last + s * (c.v_now - c.v_last)
+    impulse = c.impulse + 0.5 * c.f_last * s * dt
+    step_h, x_h, v_h, f_h = c.hist.arrays()
     t_h = np.concatenate([t_c + dt * step_h, [t_end]])
     x_h = np.concatenate([x_h, [x_sep]])
     v_h = np.concatenate([v_h, [v_sep]])
     f_h = np.concatenate([f_h, [0.0]])
     a_h = (k * x_h + f_h) / m_s
-    a_max = max(a_max, k * x_sep / m_s)
+    a_max = max(c.a_max, k * x_sep / m_s)
 
     # peaks at the refined maximum depth (both are functions of the depth while loading)
-    if not math.isfinite(d_max):
+    if not math.isfinite(c.d_max):
         raise ConvergenceError("impact_fd: no turning point found")
-    F_peak = float(law.force(d_max))
-    a_peak = (k * x_max + F_peak) / M
-    f_peak = max((m_s * F_peak - m_r * k * x_max) / M, f_max)
+    F_peak = float(spring.law.force(c.d_max))
+    a_peak = (k * c.x_max + F_peak) / M
+    f_peak = max((m_s * F_peak - m_r * k * c.x_max) / M, c.f_max)
     a_peak = max(a_peak, a_max)
 
     # rebound: striker alone on its spring after separation (exact)
@@ -631,7 +690,7 @@ def impact_fd(
         peak_deceleration=a_peak,
         peak_g=a_peak / instrument.g,
         peak_force=f_peak,
-        max_depth=d_max,
+        max_depth=c.d_max,
         impulse=impulse,
         contact_time=t_end - t_c,
         contact_start=t_c,

@@ -226,9 +226,9 @@ class CauseFit:
                 "thickness_low_m": (h - 1.96 * hsd).tolist(),
                 "thickness_high_m": (h + 1.96 * hsd).tolist(),
                 "position_m": self.readings.position.tolist(),
-                "rho_measured": self.readings.mean.tolist(),
-                "rho_fit": self.fitted.tolist(),
-                "rho_initial": self.initial.tolist(),
+                "reading_measured": self.readings.mean.tolist(),
+                "reading_fit": self.fitted.tolist(),
+                "reading_initial": self.initial.tolist(),
                 "residual_rms": self.residual_rms,
             },
             "parameters": [
@@ -309,8 +309,58 @@ def fit_causes(
     InputError
         No readings, fewer than 3 positions, a scale the instrument does not read.
     """
+    from woundroll.inverse.diagnosis import RollModel
+
+    case, readings = _case_and_readings(case, readings)
+    roll = RollModel.from_case(case, readings.scale)
+    notes: list[str] = []
+    model, runs = _reduced_model(case, roll, readings, n_bands, n_sectors, cache, notes)
+    problem = _CauseProblem.build(
+        model, readings, _standard_errors(case, readings, notes), prior_band, progress, runs
+    )
+    # search: Gauss-Newton from the case as given
+    f0, J = problem.start(cache)
+    theta, fk, J = problem.search(f0, J, steps)
+    cov = np.linalg.inv(problem.normal_matrix(J))
+    level: dict[str, Any] = {}
+    if full_level:
+        theta, level = problem.correct_level(case, theta, fk, J, int(full_level), notes)
+    sd, corr, sd_scale, chi2_res, dof = problem.posterior(J, cov, fk, calibrate_sd, notes)
+    # rank: the causes in plain words, and whether the profile has a CMD pattern at all
+    identifiable = [bool(s < 0.7 * p) for s, p in zip(sd, problem.prior, strict=True)]
+    causes = _rank(model, J, theta, sd, identifiable, corr, readings)
+    problem.check_flat(causes, notes)
+    # verify: the P_s -> reading map against the contact model
+    verification: dict[str, Any] = {}
+    if level:
+        verification["full_level"] = level
+    if verify:
+        verification.update(problem.verify(theta, notes))
+    return CauseFit(
+        model=model,
+        readings=readings,
+        theta=theta,
+        sd=sd,
+        prior_sd=problem.prior,
+        correlation=corr,
+        fitted=fk,
+        initial=f0.copy(),
+        causes=causes,
+        identifiable=identifiable,
+        notes=tuple(notes),
+        verification=verification,
+        forward_runs=problem.runs,
+        sd_scale=sd_scale,
+        residual_chi2=chi2_res,
+        residual_dof=dof,
+    )
+
+
+def _case_and_readings(
+    case: Case | str | Path, readings: Readings | str | Path | None
+) -> tuple[Case, Readings]:
+    """The case and its readings (the case's own [readings] file when none are given)."""
     from woundroll.case import Case, load_case
-    from woundroll.inverse.diagnosis import RollModel, _quantiles, forward_curve
     from woundroll.io.readings import Readings, read_readings
 
     if not isinstance(case, Case):
@@ -323,8 +373,22 @@ def fit_causes(
         readings = read_readings(readings, width=case.web.width, field="--readings")
     if readings.n_positions < 3:
         raise InputError("a CMD profile needs readings at >= 3 positions", "readings")
-    roll = RollModel.from_case(case, readings.scale)
-    notes: list[str] = []
+    return case, readings
+
+
+def _reduced_model(
+    case: Case,
+    roll: RollModel,
+    readings: Readings,
+    n_bands: int | None,
+    n_sectors: int,
+    cache: dict[str, Any] | None,
+    notes: list[str],
+) -> tuple[ProfileModel, int]:
+    """The reduced profile model on the starting thickness, and the forward runs its
+    ``P_s`` -> reading map took (0 from the cache)."""
+    from woundroll.inverse.diagnosis import forward_curve
+
     if case.thickness_profile is not None:
         base = case.thickness_profile
         notes.append(f"starting guess: the case's thickness profile ({base.source})")
@@ -357,15 +421,16 @@ def fit_causes(
         runs = len(curve.points)
         if cache is not None:
             cache["curve"] = curve
-    model = ProfileModel(roll, curve, pos, h0, K, n_sectors, nip_defl)
-    npar = model.n_params()
-    prior = np.full(npar, prior_band)
-    prior[0] = 1.0
-    if nip_defl:
-        prior[1] = 1.0
+    return ProfileModel(roll, curve, pos, h0, K, n_sectors, nip_defl), runs
+
+
+def _standard_errors(case: Case, readings: Readings, notes: list[str]) -> FloatArray:
+    """One standard error per position from the pooled repeatability (a per-position SD
+    from 2-3 passes is too noisy to weight with), else the case's, else the positions' own;
+    1 % of the mean reading where there is no scatter."""
+    from woundroll.inverse.diagnosis import _quantiles
+
     repeat = case.readings.repeatability if case.readings is not None else None
-    # one standard error per position from the pooled repeatability (a per-position SD from
-    # 2-3 passes is too noisy to weight with), else the case's, else the positions' own
     pooled = readings.pooled_sd or repeat
     if pooled:
         se = np.full(readings.n_positions, float(pooled)) / np.sqrt(readings.count)
@@ -378,161 +443,224 @@ def fit_causes(
             f"no scatter for some positions: their standard error is taken as 1 % of the "
             f"mean reading ({floor:.2g} {readings.scale})"
         )
-    y = readings.mean
-    x = readings.position
-    theta = np.zeros(npar)
+    return se
 
-    def f(th: FloatArray) -> FloatArray:
-        nonlocal runs
-        runs += 1
-        return model.readings(th, x)
 
-    # forward-difference Jacobian (steps: 1 % in ln s, 0.1 in d, 0.2 % caliper per band)
-    steps_fd = np.full(npar, 0.002)
-    steps_fd[0] = 0.01
-    if nip_defl:
-        steps_fd[1] = 0.1
+@dataclass
+class _CauseProblem:
+    """The regularised least-squares problem of :func:`fit_causes`: readings ``y`` at ``x``
+    with weights ``Wd`` (1/SE^2), the priors ``P_inv``, and the forward runs counted."""
 
-    def jacobian(th: FloatArray, f_th: FloatArray) -> FloatArray:
-        out = np.empty((x.size, npar))
+    model: ProfileModel
+    readings: Readings
+    se: FloatArray
+    prior: FloatArray
+    prior_band: float
+    P_inv: FloatArray
+    fd_steps: FloatArray
+    progress: Callable[[str, float], None] | None
+    runs: int
+
+    @classmethod
+    def build(
+        cls,
+        model: ProfileModel,
+        readings: Readings,
+        se: FloatArray,
+        prior_band: float,
+        progress: Callable[[str, float], None] | None,
+        runs: int,
+    ) -> _CauseProblem:
+        npar = model.n_params()
+        nip_defl = model.nip_deflection
+        prior = np.full(npar, prior_band)
+        prior[0] = 1.0
+        if nip_defl:
+            prior[1] = 1.0
+        # forward-difference Jacobian (steps: 1 % in ln s, 0.1 in d, 0.2 % caliper per band)
+        fd_steps = np.full(npar, 0.002)
+        fd_steps[0] = 0.01
+        if nip_defl:
+            fd_steps[1] = 0.1
+        # priors, and the bands summing to zero: a uniform shift of every c_k leaves the
+        # mean-removed thickness (nearly) unchanged and would otherwise be decided by the prior
+        P_inv = np.diag(1.0 / prior**2)
+        ones = np.zeros(npar)
+        ones[1 + int(nip_defl) :] = 1.0
+        P_inv += np.outer(ones, ones) / (0.1 * prior_band) ** 2
+        return cls(model, readings, se, prior, prior_band, P_inv, fd_steps, progress, runs)
+
+    @property
+    def x(self) -> FloatArray:
+        return self.readings.position
+
+    @property
+    def y(self) -> FloatArray:
+        return self.readings.mean
+
+    @property
+    def Wd(self) -> FloatArray:
+        return 1.0 / self.se**2
+
+    def forward(self, th: FloatArray) -> FloatArray:
+        self.runs += 1
+        return self.model.readings(th, self.x)
+
+    def jacobian(self, th: FloatArray, f_th: FloatArray) -> FloatArray:
+        npar = self.prior.size
+        out = np.empty((self.x.size, npar))
         for k in range(npar):
-            if progress is not None:
-                progress("jacobian", k / npar)
+            if self.progress is not None:
+                self.progress("jacobian", k / npar)
             t = th.copy()
-            t[k] += steps_fd[k]
-            out[:, k] = (f(t) - f_th) / steps_fd[k]
+            t[k] += self.fd_steps[k]
+            out[:, k] = (self.forward(t) - f_th) / self.fd_steps[k]
         return out
 
-    key = ("jacobian", tuple(np.round(x, 9)), K, n_sectors, nip_defl)
-    if cache is not None and key in cache:
-        f0, J = cache[key]
-    else:
-        f0 = f(theta)
-        J = jacobian(theta, f0)
+    def normal_matrix(self, J: FloatArray) -> FloatArray:
+        return J.T @ (self.Wd[:, None] * J) + self.P_inv
+
+    def objective(self, theta: FloatArray, f_theta: FloatArray) -> float:
+        return float(np.sum(self.Wd * (self.y - f_theta) ** 2) + theta @ self.P_inv @ theta)
+
+    def start(self, cache: dict[str, Any] | None) -> tuple[FloatArray, FloatArray]:
+        """Readings and Jacobian of the case as given (theta = 0), through the cache."""
+        m = self.model
+        key = ("jacobian", tuple(np.round(self.x, 9)), m.n_bands, m.n_sectors, m.nip_deflection)
+        if cache is not None and key in cache:
+            return cache[key]
+        theta = np.zeros(self.prior.size)
+        f0 = self.forward(theta)
+        J = self.jacobian(theta, f0)
         if cache is not None:
             cache[key] = (f0, J)
-    initial = f0.copy()
-    Wd = 1.0 / se**2
-    # priors, and the bands summing to zero: a uniform shift of every c_k leaves the
-    # mean-removed thickness (nearly) unchanged and would otherwise be decided by the prior
-    P_inv = np.diag(1.0 / prior**2)
-    ones = np.zeros(npar)
-    ones[1 + int(nip_defl) :] = 1.0
-    P_inv += np.outer(ones, ones) / (0.1 * prior_band) ** 2
-    A = J.T @ (Wd[:, None] * J) + P_inv
-    fk = f0
-    best = (float(np.sum(Wd * (y - f0) ** 2) + theta @ P_inv @ theta), theta, f0)
-    relinearised = False
-    while True:
-        for _ in range(steps):
-            # frozen-Jacobian Gauss-Newton on the regularised objective
-            th_b, f_b = best[1], best[2]
-            g = J.T @ (Wd * (y - f_b)) - P_inv @ th_b
-            theta = th_b + np.linalg.solve(A, g)
-            fk = f(theta)
-            obj = float(np.sum(Wd * (y - fk) ** 2) + theta @ P_inv @ theta)
-            if obj < best[0] * (1 - 1e-6):
-                best = (obj, theta.copy(), fk.copy())
-            else:
+        return f0, J
+
+    def search(
+        self, f0: FloatArray, J: FloatArray, steps: int
+    ) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Frozen-Jacobian Gauss-Newton steps on the regularised objective from theta = 0;
+        when the tension level moved by more than RELINEARISE (in ln s) the Jacobian is
+        recomputed at the fit and the steps repeated (once). Returns theta, its readings
+        and the Jacobian the covariance is taken with."""
+        Wd, y = self.Wd, self.y
+        theta = np.zeros(self.prior.size)
+        A = self.normal_matrix(J)
+        best = (self.objective(theta, f0), theta, f0)
+        relinearised = False
+        while True:
+            for _ in range(steps):
+                th_b, f_b = best[1], best[2]
+                g = J.T @ (Wd * (y - f_b)) - self.P_inv @ th_b
+                theta = th_b + np.linalg.solve(A, g)
+                fk = self.forward(theta)
+                obj = self.objective(theta, fk)
+                if obj < best[0] * (1 - 1e-6):
+                    best = (obj, theta.copy(), fk.copy())
+                else:
+                    break
+                if self.progress is not None:
+                    self.progress("fit", 1.0)
+            # the sensitivities change with the tension level: recompute them at the fit
+            if relinearised or abs(best[1][0]) <= RELINEARISE:
                 break
-            if progress is not None:
-                progress("fit", 1.0)
-        # the sensitivities change with the tension level: when the fit moved it by more
-        # than RELINEARISE (in ln s), the Jacobian is recomputed there, the steps repeated
-        # and the covariance taken at the fitted point (once)
-        if relinearised or abs(best[1][0]) <= RELINEARISE:
-            break
-        relinearised = True
-        J = jacobian(best[1], best[2])
-        A = J.T @ (Wd[:, None] * J) + P_inv
-    cov = np.linalg.inv(A)
-    _, theta, fk = best
-    level: dict[str, Any] = {}
-    if full_level:
-        # the reduced model's fit fk stays the fitted readings: the full model reproduces
-        # them at the corrected level
-        level = _full_level(case, model, theta, fk, J[:, 0], x, runs=int(full_level))
+            relinearised = True
+            J = self.jacobian(best[1], best[2])
+            A = self.normal_matrix(J)
+        return best[1], best[2], J
+
+    def correct_level(
+        self,
+        case: Case,
+        theta: FloatArray,
+        fk: FloatArray,
+        J: FloatArray,
+        full_runs: int,
+        notes: list[str],
+    ) -> tuple[FloatArray, dict[str, Any]]:
+        """The tension level corrected by the full profile model (:func:`_full_level`); the
+        reduced model's fit ``fk`` stays the fitted readings: the full model reproduces them
+        at the corrected level."""
+        level = _full_level(case, self.model, theta, fk, J[:, 0], self.x, runs=full_runs)
         theta = theta.copy()
         theta[0] += level["ln_s_correction"]
-        runs += level["full_runs"]
+        self.runs += level["full_runs"]
         notes.append(
             f"tension level corrected by the full profile model ({level['full_runs']} "
             f"run(s)): at the reduced model's level its readings were "
-            f"{level['offsets'][0]:+.2g} {readings.scale} off on average; ln(T0/T_case) "
+            f"{level['offsets'][0]:+.2g} {self.readings.scale} off on average; ln(T0/T_case) "
             f"moved by {level['ln_s_correction']:+.3f} (the SD does not include this "
             "model error)"
         )
-    # posterior SDs: (J^T W J + P^-1)^-1 trusts the weights and the reduced model; when the
-    # residuals are larger than the weights say (model error of the reduced model, a cause
-    # outside the basis), scale by the reduced chi-square (Birge ratio) over the effective
-    # degrees of freedom n - tr(H), H the regularised fit's hat matrix
-    chi2_res = float(np.sum(Wd * (y - fk) ** 2))
-    dof = float(y.size - np.trace(J @ cov @ J.T @ np.diag(Wd)))
-    sd_scale = 1.0
-    if calibrate_sd:
-        if dof >= 1.0:
-            sd_scale = max(1.0, math.sqrt(chi2_res / dof))
-        else:
-            notes.append(
-                f"{y.size} positions for {npar} parameters leave no degrees of freedom to "
-                "check the posterior SDs against the residuals: they may be optimistic"
-            )
-    cov = cov * sd_scale**2
-    if sd_scale > 1.0:
-        notes.append(
-            f"the residuals are {sd_scale:.2g} times larger than the readings' scatter "
-            f"(chi-square {chi2_res:.3g} on {dof:.3g} effective degrees of freedom): the "
-            "posterior SDs are scaled up by that factor"
-        )
-    sd = np.sqrt(np.diag(cov))
-    corr = cov / np.outer(sd, sd)
-    identifiable = [bool(s < 0.7 * p) for s, p in zip(sd, prior, strict=True)]
-    causes = _rank(model, J, theta, sd, identifiable, corr, readings)
-    # is there a CMD pattern at all? chi-square of the means about their weighted mean
-    from scipy.stats import chi2
+        return theta, level
 
-    ybar = float(np.sum(Wd * y) / np.sum(Wd))
-    stat = float(np.sum(Wd * (y - ybar) ** 2))
-    p_flat = float(chi2.sf(stat, y.size - 1))
-    if p_flat > 0.05:
-        notes.append(
-            f"the CMD variation of the readings is within their scatter (chi-square p = "
-            f"{p_flat:.2f}): no CMD cause can be identified from them"
-        )
-        for cz in causes:
-            if cz["cause"] != "tension level" and "not" not in cz["sentence"]:
-                cz["sentence"] += " (within the noise: not significant)"
-                cz["identifiable"] = False
-    verification: dict[str, Any] = {}
-    if level:
-        verification["full_level"] = level
-    if verify:
-        verification.update(_verify(model, theta))
-        runs += 3
-        err = verification.get("max_abs_error")
-        if err is not None and err > 2 * float(np.mean(se)):
+    def posterior(
+        self,
+        J: FloatArray,
+        cov: FloatArray,
+        fk: FloatArray,
+        calibrate_sd: bool,
+        notes: list[str],
+    ) -> tuple[FloatArray, FloatArray, float, float, float]:
+        """Posterior SDs and correlation: ``(J^T W J + P^-1)^-1`` trusts the weights and the
+        reduced model; when the residuals are larger than the weights say (model error of
+        the reduced model, a cause outside the basis), it is scaled by the reduced
+        chi-square (Birge ratio) over the effective degrees of freedom n - tr(H), H the
+        regularised fit's hat matrix. Returns sd, corr, the scale, chi2 and dof."""
+        Wd, y = self.Wd, self.y
+        chi2_res = float(np.sum(Wd * (y - fk) ** 2))
+        dof = float(y.size - np.trace(J @ cov @ J.T @ np.diag(Wd)))
+        sd_scale = 1.0
+        if calibrate_sd:
+            if dof >= 1.0:
+                sd_scale = max(1.0, math.sqrt(chi2_res / dof))
+            else:
+                notes.append(
+                    f"{y.size} positions for {self.prior.size} parameters leave no degrees of "
+                    "freedom to check the posterior SDs against the residuals: they may be "
+                    "optimistic"
+                )
+        cov = cov * sd_scale**2
+        if sd_scale > 1.0:
             notes.append(
-                f"the P_s -> reading map is off by up to {err:.2g} {readings.scale} against the "
-                "contact model on this profile: treat the band amplitudes as indicative"
+                f"the residuals are {sd_scale:.2g} times larger than the readings' scatter "
+                f"(chi-square {chi2_res:.3g} on {dof:.3g} effective degrees of freedom): the "
+                "posterior SDs are scaled up by that factor"
             )
-    return CauseFit(
-        model=model,
-        readings=readings,
-        theta=theta,
-        sd=sd,
-        prior_sd=prior,
-        correlation=corr,
-        fitted=fk,
-        initial=initial,
-        causes=causes,
-        identifiable=identifiable,
-        notes=tuple(notes),
-        verification=verification,
-        forward_runs=runs,
-        sd_scale=sd_scale,
-        residual_chi2=chi2_res,
-        residual_dof=dof,
-    )
+        sd = np.sqrt(np.diag(cov))
+        return sd, cov / np.outer(sd, sd), sd_scale, chi2_res, dof
+
+    def check_flat(self, causes: list[dict[str, Any]], notes: list[str]) -> None:
+        """Is there a CMD pattern at all? The chi-square of the means about their weighted
+        mean; when it is within the scatter, no CMD cause is significant."""
+        from scipy.stats import chi2
+
+        Wd, y = self.Wd, self.y
+        ybar = float(np.sum(Wd * y) / np.sum(Wd))
+        stat = float(np.sum(Wd * (y - ybar) ** 2))
+        p_flat = float(chi2.sf(stat, y.size - 1))
+        if p_flat > 0.05:
+            notes.append(
+                f"the CMD variation of the readings is within their scatter (chi-square p = "
+                f"{p_flat:.2f}): no CMD cause can be identified from them"
+            )
+            for cz in causes:
+                if cz["cause"] != "tension level" and "not" not in cz["sentence"]:
+                    cz["sentence"] += " (within the noise: not significant)"
+                    cz["identifiable"] = False
+
+    def verify(self, theta: FloatArray, notes: list[str]) -> dict[str, Any]:
+        """The map against the contact model at three sectors (:func:`_verify`)."""
+        verification = _verify(self.model, theta)
+        self.runs += 3
+        err = verification.get("max_abs_error")
+        if err is not None and err > 2 * float(np.mean(self.se)):
+            notes.append(
+                f"the P_s -> reading map is off by up to {err:.2g} {self.readings.scale} "
+                "against the contact model on this profile: treat the band amplitudes as "
+                "indicative"
+            )
+        return verification
 
 
 def _full_level(
@@ -592,8 +720,8 @@ def _full_level(
         "full_runs": len(offsets),
         "ln_s_levels": levels,
         "offsets": offsets,
-        "rho_full": readings,
-        "rho_reduced": fitted.tolist(),
+        "reading_full": readings,
+        "reading_reduced": fitted.tolist(),
         "full_slope": slope,
         "ln_s_correction": levels[-1] - ln_s,
     }
@@ -623,13 +751,13 @@ def _verify(model: ProfileModel, theta: FloatArray) -> dict[str, Any]:
             {
                 "z_m": float(z[j]),
                 "surface_pressure_Pa": float(ps[j]),
-                "map": float(model.reading_of_pressure(np.array([ps[j]]))[0]),
-                "contact_model": full,
+                "reading_map": float(model.reading_of_pressure(np.array([ps[j]]))[0]),
+                "reading_full": full,
             }
         )
     return {
         "sectors": out,
-        "max_abs_error": max(abs(o["map"] - o["contact_model"]) for o in out),
+        "max_abs_error": max(abs(o["reading_map"] - o["reading_full"]) for o in out),
     }
 
 
@@ -643,40 +771,56 @@ def _rank(
     readings: Readings,
 ) -> list[dict[str, Any]]:
     """Causes in plain words, ranked by their share of the explained CMD variation."""
-    k0 = 1 + int(model.nip_deflection)
-    groups: list[tuple[str, list[int], str]] = []
-    ln_s = float(theta[0])
-    groups.append(
-        (
-            "tension level",
-            [0],
-            f"the roll reads as if wound at {100 * math.exp(ln_s):.0f} % of the case's tension "
-            f"(T0 = {model.roll.tension * math.exp(ln_s) / 1e6:.3g} MPa, SD "
-            f"{100 * sd[0]:.1f} %)",
-        )
-    )
+    groups = [_level_cause(model, theta, sd)]
     if model.nip_deflection:
-        d = float(theta[1])
-        where = "edges" if d > 0 else "middle"
-        extra = ""
-        if not ident[1]:
-            extra = " (not identifiable: a nip deflection leaves almost no trace in these readings)"
-        elif abs(d) < 2 * sd[1]:
-            extra = " (within the noise: not significant)"
-        groups.append(
-            (
-                "nip deflection",
-                [1],
-                f"the nip load is higher toward the {where} (a deflecting nip roller), "
-                f"about {100 * abs(d) * 2 / 3:.0f} % more there than the average" + extra,
-            )
-        )
-    # thickness bands: contiguous runs of basis functions with the same sign and a
-    # meaningful amplitude
+        groups.append(_nip_cause(theta, sd, ident))
+    groups += _band_causes(model, theta, sd, ident)
+    out = _by_share(groups, J, theta, ident, readings)
+    if model.nip_deflection:
+        out += _confounded_with_nip(model, corr)
+    return out
+
+
+#: A cause: its name, the indices of its parameters and its sentence.
+_Cause = tuple[str, list[int], str]
+
+
+def _level_cause(model: ProfileModel, theta: FloatArray, sd: FloatArray) -> _Cause:
+    ln_s = float(theta[0])
+    return (
+        "tension level",
+        [0],
+        f"the roll reads as if wound at {100 * math.exp(ln_s):.0f} % of the case's tension "
+        f"(T0 = {model.roll.tension * math.exp(ln_s) / 1e6:.3g} MPa, SD "
+        f"{100 * sd[0]:.1f} %)",
+    )
+
+
+def _nip_cause(theta: FloatArray, sd: FloatArray, ident: list[bool]) -> _Cause:
+    d = float(theta[1])
+    where = "edges" if d > 0 else "middle"
+    extra = ""
+    if not ident[1]:
+        extra = " (not identifiable: a nip deflection leaves almost no trace in these readings)"
+    elif abs(d) < 2 * sd[1]:
+        extra = " (within the noise: not significant)"
+    return (
+        "nip deflection",
+        [1],
+        f"the nip load is higher toward the {where} (a deflecting nip roller), "
+        f"about {100 * abs(d) * 2 / 3:.0f} % more there than the average" + extra,
+    )
+
+
+def _band_causes(
+    model: ProfileModel, theta: FloatArray, sd: FloatArray, ident: list[bool]
+) -> list[_Cause]:
+    """Thickness bands: contiguous runs of basis functions with the same sign and a
+    meaningful amplitude (a quarter of the largest, at least 1e-4)."""
+    k0 = 1 + int(model.nip_deflection)
     c = theta[k0:]
-    centres = model.band_centres
-    W = model.width / model.n_bands
     thr = max(0.25 * float(np.max(np.abs(c))) if c.size else 0.0, 1e-4)
+    out = []
     k = 0
     while k < c.size:
         if abs(c[k]) < thr:
@@ -688,27 +832,47 @@ def _rank(
             run[-1] + 1 < c.size and np.sign(c[run[-1] + 1]) == sign and abs(c[run[-1] + 1]) >= thr
         ):
             run.append(run[-1] + 1)
-        lo = (centres[run[0]] - W / 2) / INCH
-        hi = (centres[run[-1]] + W / 2) / INCH
-        peak = float(c[run][np.argmax(np.abs(c[run]))])
-        kind = "thick" if sign > 0 else "thin"
-        ok = all(ident[k0 + i] for i in run)
-        k_peak = k0 + run[int(np.argmax(np.abs(c[run])))]
-        if not ok:
-            extra = " (not identifiable: the readings hardly constrain it)"
-        elif abs(peak) < 2 * sd[k_peak]:
-            extra = " (within the noise: not significant)"
-        else:
-            extra = ""
-        groups.append(
-            (
-                f"{kind} band {lo:.0f}-{hi:.0f} in",
-                [k0 + i for i in run],
-                f"a persistent {kind} band at {lo:.0f}-{hi:.0f} in, about {100 * peak:+.1f} % "
-                "caliper" + extra,
-            )
-        )
+        out.append(_band_cause(model, c, run, sd, ident))
         k = run[-1] + 1
+    return out
+
+
+def _band_cause(
+    model: ProfileModel, c: FloatArray, run: list[int], sd: FloatArray, ident: list[bool]
+) -> _Cause:
+    """One band: the run of basis functions ``run`` of amplitudes ``c``."""
+    k0 = 1 + int(model.nip_deflection)
+    centres = model.band_centres
+    W = model.width / model.n_bands
+    lo = (centres[run[0]] - W / 2) / INCH
+    hi = (centres[run[-1]] + W / 2) / INCH
+    peak = float(c[run][np.argmax(np.abs(c[run]))])
+    kind = "thick" if np.sign(c[run[0]]) > 0 else "thin"
+    ok = all(ident[k0 + i] for i in run)
+    k_peak = k0 + run[int(np.argmax(np.abs(c[run])))]
+    if not ok:
+        extra = " (not identifiable: the readings hardly constrain it)"
+    elif abs(peak) < 2 * sd[k_peak]:
+        extra = " (within the noise: not significant)"
+    else:
+        extra = ""
+    return (
+        f"{kind} band {lo:.0f}-{hi:.0f} in",
+        [k0 + i for i in run],
+        f"a persistent {kind} band at {lo:.0f}-{hi:.0f} in, about {100 * peak:+.1f} % "
+        "caliper" + extra,
+    )
+
+
+def _by_share(
+    groups: list[_Cause],
+    J: FloatArray,
+    theta: FloatArray,
+    ident: list[bool],
+    readings: Readings,
+) -> list[dict[str, Any]]:
+    """Each cause's contribution ``J_g dtheta_g`` to the reading profile, its CMD mean
+    removed: the causes sorted by its squared norm's share of the sum."""
     contrib = []
     for name, idx, sentence in groups:
         v = J[:, idx] @ theta[idx]
@@ -733,20 +897,26 @@ def _rank(
                 "sentence": text,
             }
         )
-    # pairs that cannot be told apart
-    if model.nip_deflection:
-        k1 = 1
-        for k in range(k0, corr.shape[0]):
-            if abs(corr[k1, k]) > 0.9:
-                out.append(
-                    {
-                        "cause": "not identifiable",
-                        "share": 0.0,
-                        "mean_shift": 0.0,
-                        "identifiable": False,
-                        "sentence": f"the nip deflection and the band at "
-                        f"{centres[k - k0] / INCH:.1f} in leave the same pattern "
-                        f"(correlation {corr[k1, k]:+.2f}): the readings cannot tell them apart",
-                    }
-                )
+    return out
+
+
+def _confounded_with_nip(model: ProfileModel, corr: FloatArray) -> list[dict[str, Any]]:
+    """Pairs that cannot be told apart: the nip deflection and a band correlated > 0.9."""
+    k0 = 1 + int(model.nip_deflection)
+    centres = model.band_centres
+    k1 = 1
+    out = []
+    for k in range(k0, corr.shape[0]):
+        if abs(corr[k1, k]) > 0.9:
+            out.append(
+                {
+                    "cause": "not identifiable",
+                    "share": 0.0,
+                    "mean_shift": 0.0,
+                    "identifiable": False,
+                    "sentence": f"the nip deflection and the band at "
+                    f"{centres[k - k0] / INCH:.1f} in leave the same pattern "
+                    f"(correlation {corr[k1, k]:+.2f}): the readings cannot tell them apart",
+                }
+            )
     return out

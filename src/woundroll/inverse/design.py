@@ -42,6 +42,7 @@ from woundroll.errors import InputError
 if TYPE_CHECKING:
     from woundroll.case import Case
     from woundroll.winding.result import WindingResult
+    from woundroll.winding.tension import Taper
 
 __all__ = ["Candidate", "Design", "DesignTarget", "design_setpoints"]
 
@@ -246,12 +247,21 @@ class Design:
 
     def to_dict(self) -> dict[str, Any]:
         w = self.winding
+        unit_keys = {  # the target's dimensional fields, with their SI unit in the key
+            "pressure_min": "pressure_min_Pa",
+            "pressure_max": "pressure_max_Pa",
+            "tension_min": "tension_min_Pa",
+            "tension_max": "tension_max_Pa",
+            "nip_min": "nip_min_N_per_m",
+            "nip_max": "nip_max_N_per_m",
+            "hoop_min": "hoop_min_Pa",
+        }
         return {
             "feasible": self.feasible,
             "violations": list(self.violations),
             "setpoints": self.setpoints(),
             "target": {
-                k: (None if isinstance(v, float) and not math.isfinite(v) else v)
+                unit_keys.get(k, k): (None if isinstance(v, float) and not math.isfinite(v) else v)
                 for k, v in self.target.__dict__.items()
             },
             "reading": self.reading,
@@ -259,7 +269,7 @@ class Design:
             "profiles": {
                 "radius_m": w.radius.tolist(),
                 "sigma_r_Pa": w.sigma_r.tolist(),
-                "wot_Pa": w.wot.tolist(),
+                "wound_on_tension_Pa": w.wot.tolist(),
                 "layer_radius_m": w.layer_mean_hoop_stress()[0].tolist(),
                 "layer_mean_hoop_stress_Pa": w.layer_mean_hoop_stress()[1].tolist(),
             },
@@ -454,86 +464,149 @@ def design_setpoints(
         A target scale the instrument does not read; a target reading outside what the
         winder's tension range can produce on this roll.
     """
-    from scipy.optimize import brentq, minimize
+    from scipy.optimize import minimize
 
-    from woundroll.case import Case, load_case
-    from woundroll.inverse.diagnosis import RollModel, forward_curve, near_surface_pressure
-    from woundroll.winding.hakiel import wind
-    from woundroll.winding.tension import Taper
-
-    if not isinstance(case, Case):
-        case = load_case(case)
-    model = RollModel.from_case(case, target.scale)
-    notes: list[str] = []
-    if case.winding.thickness_profile is not None:
-        notes.append("designed with the 1D model at the nominal thickness")
-    base = model.schedule
-    t_lo = max(target.tension_min, 1e-6 * base.web_stress)
-    t_hi = min(target.tension_max, 64.0 * base.web_stress)
-    curve = forward_curve(model, [target.reading])
-    runs = len(curve.points)
-    if not curve.monotone:
-        raise InputError("the reading is not monotone in the tension on this roll", "--target")
-    if not curve.covers(target.reading):
+    problem = _SetpointProblem.build(case, target)
+    # search: the grid of tapers and nip loads, T0 solved for each
+    cands = problem.search(progress)
+    solved = [c for c in cands if c.web_tension is not None]
+    if not solved:
         raise InputError(
-            f"no tension within 1/64-64 x the case's reads {target.reading:g} {target.scale} "
-            f"(range {curve.reading[0]:.1f}-{curve.reading[-1]:.1f})",
+            f"no setpoint in the tension range {problem.t_lo / 1e6:.3g}-"
+            f"{problem.t_hi / 1e6:.3g} MPa reads {target.reading:g} {target.scale} on this roll",
             "--target",
         )
-    # reading -> near-surface pressure (both monotone in T0 along the curve)
-    t_star = float(curve.tension_for([target.reading])[0])
-    ps_star = float(curve.surface_pressure_at([t_star])[0])
-    mu = base.friction
-    if mu > 0 and target.nip_max > target.nip_min:
-        nips = np.linspace(target.nip_min, target.nip_max, 4)
-    else:
-        nips = np.array([min(max(base.nip_load, target.nip_min), target.nip_max)])
-        if target.nip_max > target.nip_min:
-            notes.append(
-                "winding.friction = 0: the nip adds no wound-on tension in the 1D model; "
-                "nip load not designed"
+    # rank: the best margin, then (table taper) the best table shape from there
+    best = max(solved, key=_rank)
+    if target.taper_kind == "table":
+        best = problem.best_table(best, solved, cands, minimize, max_evaluations)
+    # verify: full forward runs at the chosen setpoints
+    return problem.verify(best, cands)
+
+
+def _rank(c: Candidate) -> tuple[bool, float, float, float]:
+    """Feasible first; then the largest smallest slack (best margin, or the least violated
+    worst constraint: the best available compromise); ties: less taper/nip."""
+    return (c.feasible, round(c.worst_slack, 6), -c.taper, -c.nip_load)
+
+
+@dataclass
+class _SetpointProblem:
+    """The search of :func:`design_setpoints`: the roll, the target, the winder's tension
+    range, the target near-surface pressure ``P_s*`` and the candidate grid."""
+
+    model: Any  # RollModel
+    target: DesignTarget
+    t_lo: float
+    t_hi: float
+    ps_star: float
+    nips: np.ndarray
+    tapers: np.ndarray
+    knots: np.ndarray
+    r_check: np.ndarray
+    notes: list[str]
+    runs: int
+
+    @classmethod
+    def build(cls, case: Case | str | Path, target: DesignTarget) -> _SetpointProblem:
+        """The forward curve maps the target reading to ``P_s*``; the grid of tapers and
+        nip loads the search tries."""
+        from woundroll.case import Case, load_case
+        from woundroll.inverse.diagnosis import RollModel, forward_curve
+
+        if not isinstance(case, Case):
+            case = load_case(case)
+        model = RollModel.from_case(case, target.scale)
+        notes: list[str] = []
+        if case.winding.thickness_profile is not None:
+            notes.append("designed with the 1D model at the nominal thickness")
+        base = model.schedule
+        t_lo = max(target.tension_min, 1e-6 * base.web_stress)
+        t_hi = min(target.tension_max, 64.0 * base.web_stress)
+        curve = forward_curve(model, [target.reading])
+        if not curve.monotone:
+            raise InputError("the reading is not monotone in the tension on this roll", "--target")
+        if not curve.covers(target.reading):
+            raise InputError(
+                f"no tension within 1/64-64 x the case's reads {target.reading:g} "
+                f"{target.scale} (range {curve.reading[0]:.1f}-{curve.reading[-1]:.1f})",
+                "--target",
             )
-    table = target.taper_kind == "table"
-    grid_kind = "linear" if table else target.taper_kind
-    tapers = np.linspace(0.0, target.taper_max, 7)
-    web, core, r_out = model.web, model.core, model.outer_radius
-    r_core = core.outer_radius
-    knots = np.linspace(r_core, r_out, target.knots)
-    opts = model.winding_options
-    r_check = np.linspace(r_core, r_out, 65)
+        # reading -> near-surface pressure (both monotone in T0 along the curve)
+        t_star = float(curve.tension_for([target.reading])[0])
+        ps_star = float(curve.surface_pressure_at([t_star])[0])
+        if base.friction > 0 and target.nip_max > target.nip_min:
+            nips = np.linspace(target.nip_min, target.nip_max, 4)
+        else:
+            nips = np.array([min(max(base.nip_load, target.nip_min), target.nip_max)])
+            if target.nip_max > target.nip_min:
+                notes.append(
+                    "winding.friction = 0: the nip adds no wound-on tension in the 1D model; "
+                    "nip load not designed"
+                )
+        r_core, r_out = model.core.outer_radius, model.outer_radius
+        return cls(
+            model=model,
+            target=target,
+            t_lo=t_lo,
+            t_hi=t_hi,
+            ps_star=ps_star,
+            nips=nips,
+            tapers=np.linspace(0.0, target.taper_max, 7),
+            knots=np.linspace(r_core, r_out, target.knots),
+            r_check=np.linspace(r_core, r_out, 65),
+            notes=notes,
+            runs=len(curve.points),
+        )
 
-    def winding(t0: float, taper: Taper, nip: float) -> WindingResult:
-        sched = replace(base, web_stress=t0, taper=taper, nip_load=float(nip))
-        return wind(web, core, r_out, sched, options=opts)
+    @property
+    def grid_kind(self) -> str:
+        """The taper law of the grid (a table starts from the linear one)."""
+        return "linear" if self.target.taper_kind == "table" else self.target.taper_kind
 
-    def ps(t0: float, taper: Taper, nip: float) -> float:
-        w = winding(t0, taper, nip)
-        return near_surface_pressure(w.radius, w.sigma_r, model.depth)
+    def winding(self, t0: float, taper: Taper, nip: float) -> WindingResult:
+        from woundroll.winding.hakiel import wind
+
+        m = self.model
+        sched = replace(m.schedule, web_stress=t0, taper=taper, nip_load=float(nip))
+        return wind(m.web, m.core, m.outer_radius, sched, options=m.winding_options)
+
+    def ps(self, t0: float, taper: Taper, nip: float) -> float:
+        from woundroll.inverse.diagnosis import near_surface_pressure
+
+        w = self.winding(t0, taper, nip)
+        return near_surface_pressure(w.radius, w.sigma_r, self.model.depth)
+
+    def _secant_tension(self, taper: Taper, nip: float, guess: float) -> float | None:
+        """``T0`` for ``P_s = P_s*`` by a secant in (ln T0, ln P_s) from ``guess`` (P_s grows
+        about like T0: 2-4 windings); None when it does not converge in 6 steps."""
+        ps_star, t_lo, t_hi = self.ps_star, self.t_lo, self.t_hi
+        x0, y0 = math.log(guess), math.log(max(self.ps(guess, taper, nip), 1e-9))
+        x1 = x0 + math.log(ps_star) - y0
+        for _ in range(6):
+            x1 = min(max(x1, math.log(t_lo)), math.log(t_hi))
+            y1 = math.log(max(self.ps(math.exp(x1), taper, nip), 1e-9))
+            if abs(y1 - math.log(ps_star)) < 1e-5:
+                return math.exp(x1)
+            if y1 == y0:
+                return None
+            x0, y0, x1 = x1, y1, x1 + (math.log(ps_star) - y1) * (x1 - x0) / (y1 - y0)
+        return None
 
     def candidate(
-        taper: Taper, nip: float, guess: float | None = None, kind: str = grid_kind
+        self, taper: Taper, nip: float, guess: float | None = None, kind: str | None = None
     ) -> Candidate:
         """Solve T0 for P_s = P_s* (a secant in ln T0 from ``guess``, else Brent over the
         tension range), then the constraints on that winding."""
+        from scipy.optimize import brentq
+
+        kind = self.grid_kind if kind is None else kind
         frac = float(taper.fraction)
         tab = tuple(float(f) for f in taper.factor) if taper.kind == "table" else None
-        t0 = None
-        if guess is not None:
-            # P_s grows about like T0: a secant in (ln T0, ln P_s) converges in 2-4 windings
-            x0, y0 = math.log(guess), math.log(max(ps(guess, taper, nip), 1e-9))
-            x1 = x0 + math.log(ps_star) - y0
-            for _ in range(6):
-                x1 = min(max(x1, math.log(t_lo)), math.log(t_hi))
-                y1 = math.log(max(ps(math.exp(x1), taper, nip), 1e-9))
-                if abs(y1 - math.log(ps_star)) < 1e-5:
-                    t0 = math.exp(x1)
-                    break
-                if y1 == y0:
-                    break
-                x0, y0, x1 = x1, y1, x1 + (math.log(ps_star) - y1) * (x1 - x0) / (y1 - y0)
+        t0 = None if guess is None else self._secant_tension(taper, nip, guess)
         if t0 is None:
-            f_lo = ps(t_lo, taper, nip) - ps_star
-            f_hi = ps(t_hi, taper, nip) - ps_star
+            f_lo = self.ps(self.t_lo, taper, nip) - self.ps_star
+            f_hi = self.ps(self.t_hi, taper, nip) - self.ps_star
             if f_lo > 0 or f_hi < 0:
                 side = "above" if f_lo > 0 else "below"
                 return Candidate(
@@ -542,15 +615,28 @@ def design_setpoints(
                     kind, tab,
                 )  # fmt: skip
             x = brentq(
-                lambda lx: ps(math.exp(lx), taper, nip) - ps_star,
-                math.log(t_lo),
-                math.log(t_hi),
+                lambda lx: self.ps(math.exp(lx), taper, nip) - self.ps_star,
+                math.log(self.t_lo),
+                math.log(self.t_hi),
                 xtol=1e-6,
             )
             t0 = math.exp(x)
-        w = winding(t0, taper, nip)
-        pmin, pmax, hoop, viol, score = _constraints(w, model.depth, target)
-        fac = taper.factor_at(r_check, r_core, r_out)
+        return self._checked(taper, nip, t0, frac, kind, tab)
+
+    def _checked(
+        self,
+        taper: Taper,
+        nip: float,
+        t0: float,
+        frac: float,
+        kind: str,
+        tab: tuple[float, ...] | None,
+    ) -> Candidate:
+        """The candidate at ``T0``: the constraints on its winding and its tension range."""
+        target = self.target
+        w = self.winding(t0, taper, nip)
+        pmin, pmax, hoop, viol, score = _constraints(w, self.model.depth, target)
+        fac = taper.factor_at(self.r_check, self.model.core.outer_radius, self.model.outer_radius)
         t_low, t_high = t0 * float(fac.min()), t0 * float(fac.max())
         if target.tension_min > 0 and t_low < target.tension_min * (1 - 1e-9):
             viol.append(f"tension {t_low / 1e6:.3g} MPa below the winder's range")
@@ -560,133 +646,158 @@ def design_setpoints(
             score += (t_high - target.tension_max) / target.tension_max
         slack = _slacks(pmin, pmax, hoop, t_low, t_high, target)
         return Candidate(
-            frac, float(nip), t0, ps_star, pmin, pmax, hoop, tuple(viol), score, kind, tab, slack
-        )
+            frac, float(nip), t0, self.ps_star, pmin, pmax, hoop, tuple(viol), score, kind, tab,
+            slack,
+        )  # fmt: skip
 
-    cands: list[Candidate] = []
-    # a table starts from the best linear or hyperbolic taper (both laws tried)
-    kinds = ("linear", "hyperbolic") if table else (grid_kind,)
-    grid = [(kd, tp, nip) for kd in kinds for nip in nips for tp in tapers]
-    for k, (kd, tp, nip) in enumerate(grid):
+    def search(self, progress: Any) -> list[Candidate]:
+        """Every (taper law, nip load, taper fraction) of the grid, ``T0`` solved for each;
+        a table starts from the best linear or hyperbolic taper (both laws tried)."""
+        from woundroll.winding.tension import Taper
+
+        cands: list[Candidate] = []
+        table = self.target.taper_kind == "table"
+        kinds = ("linear", "hyperbolic") if table else (self.grid_kind,)
+        grid = [(kd, tp, nip) for kd in kinds for nip in self.nips for tp in self.tapers]
+        for k, (kd, tp, nip) in enumerate(grid):
+            if progress is not None:
+                progress("candidates", k / len(grid))
+            if kd != kinds[0] and tp == 0.0:
+                continue  # no taper: the same roll under either law
+            cands.append(self.candidate(Taper(kd, float(tp)), nip, kind=kd))
         if progress is not None:
-            progress("candidates", k / len(grid))
-        if kd != kinds[0] and tp == 0.0:
-            continue  # no taper: the same roll under either law
-        cands.append(candidate(Taper(kd, float(tp)), nip, kind=kd))
-    if progress is not None:
-        progress("candidates", 1.0)
-    solved = [c for c in cands if c.web_tension is not None]
-    if not solved:
-        raise InputError(
-            f"no setpoint in the tension range {t_lo / 1e6:.3g}-{t_hi / 1e6:.3g} MPa reads "
-            f"{target.reading:g} {target.scale} on this roll",
-            "--target",
-        )
+            progress("candidates", 1.0)
+        return cands
 
-    def rank(c: Candidate) -> tuple[bool, float, float, float]:
-        # feasible first; then the largest smallest slack (best margin, or the least
-        # violated worst constraint: the best available compromise); ties: less taper/nip
-        return (c.feasible, round(c.worst_slack, 6), -c.taper, -c.nip_load)
-
-    best = max(solved, key=rank)
-    evaluated = list(solved)
-    if table:
-        grid_best = best
+    def best_table(
+        self,
+        grid_best: Candidate,
+        solved: list[Candidate],
+        cands: list[Candidate],
+        minimize: Any,
+        max_evaluations: int,
+    ) -> Candidate:
+        """The best table shape from the best grid taper (:func:`_optimise_table`), added to
+        ``cands``; a note when the grid's taper does better."""
+        target = self.target
+        evaluated = list(solved)
         best = _optimise_table(
-            best, knots, target, candidate, evaluated, minimize, max_evaluations, r_core, r_out
+            grid_best,
+            self.knots,
+            target,
+            self.candidate,
+            evaluated,
+            minimize,
+            max_evaluations,
+            self.model.core.outer_radius,
+            self.model.outer_radius,
         )
         cands.append(best)
-        if rank(grid_best) > rank(best):
-            notes.append(
+        if _rank(grid_best) > _rank(best):
+            self.notes.append(
                 f"the {grid_best.kind} taper {100 * grid_best.taper:.0f} % does better than the "
                 f"best {target.knots}-knot table found (smallest slack "
                 f"{grid_best.worst_slack:+.3g} against {best.worst_slack:+.3g}): more knots, "
                 f"or --taper {grid_best.kind}"
             )
-    tp, nip = best.taper, best.nip_load
-    if best.table is not None:
-        taper_best = Taper("table", 0.0, tuple(float(r) for r in knots), best.table)
-    else:
-        taper_best = Taper(target.taper_kind, tp)
-    # verify with full forward runs; secant on T0 if the reading misses
-    model_d = replace(model, schedule=replace(base, taper=taper_best, nip_load=nip))
-    t_a = best.web_tension
-    r_a = model_d.evaluate(t_a).reading
-    surrogate_miss = r_a - target.reading
-    runs += 1
-    t_b, r_b = None, None
-    for _ in range(4):
-        if abs(r_a - target.reading) <= target.tolerance:
-            break
-        if t_b is None:
-            t_new = t_a * (1.0 + 0.1 * np.sign(target.reading - r_a))
-        else:
-            slope = (r_a - r_b) / (math.log(t_a) - math.log(t_b))
-            t_new = math.exp(math.log(t_a) + (target.reading - r_a) / slope)
-        t_new = min(max(t_new, t_lo), t_hi)
-        t_b, r_b = t_a, r_a
-        t_a = t_new
+        return best
+
+    def taper_of(self, best: Candidate) -> Taper:
+        from woundroll.winding.tension import Taper
+
+        if best.table is not None:
+            return Taper("table", 0.0, tuple(float(r) for r in self.knots), best.table)
+        return Taper(self.target.taper_kind, best.taper)
+
+    def full_runs_tension(self, best: Candidate, taper: Taper) -> tuple[float, float, float]:
+        """The chosen setpoints by full forward runs; a secant on ``T0`` (at most 4 runs)
+        if the reading misses. Returns T0, its reading and the surrogate's miss."""
+        target = self.target
+        base = self.model.schedule
+        model_d = replace(self.model, schedule=replace(base, taper=taper, nip_load=best.nip_load))
+        t_a = best.web_tension
         r_a = model_d.evaluate(t_a).reading
-        runs += 1
-    w = winding(t_a, taper_best, nip)
-    pmin, pmax, hoop, viol, _ = _constraints(w, model.depth, target)
-    fac = taper_best.factor_at(r_check, r_core, r_out)
-    t_low, t_high = t_a * float(fac.min()), t_a * float(fac.max())
-    slacks = _slacks(pmin, pmax, hoop, t_low, t_high, target)
-    for name, word in (("tension_min", "below"), ("tension_max", "above")):
-        if slacks.get(name, 0.0) < -1e-9:
-            viol.append(
-                f"tension {(t_low if word == 'below' else t_high) / 1e6:.3g} MPa {word} the "
-                "winder's range"
+        surrogate_miss = r_a - target.reading
+        self.runs += 1
+        t_b, r_b = None, None
+        for _ in range(4):
+            if abs(r_a - target.reading) <= target.tolerance:
+                break
+            if t_b is None:
+                t_new = t_a * (1.0 + 0.1 * np.sign(target.reading - r_a))
+            else:
+                slope = (r_a - r_b) / (math.log(t_a) - math.log(t_b))
+                t_new = math.exp(math.log(t_a) + (target.reading - r_a) / slope)
+            t_new = min(max(t_new, self.t_lo), self.t_hi)
+            t_b, r_b = t_a, r_a
+            t_a = t_new
+            r_a = model_d.evaluate(t_a).reading
+            self.runs += 1
+        return t_a, r_a, surrogate_miss
+
+    def verify(self, best: Candidate, cands: list[Candidate]) -> Design:
+        """The design at the verified tension: constraints, slacks, what to relax."""
+        target, model = self.target, self.model
+        taper_best = self.taper_of(best)
+        nip = best.nip_load
+        t_a, r_a, surrogate_miss = self.full_runs_tension(best, taper_best)
+        w = self.winding(t_a, taper_best, nip)
+        pmin, pmax, hoop, viol, _ = _constraints(w, model.depth, target)
+        fac = taper_best.factor_at(self.r_check, model.core.outer_radius, model.outer_radius)
+        t_low, t_high = t_a * float(fac.min()), t_a * float(fac.max())
+        slacks = _slacks(pmin, pmax, hoop, t_low, t_high, target)
+        for name, word in (("tension_min", "below"), ("tension_max", "above")):
+            if slacks.get(name, 0.0) < -1e-9:
+                viol.append(
+                    f"tension {(t_low if word == 'below' else t_high) / 1e6:.3g} MPa {word} the "
+                    "winder's range"
+                )
+        if abs(r_a - target.reading) > target.tolerance:
+            viol.append(f"reading {r_a:.1f} misses the target by more than {target.tolerance:g}")
+        if t_a != best.web_tension:
+            self.notes.append(
+                f"tension corrected by full forward runs from {best.web_tension / 1e6:.4g} to "
+                f"{t_a / 1e6:.4g} MPa (the near-surface-pressure surrogate missed the target by "
+                f"{surrogate_miss:+.2f} {target.scale})"
             )
-    if abs(r_a - target.reading) > target.tolerance:
-        viol.append(f"reading {r_a:.1f} misses the target by more than {target.tolerance:g}")
-    if t_a != best.web_tension:
-        notes.append(
-            f"tension corrected by full forward runs from {best.web_tension / 1e6:.4g} to "
-            f"{t_a / 1e6:.4g} MPa (the near-surface-pressure surrogate missed the target by "
-            f"{surrogate_miss:+.2f} {target.scale})"
+        if any("hoop" in v for v in viol):
+            self.notes.append(_hoop_note(w, cands, target))
+        margins = {
+            "min_pressure_Pa": pmin,
+            "max_pressure_Pa": pmax,
+            "min_hoop_stress_Pa": hoop,
+            "pressure_min_margin": pmin / target.pressure_min if target.pressure_min > 0 else None,
+            "pressure_max_margin": (
+                target.pressure_max / pmax if math.isfinite(target.pressure_max) else None
+            ),
+            "lowest_web_tension_Pa": t_low,
+            "highest_web_tension_Pa": t_high,
+            "reading_error": r_a - target.reading,
+            "surrogate_reading_error": surrogate_miss,
+        }
+        return Design(
+            target=target,
+            feasible=not viol,
+            web_tension=t_a,
+            taper_kind=target.taper_kind,
+            taper=best.taper if best.table is None else 1.0 - min(best.table),
+            nip_load=nip,
+            reading=r_a,
+            winding=w,
+            pressure_depth=model.depth,
+            web_thickness=model.web.thickness,
+            web_width=model.web.width,
+            margins=margins,
+            candidates=tuple(cands),
+            full_runs=self.runs,
+            notes=tuple(self.notes),
+            violations=tuple(viol),
+            table_radius=tuple(float(r) for r in self.knots) if best.table is not None else (),
+            table_factor=best.table or (),
+            slacks=slacks,
+            binding=min(slacks, key=slacks.get) if slacks else None,
+            relaxations=tuple(_relaxations(slacks, viol, pmin, pmax, hoop, t_low, t_high)),
         )
-    binding = min(slacks, key=slacks.get) if slacks else None
-    relax = _relaxations(slacks, viol, pmin, pmax, hoop, t_low, t_high)
-    if any("hoop" in v for v in viol):
-        notes.append(_hoop_note(w, cands, target))
-    margins = {
-        "min_pressure_Pa": pmin,
-        "max_pressure_Pa": pmax,
-        "min_hoop_stress_Pa": hoop,
-        "pressure_min_margin": pmin / target.pressure_min if target.pressure_min > 0 else None,
-        "pressure_max_margin": (
-            target.pressure_max / pmax if math.isfinite(target.pressure_max) else None
-        ),
-        "lowest_web_tension_Pa": t_low,
-        "highest_web_tension_Pa": t_high,
-        "reading_error": r_a - target.reading,
-        "surrogate_reading_error": surrogate_miss,
-    }
-    return Design(
-        target=target,
-        feasible=not viol,
-        web_tension=t_a,
-        taper_kind=target.taper_kind,
-        taper=tp if best.table is None else 1.0 - min(best.table),
-        nip_load=nip,
-        reading=r_a,
-        winding=w,
-        pressure_depth=model.depth,
-        web_thickness=web.thickness,
-        web_width=web.width,
-        margins=margins,
-        candidates=tuple(cands),
-        full_runs=runs,
-        notes=tuple(notes),
-        violations=tuple(viol),
-        table_radius=tuple(float(r) for r in knots) if best.table is not None else (),
-        table_factor=best.table or (),
-        slacks=slacks,
-        binding=binding,
-        relaxations=tuple(relax),
-    )
 
 
 def _table_factors(x: np.ndarray, target: DesignTarget) -> tuple[float, ...]:
@@ -804,13 +915,13 @@ def _relaxations(
         out.append(
             {
                 "constraint": name,
-                "slack": slack,
-                "limit_needed": value,
+                "normalised_slack": slack,
+                "limit_needed_Pa": value,
                 "sentence": text.format(value * unit),
             }
         )
     if not out and viol:
-        out.append({"constraint": "reading", "slack": None, "limit_needed": None,
+        out.append({"constraint": "reading", "normalised_slack": None, "limit_needed_Pa": None,
                     "sentence": "widen --tolerance or the tension range"})  # fmt: skip
     return out
 

@@ -366,44 +366,64 @@ def forward_curve(
     targets = np.asarray(targets, dtype=float)
     targets = targets[np.isfinite(targets)]
     if tensions is None and targets.size:
-        lo, hi = float(targets.min()), float(targets.max())
-        stuck = {"low": False, "high": False}
-        while True:
-            ts = sorted(pts)
-            r = [pts[t].reading for t in ts]
-            if not stuck["low"] and lo < min(r) and ts[0] / 2 >= t_case * MIN_FACTOR * (1 - 1e-9):
-                side, t_new = "low", ts[0] / 2
-            elif (
-                not stuck["high"] and hi > max(r) and ts[-1] * 2 <= t_case * MAX_FACTOR * (1 + 1e-9)
-            ):
-                side, t_new = "high", ts[-1] * 2
-            else:
-                break
-            try:
-                pts[t_new] = model.evaluate(t_new)
-                step()
-            except (ConvergenceError, InputError):
-                stuck[side] = True  # the chain has no answer there (e.g. too slack to solve)
+        _extend_to_targets(model, pts, targets, step)
     if tensions is None and targets.size and refine > 1.0:
-        # subdivide (geometric midpoints) the intervals that hold a target reading until
-        # their tension ratio is at most ``refine``: the interpolant is exact at grid points
-        for _ in range(8):
-            ts = sorted(pts)
-            r = np.array([pts[t].reading for t in ts])
-            split = set()
-            for v in targets:
-                k = int(np.searchsorted(r, v))
-                if 0 < k < len(ts) and ts[k] / ts[k - 1] > refine * (1 + 1e-9):
-                    split.add(k)
-            if not split:
-                break
-            for k in sorted(split):
-                t_new = math.sqrt(ts[k] * ts[k - 1])
-                pts[t_new] = model.evaluate(t_new)
-                step()
+        _refine_at_targets(model, pts, targets, refine, step)
     if progress is not None:
         progress(1.0)
     return ForwardCurve(tuple(pts[t] for t in sorted(pts)), model.scale, model.roll_model)
+
+
+def _extend_to_targets(
+    model: RollModel,
+    pts: dict[float, ForwardPoint],
+    targets: FloatArray,
+    step: Callable[[], None],
+) -> None:
+    """Extend the grid by factors of 2 (within MIN_FACTOR ... MAX_FACTOR of the case's
+    tension) until it brackets the targets, or the chain has no answer there."""
+    t_case = model.tension
+    lo, hi = float(targets.min()), float(targets.max())
+    stuck = {"low": False, "high": False}
+    while True:
+        ts = sorted(pts)
+        r = [pts[t].reading for t in ts]
+        if not stuck["low"] and lo < min(r) and ts[0] / 2 >= t_case * MIN_FACTOR * (1 - 1e-9):
+            side, t_new = "low", ts[0] / 2
+        elif not stuck["high"] and hi > max(r) and ts[-1] * 2 <= t_case * MAX_FACTOR * (1 + 1e-9):
+            side, t_new = "high", ts[-1] * 2
+        else:
+            break
+        try:
+            pts[t_new] = model.evaluate(t_new)
+            step()
+        except (ConvergenceError, InputError):
+            stuck[side] = True  # the chain has no answer there (e.g. too slack to solve)
+
+
+def _refine_at_targets(
+    model: RollModel,
+    pts: dict[float, ForwardPoint],
+    targets: FloatArray,
+    refine: float,
+    step: Callable[[], None],
+) -> None:
+    """Subdivide (geometric midpoints) the intervals that hold a target reading until
+    their tension ratio is at most ``refine``: the interpolant is exact at grid points."""
+    for _ in range(8):
+        ts = sorted(pts)
+        r = np.array([pts[t].reading for t in ts])
+        split = set()
+        for v in targets:
+            k = int(np.searchsorted(r, v))
+            if 0 < k < len(ts) and ts[k] / ts[k - 1] > refine * (1 + 1e-9):
+                split.add(k)
+        if not split:
+            break
+        for k in sorted(split):
+            t_new = math.sqrt(ts[k] * ts[k - 1])
+            pts[t_new] = model.evaluate(t_new)
+            step()
 
 
 @dataclass(frozen=True)
@@ -592,29 +612,14 @@ class Diagnosis:
             vs = f"on {set_text}"
         else:
             vs = f"{abs(dev):.0f} % {'above' if dev > 0 else 'below'} {set_text}"
-        if math.isfinite(lo) and math.isfinite(hi):
-            band = f"{setp(lo)}-{setp(hi)} {unit}"
-        elif math.isfinite(hi):
-            band = f"<= {setp(hi)} {unit}"
-        elif math.isfinite(lo):
-            band = f">= {setp(lo)} {unit}"
-        else:
-            band = "unbounded"
+        band = _interval_text(lo, hi, setp, unit)
         conf = f"{100 * self.confidence:.0f} %"
         sat = [st for st in self.status if st.startswith("saturated")]
         wound = "as if wound at"
         if self.position.size == 1 and sat:
             # a reading at the scale's end bounds the tension from one side only
             wound = "as if wound at least at" if "least" in sat[0] else "as if wound at most at"
-        tail = ""
-        if self.position.size > 1:
-            ok = np.isfinite(self.web_tension)
-            tail = f"; {self.position.size} positions"
-            if np.count_nonzero(ok) > 1:
-                tail += (
-                    f", from {setp(float(np.min(self.web_tension[ok])))} to "
-                    f"{setp(float(np.max(self.web_tension[ok])))} {unit}"
-                )
+        tail = self._positions_text(setp, unit)
         if sat:
             tail += (
                 f"; {len(sat)} of {self.position.size} positions read at the scale's end "
@@ -624,6 +629,19 @@ class Diagnosis:
             f"this roll reads {wound} {parts[0]} ({', '.join(parts[1:])}), {vs} "
             f"({conf}: {band}){tail}"
         ).replace(" ()", "")
+
+    def _positions_text(self, setp: Callable[[float], str], unit: str) -> str:
+        """ "; 5 positions, from 40.1 to 52.3 N": the positions' tension range."""
+        tail = ""
+        if self.position.size > 1:
+            ok = np.isfinite(self.web_tension)
+            tail = f"; {self.position.size} positions"
+            if np.count_nonzero(ok) > 1:
+                tail += (
+                    f", from {setp(float(np.min(self.web_tension[ok])))} to "
+                    f"{setp(float(np.max(self.web_tension[ok])))} {unit}"
+                )
+        return tail
 
     def summary(self) -> list[tuple[str, ...]]:
         """Rows for a table: position [in], reading, WOT [MPa] and P [kPa] with intervals
@@ -744,6 +762,17 @@ _UNIT_SYSTEMS: dict[str, dict[str, tuple[str, float]]] = {
 }
 
 
+def _interval_text(lo: float, hi: float, setp: Callable[[float], str], unit: str) -> str:
+    """An interval with open ends (NaN) written as a bound."""
+    if math.isfinite(lo) and math.isfinite(hi):
+        return f"{setp(lo)}-{setp(hi)} {unit}"
+    if math.isfinite(hi):
+        return f"<= {setp(hi)} {unit}"
+    if math.isfinite(lo):
+        return f">= {setp(lo)} {unit}"
+    return "unbounded"
+
+
 def set_point_units(kind: str, value: float) -> str:
     """The unit family of a tension set point given as ``(kind, SI value)``: ``"us"`` when
     it is a round number of pli, lbf or psi (2 pli, 6 lbf, 300 psi: to 1e-6, in steps of
@@ -848,133 +877,31 @@ def diagnose(
         No readings; readings in a scale the case's instrument does not show; a forward
         curve that is not monotone (the instrument cannot tell the tensions apart).
     """
-    from woundroll.case import Case, load_case
-    from woundroll.io.readings import Readings, read_readings
-
-    if not isinstance(case, Case):
-        case = load_case(case)
-    if not 0.5 < confidence < 1.0:
-        raise InputError(f"must lie between 0.5 and 1, got {confidence!r}", "--confidence")
-    if readings is None:
-        readings = case.measured_readings
-        if readings is None:
-            raise InputError("no readings: give [readings] file = ... or --readings", "readings")
-    elif not isinstance(readings, Readings):
-        readings = read_readings(readings, width=case.web.width, field="--readings")
+    case, readings = _diagnosis_inputs(case, readings, confidence)
     model = RollModel.from_case(case, readings.scale)
     repeat = case.readings.repeatability if case.readings is not None else None
     half = _quantiles(readings, confidence, repeat)
     r_mid = readings.mean
     r_lo, r_hi = r_mid - half, r_mid + half
-
-    def report(stage: str) -> Callable[[float], None] | None:
-        if progress is None:
-            return None
-        return lambda f: progress(stage, f)
-
-    curve = forward_curve(model, np.concatenate([r_lo, r_hi]), progress=report("forward curve"))
+    # forward: the reading over tension, bracketing every interval end
+    stage = None if progress is None else (lambda f: progress("forward curve", f))
+    curve = forward_curve(model, np.concatenate([r_lo, r_hi]), progress=stage)
     notes: list[str] = []
-    if not curve.monotone:
-        r = curve.reading
-        raise InputError(
-            f"the {readings.scale} reading of this roll does not rise monotonically with the "
-            f"tension ({', '.join(f'{v:.4g}' for v in r)} over "
-            f"{curve.web_stress[0] / 1e6:.3g}-{curve.web_stress[-1] / 1e6:.3g} MPa): the "
-            "instrument cannot tell the tensions apart on this roll, the tension is not "
-            "identifiable from its readings",
-            "readings",
-        )
-    t_mid = curve.tension_for(r_mid)
-    t_lo = curve.tension_for(np.maximum(r_lo, curve.reading[0]))
-    t_hi = curve.tension_for(np.minimum(r_hi, curve.reading[-1]))
-    # an interval end beyond the curve is unbounded on that side
-    t_lo = np.where(r_lo < curve.reading[0], math.nan, t_lo)
-    t_hi = np.where(r_hi > curve.reading[-1], math.nan, t_hi)
-    # a reading at the scale's end is saturated: the roll is at least that hard (or soft),
-    # so it bounds the tension from one side only
-    top, bottom = saturated_positions(readings)
-    t_hi = np.where(top, math.nan, t_hi)
-    t_lo = np.where(bottom, math.nan, t_lo)
-    status = tuple(
-        "saturated: at least"
-        if tp
-        else "saturated: at most"
-        if bt
-        else "below range"
-        if m < curve.reading[0]
-        else "above range"
-        if m > curve.reading[-1]
-        else "ok"
-        for m, tp, bt in zip(r_mid, top, bottom, strict=True)
-    )
-    if np.any(top | bottom):
-        notes.append(
-            f"{int(np.sum(top | bottom))} position(s) read at the scale's end (saturated): "
-            "their tension is a bound, the interval open on the saturated side"
-        )
-    if case.winding.thickness_profile is not None:
-        notes.append(
-            "each position is read as its own 1D roll at the nominal thickness; the case's "
-            "thickness profile is not used here"
-        )
-    if not readings.has_scatter and repeat is None:
-        notes.append(
-            "no repeated readings and no readings.repeatability: the intervals hold the "
-            "material uncertainty only"
-        )
+    _check_monotone(curve, readings.scale)
+    # inverse: each position's tension and its scatter interval
+    t_mid, t_lo, t_hi, status = _tensions_read(curve, readings, r_lo, r_mid, r_hi, notes)
+    _input_notes(case, readings, repeat, notes)
     # material and thickness: first-order sensitivities of ln T0 (module docstring)
     unc = getattr(case, "uncertainty", None)
-    sens: dict[str, Any] = {}
-    perturbed = _perturbed_webs(model, unc)
-    for k, (name, sd, web) in enumerate(perturbed):
-        if progress is not None:
-            progress("material", k / len(perturbed))
-        c2 = forward_curve(model.with_web(web), tensions=_bracket(curve, r_mid))
-        if not c2.monotone:
-            notes.append(f"{name} + 1 SD: forward curve not monotone, sensitivity skipped")
-            continue
-        # same reading, shifted material: how far does the tension move
-        t2 = _tension_extrapolated(c2, r_mid)
-        sens[name] = (sd, (np.log(t2) - np.log(t_mid)) / sd)
-    if progress is not None and perturbed:
-        progress("material", 1.0)
-    from scipy.stats import norm
-
-    z = norm.ppf(0.5 + 0.5 * confidence)
-    var = np.zeros(r_mid.size)
-    if sens:
-        names = list(sens)
-        corr = {("K1", "K2"): getattr(unc, "K1_K2_correlation", 0.0)}
-        for a in names:
-            sa, da = sens[a]
-            var += (da * sa) ** 2
-        for (a, b), rho in corr.items():
-            if a in sens and b in sens and rho:
-                var += 2 * rho * sens[a][1] * sens[a][0] * sens[b][1] * sens[b][0]
-        notes.append(
-            "material intervals: first-order propagation of "
-            + ", ".join(f"{n} (SD {sens[n][0]:.3g})" for n in names)
-        )
-    m_half = z * np.sqrt(np.maximum(var, 0.0))
-    ln_mid = np.log(t_mid)
-    ln_lo = ln_mid - np.sqrt((ln_mid - np.log(t_lo)) ** 2 + m_half**2)
-    ln_hi = ln_mid + np.sqrt((np.log(t_hi) - ln_mid) ** 2 + m_half**2)
-    T, T_lo, T_hi = np.exp(ln_mid), np.exp(ln_lo), np.exp(ln_hi)
+    sens = _material_sensitivity(model, unc, curve, r_mid, t_mid, progress, notes)
+    m_half = _material_half_width(sens, unc, confidence, r_mid.size, notes)
+    T, T_lo, T_hi = _combined_interval(t_mid, t_lo, t_hi, m_half)
 
     wot = lambda t: _affine(curve, t)  # noqa: E731
     P = lambda t: _power(curve, t)  # noqa: E731
     verification: dict[str, Any] = {}
     if verify and np.any(np.isfinite(T)):
-        i = int(np.nanargmin(np.abs(T - np.nanmedian(T))))
-        full = model.evaluate(float(T[i]))
-        verification = {
-            "web_tension_Pa": float(T[i]),
-            "target_reading": float(r_mid[i]),
-            "full_forward_reading": full.reading,
-            "error": full.reading - float(r_mid[i]),
-            "surface_pressure_interpolated_Pa": float(P(np.array([T[i]]))[0]),
-            "surface_pressure_full_Pa": full.surface_pressure,
-        }
+        verification = _verify_median(model, curve, T, r_mid)
     if any(p.extrapolated for p in curve.points):
         notes.append(
             "some forward runs extrapolate the roll spring beyond the contact model's reach "
@@ -1007,6 +934,174 @@ def diagnose(
         web_width=model.web.width,
         web_thickness=model.web.thickness,
     )
+
+
+def _diagnosis_inputs(
+    case: Case | str | Path, readings: Readings | str | Path | None, confidence: float
+) -> tuple[Case, Readings]:
+    """The case and its readings (the case's own [readings] file when none are given)."""
+    from woundroll.case import Case, load_case
+    from woundroll.io.readings import Readings, read_readings
+
+    if not isinstance(case, Case):
+        case = load_case(case)
+    if not 0.5 < confidence < 1.0:
+        raise InputError(f"must lie between 0.5 and 1, got {confidence!r}", "--confidence")
+    if readings is None:
+        readings = case.measured_readings
+        if readings is None:
+            raise InputError("no readings: give [readings] file = ... or --readings", "readings")
+    elif not isinstance(readings, Readings):
+        readings = read_readings(readings, width=case.web.width, field="--readings")
+    return case, readings
+
+
+def _check_monotone(curve: ForwardCurve, scale: str) -> None:
+    """A curve that does not rise with the tension cannot be inverted."""
+    if not curve.monotone:
+        r = curve.reading
+        raise InputError(
+            f"the {scale} reading of this roll does not rise monotonically with the "
+            f"tension ({', '.join(f'{v:.4g}' for v in r)} over "
+            f"{curve.web_stress[0] / 1e6:.3g}-{curve.web_stress[-1] / 1e6:.3g} MPa): the "
+            "instrument cannot tell the tensions apart on this roll, the tension is not "
+            "identifiable from its readings",
+            "readings",
+        )
+
+
+def _tensions_read(
+    curve: ForwardCurve,
+    readings: Readings,
+    r_lo: FloatArray,
+    r_mid: FloatArray,
+    r_hi: FloatArray,
+    notes: list[str],
+) -> tuple[FloatArray, FloatArray, FloatArray, tuple[str, ...]]:
+    """The tension of each position's mean reading and of its interval ends (NaN: open),
+    and each position's status (ok, beyond the curve, saturated)."""
+    t_mid = curve.tension_for(r_mid)
+    t_lo = curve.tension_for(np.maximum(r_lo, curve.reading[0]))
+    t_hi = curve.tension_for(np.minimum(r_hi, curve.reading[-1]))
+    # an interval end beyond the curve is unbounded on that side
+    t_lo = np.where(r_lo < curve.reading[0], math.nan, t_lo)
+    t_hi = np.where(r_hi > curve.reading[-1], math.nan, t_hi)
+    # a reading at the scale's end is saturated: the roll is at least that hard (or soft),
+    # so it bounds the tension from one side only
+    top, bottom = saturated_positions(readings)
+    t_hi = np.where(top, math.nan, t_hi)
+    t_lo = np.where(bottom, math.nan, t_lo)
+    status = tuple(
+        "saturated: at least"
+        if tp
+        else "saturated: at most"
+        if bt
+        else "below range"
+        if m < curve.reading[0]
+        else "above range"
+        if m > curve.reading[-1]
+        else "ok"
+        for m, tp, bt in zip(r_mid, top, bottom, strict=True)
+    )
+    if np.any(top | bottom):
+        notes.append(
+            f"{int(np.sum(top | bottom))} position(s) read at the scale's end (saturated): "
+            "their tension is a bound, the interval open on the saturated side"
+        )
+    return t_mid, t_lo, t_hi, status
+
+
+def _input_notes(case: Case, readings: Readings, repeat: float | None, notes: list[str]) -> None:
+    """What the diagnosis leaves out of the case and the readings."""
+    if case.winding.thickness_profile is not None:
+        notes.append(
+            "each position is read as its own 1D roll at the nominal thickness; the case's "
+            "thickness profile is not used here"
+        )
+    if not readings.has_scatter and repeat is None:
+        notes.append(
+            "no repeated readings and no readings.repeatability: the intervals hold the "
+            "material uncertainty only"
+        )
+
+
+def _material_sensitivity(
+    model: RollModel,
+    unc: Any,
+    curve: ForwardCurve,
+    r_mid: FloatArray,
+    t_mid: FloatArray,
+    progress: Progress | None,
+    notes: list[str],
+) -> dict[str, Any]:
+    """Per uncertain input: its SD and d ln T0 / d input at each position's reading (a
+    forward curve on the web shifted by one SD, same reading)."""
+    sens: dict[str, Any] = {}
+    perturbed = _perturbed_webs(model, unc)
+    for k, (name, sd, web) in enumerate(perturbed):
+        if progress is not None:
+            progress("material", k / len(perturbed))
+        c2 = forward_curve(model.with_web(web), tensions=_bracket(curve, r_mid))
+        if not c2.monotone:
+            notes.append(f"{name} + 1 SD: forward curve not monotone, sensitivity skipped")
+            continue
+        # same reading, shifted material: how far does the tension move
+        t2 = _tension_extrapolated(c2, r_mid)
+        sens[name] = (sd, (np.log(t2) - np.log(t_mid)) / sd)
+    if progress is not None and perturbed:
+        progress("material", 1.0)
+    return sens
+
+
+def _material_half_width(
+    sens: dict[str, Any], unc: Any, confidence: float, n: int, notes: list[str]
+) -> FloatArray:
+    """Half-width in ln T0 of the material interval: first-order propagation of the
+    sensitivities (K1 and K2 with their correlation)."""
+    from scipy.stats import norm
+
+    z = norm.ppf(0.5 + 0.5 * confidence)
+    var = np.zeros(n)
+    if sens:
+        names = list(sens)
+        corr = {("K1", "K2"): getattr(unc, "K1_K2_correlation", 0.0)}
+        for a in names:
+            sa, da = sens[a]
+            var += (da * sa) ** 2
+        for (a, b), rho in corr.items():
+            if a in sens and b in sens and rho:
+                var += 2 * rho * sens[a][1] * sens[a][0] * sens[b][1] * sens[b][0]
+        notes.append(
+            "material intervals: first-order propagation of "
+            + ", ".join(f"{n} (SD {sens[n][0]:.3g})" for n in names)
+        )
+    return z * np.sqrt(np.maximum(var, 0.0))
+
+
+def _combined_interval(
+    t_mid: FloatArray, t_lo: FloatArray, t_hi: FloatArray, m_half: FloatArray
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The scatter interval and the material half-width combined in quadrature in ln T0."""
+    ln_mid = np.log(t_mid)
+    ln_lo = ln_mid - np.sqrt((ln_mid - np.log(t_lo)) ** 2 + m_half**2)
+    ln_hi = ln_mid + np.sqrt((np.log(t_hi) - ln_mid) ** 2 + m_half**2)
+    return np.exp(ln_mid), np.exp(ln_lo), np.exp(ln_hi)
+
+
+def _verify_median(
+    model: RollModel, curve: ForwardCurve, T: FloatArray, r_mid: FloatArray
+) -> dict[str, Any]:
+    """The full chain once more at the median position's tension, against the curve."""
+    i = int(np.nanargmin(np.abs(T - np.nanmedian(T))))
+    full = model.evaluate(float(T[i]))
+    return {
+        "web_tension_Pa": float(T[i]),
+        "target_reading": float(r_mid[i]),
+        "full_forward_reading": full.reading,
+        "error": full.reading - float(r_mid[i]),
+        "surface_pressure_interpolated_Pa": float(_power(curve, np.array([T[i]]))[0]),
+        "surface_pressure_full_Pa": full.surface_pressure,
+    }
 
 
 def _bracket(curve: ForwardCurve, readings: FloatArray) -> FloatArray:

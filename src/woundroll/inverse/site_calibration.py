@@ -445,16 +445,100 @@ def calibrate_site(
         too few rolls or readings for the parameters, a parameter the readings cannot
         identify (message "not identifiable"). ConvergenceError: the fit did not converge.
     """
-    from woundroll.case import load_case
+    from woundroll.io.readings import SCALES
 
+    names = _parameter_names(fit)
+    if len(cases) < 2:
+        raise InputError("give at least two rolls (case files)", "--cases")
+    srcs, loaded, labels = _load_rolls(cases, names)
+    scale = loaded[0].tester_setup.instrument.reading_range
+    readout = loaded[0].tester_setup.instrument.readout
+    scale_name = {readout: name for name, readout in SCALES.items()}[readout]
+    ys, notes = read_calibration_readings(readings, labels, scale)
+    params = [PARAMETERS[nm] for nm in names]
+    n_k = np.array([y.size for y in ys], dtype=float)
+    ybar = np.array([y.mean() for y in ys])
+    K = len(labels)
+    _check_counts(K, len(params), roll_scatter)
+
+    def tick(stage: str) -> Callable[[int], None] | None:
+        return None if progress is None else (lambda runs: progress(stage, runs))
+
+    model = _Model(srcs, loaded, params, tick("fit"))
+    x0 = np.log([pm.base(loaded[0]) for pm in params])
+    notes += _slip_notes(params, loaded[0])
+    ks = list(range(K))
+    before = model.means(ks, x0)
+    # each roll counts once: its readings share the roll's own deviation (roll-to-roll
+    # variation, what the model misses), so the information is in the K roll means
+    x, _ = _gauss_newton(model, ks, ybar, np.ones(K), x0)
+    fitted = model.means(ks, x)
+    J = model.jacobian(ks, x)  # central differences at the optimum, for the errors
+    s2, s_rep, se_log = _fit_errors(
+        J, ybar - fitted, ys, n_k, params, names, x, roll_scatter, scale_name, notes
+    )
+    rep = s_rep if s_rep is not None else math.sqrt(s2) if s2 > 0 else 0.0
+    # what a roll mean scatters about a correct model: repeatability / n_k plus the
+    # roll-to-roll scatter the user states (--roll-scatter; 0: the rolls alike but for it)
+    var_k = rep**2 / n_k + roll_scatter**2
+    model.progress = tick("leave-one-out")
+    loo_pred, loo_allow = _leave_one_out(model, J, x, ybar, var_k, labels, names)
+    values = np.exp(x)
+    return SiteCalibration(
+        params=params,
+        values=values,
+        standard_errors=values * se_log,
+        labels=labels,
+        sources=srcs,
+        measured_mean=ybar,
+        n_readings=n_k,
+        before=before,
+        fitted=fitted,
+        scatter_fit=math.sqrt(s2),
+        scatter_repeat=s_rep,
+        loo_predicted=loo_pred,
+        loo_error=loo_pred - ybar,
+        loo_allowed=loo_allow,
+        runs=model.runs,
+        scale_name=scale_name,
+        notes=notes,
+    )
+
+
+def _check_counts(K: int, p: int, roll_scatter: float) -> None:
+    """At least one roll more than parameters; a roll scatter >= 0."""
+    if K < p + 1:
+        raise InputError(f"{p} parameter(s) need at least {p + 1} rolls; got {K}", "--cases")
+    if roll_scatter < 0 or not math.isfinite(roll_scatter):
+        raise InputError(f"must be a reading SD >= 0, got {roll_scatter!r}", "--roll-scatter")
+
+
+def _slip_notes(params: list[Parameter], case: Any) -> list[str]:
+    """Fitting a slip parameter switches the slip emulation on: say so."""
+    return [
+        f"fitting {pm.name} switches the slip emulation on "
+        "(contact.slip = 'reduced-shear'): 'model before' is read with it"
+        for pm in params
+        if pm.name in ("slip_fraction", "mu") and case.contact.slip == "none"
+    ]
+
+
+def _parameter_names(fit: Sequence[str]) -> list[str]:
+    """The parameters to fit, once each, all known."""
     names = list(dict.fromkeys(fit))
     if not names:
         raise InputError("name at least one parameter to fit", "--fit")
     for nm in names:
         if nm not in PARAMETERS:
             raise InputError(f"unknown parameter {nm!r}: one of {', '.join(PARAMETERS)}", "--fit")
-    if len(cases) < 2:
-        raise InputError("give at least two rolls (case files)", "--cases")
+    return names
+
+
+def _load_rolls(cases: Sequence[str], names: list[str]) -> tuple[list[str], list[Any], list[str]]:
+    """The rolls' sources, cases and labels: single rolls, read through the contact model,
+    not all alike, with one instrument (and one head when its length is fitted)."""
+    from woundroll.case import load_case
+
     srcs = [str(c) for c in cases]
     loaded = [load_case(c) for c in srcs]
     labels = [Path(s).stem if s.endswith(".toml") else s for s in srcs]
@@ -489,44 +573,25 @@ def calibrate_site(
                 "head_length needs one head",
                 "--cases",
             )
-    scale = inst.reading_range
-    from woundroll.io.readings import SCALES
+    return srcs, loaded, labels
 
-    scale_name = {readout: name for name, readout in SCALES.items()}[inst.readout]
-    ys, notes = read_calibration_readings(readings, labels, scale)
-    params = [PARAMETERS[nm] for nm in names]
-    p = len(params)
-    n_k = np.array([y.size for y in ys], dtype=float)
-    ybar = np.array([y.mean() for y in ys])
-    K = len(labels)
-    if K < p + 1:
-        raise InputError(
-            f"{p} parameter(s) need at least {p + 1} rolls; got {K}",
-            "--cases",
-        )
-    if roll_scatter < 0 or not math.isfinite(roll_scatter):
-        raise InputError(f"must be a reading SD >= 0, got {roll_scatter!r}", "--roll-scatter")
 
-    def tick(stage: str) -> Callable[[int], None] | None:
-        return None if progress is None else (lambda runs: progress(stage, runs))
-
-    model = _Model(srcs, loaded, params, tick("fit"))
-    x0 = np.log([pm.base(loaded[0]) for pm in params])
-    for pm in params:
-        if pm.name in ("slip_fraction", "mu") and loaded[0].contact.slip == "none":
-            notes.append(
-                f"fitting {pm.name} switches the slip emulation on "
-                "(contact.slip = 'reduced-shear'): 'model before' is read with it"
-            )
-    ks = list(range(K))
-    ones = np.ones(K)
-    before = model.means(ks, x0)
-    # each roll counts once: its readings share the roll's own deviation (roll-to-roll
-    # variation, what the model misses), so the information is in the K roll means
-    x, _ = _gauss_newton(model, ks, ybar, ones, x0)
-    fitted = model.means(ks, x)
-    J = model.jacobian(ks, x)  # central differences at the optimum, for the errors
-    resid = ybar - fitted
+def _fit_errors(
+    J: FloatArray,
+    resid: FloatArray,
+    ys: list[FloatArray],
+    n_k: FloatArray,
+    params: list[Parameter],
+    names: list[str],
+    x: FloatArray,
+    roll_scatter: float,
+    scale_name: str,
+    notes: list[str],
+) -> tuple[float, float | None, FloatArray]:
+    """The fit's residual variance s2, the repeatability (None: one reading per roll) and
+    the standard errors of the log parameters; a parameter the readings cannot identify
+    raises, one on the bound of its range gets a note."""
+    K, p = J.shape
     dof = K - p
     s2 = float(resid @ resid) / dof if dof > 0 else math.nan
     JtJ = J.T @ J
@@ -565,14 +630,24 @@ def calibrate_site(
             )
     if s_rep is None:
         notes.append("one reading per roll: the repeatability is taken from the fit's residuals")
-    rep = s_rep if s_rep is not None else math.sqrt(s2) if s2 > 0 else 0.0
-    # what a roll mean scatters about a correct model: repeatability / n_k plus the
-    # roll-to-roll scatter the user states (--roll-scatter; 0: the rolls alike but for it)
-    var_k = rep**2 / n_k + roll_scatter**2
-    # leave one out: refit on the others, predict the left-out roll's mean
+    return s2, s_rep, se_log
+
+
+def _leave_one_out(
+    model: _Model,
+    J: FloatArray,
+    x: FloatArray,
+    ybar: FloatArray,
+    var_k: FloatArray,
+    labels: list[str],
+    names: list[str],
+) -> tuple[FloatArray, FloatArray]:
+    """Refit on the other rolls, predict the left-out roll's mean; the allowed error is 3
+    SDs of the prediction under a correct model (the roll's scatter and the refit's)."""
+    K = ybar.size
+    ks = list(range(K))
     loo_pred = np.empty(K)
     loo_allow = np.empty(K)
-    model.progress = tick("leave-one-out")
     for k in ks:
         rest = [j for j in ks if j != k]
         A = J[rest].T @ J[rest]
@@ -589,26 +664,7 @@ def calibrate_site(
         Ck = np.linalg.inv(J[rest].T @ (W[:, None] * J[rest]))
         var_pred = float(J[k] @ Ck @ J[k])
         loo_allow[k] = 3.0 * math.sqrt(var_k[k] + var_pred)
-    values = np.exp(x)
-    return SiteCalibration(
-        params=params,
-        values=values,
-        standard_errors=values * se_log,
-        labels=labels,
-        sources=srcs,
-        measured_mean=ybar,
-        n_readings=n_k,
-        before=before,
-        fitted=fitted,
-        scatter_fit=math.sqrt(s2),
-        scatter_repeat=s_rep,
-        loo_predicted=loo_pred,
-        loo_error=loo_pred - ybar,
-        loo_allowed=loo_allow,
-        runs=model.runs,
-        scale_name=scale_name,
-        notes=notes,
-    )
+    return loo_pred, loo_allow
 
 
 __all__ = [

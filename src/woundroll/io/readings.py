@@ -36,6 +36,7 @@ raises :class:`~woundroll.errors.InputError` whose message names the file and th
 from __future__ import annotations
 
 import csv
+import dataclasses
 import math
 import re
 from dataclasses import dataclass, replace
@@ -458,6 +459,57 @@ def read_readings(
     """
     path = Path(path)
     name = path.name
+    rows = _csv_rows(path, field)
+    if not rows:
+        raise InputError(f"{name}: empty (needs a header row and readings)", field)
+    hline, header = rows[0]
+    if all(_is_number(c) for c in header if c):
+        raise InputError(
+            f"{name} line {hline}: no header row; the first row must name the columns with "
+            "units, e.g. 'position [in],reading [Rho]'",
+            field,
+        )
+    cols = _Columns.of(header, f"{name} line {hline}", lane_width, field)
+    if len(rows) < 2:
+        raise InputError(f"{name}: a header but no readings", field)
+    xs: list[float] = []
+    vs: list[float] = []
+    ps: list[int] = []
+    ls: list[int] = []
+    for line, row in rows[1:]:
+        at = f"{name} line {line}"
+        pos = cols.position(row, header, at, width, lane_width, field)
+        pass_no = cols.pass_number(row, header, at, field)
+        for k, j in enumerate(cols.values):
+            if len(cols.values) > 1 and (j >= len(row) or row[j] == ""):
+                continue  # a wide sheet may leave a pass empty at a position
+            v = _number(row, j, header, at, field)
+            check_on_scale(v, cols.scale, f"{at}, column {header[j]!r}", field)
+            xs.append(pos)
+            vs.append(v)
+            ps.append(pass_no if pass_no is not None else k + 1)
+            ls.append(line)
+    if not vs:
+        raise InputError(f"{name}: no readings below the header", field)
+    x_arr = np.asarray(xs)
+    passes = np.asarray(ps, dtype=np.int64)
+    # a long sheet without a pass column: the k-th reading at a position is pass k
+    implicit = cols.pass_col is None and len(cols.values) == 1
+    r = _assemble(
+        x_arr,
+        np.asarray(vs),
+        None if implicit else passes,
+        np.asarray(ls, dtype=np.int64),
+        cols.scale,
+        lane_width if cols.is_lane else None,
+        name,
+    )
+    return replace(r, position_unit=cols.written_unit)
+
+
+def _csv_rows(path: Path, field: str) -> list[tuple[int, list[str]]]:
+    """The file's non-empty, non-comment rows with their line numbers, cells stripped (a
+    decimal comma read as a point when the delimiter is not a comma)."""
     if not path.is_file():
         raise InputError(f"file not found: {path}", field)
     try:
@@ -477,25 +529,38 @@ def read_readings(
                 ]
             rows.append((reader.line_num, cells))
     except (OSError, UnicodeDecodeError, csv.Error) as exc:
-        raise InputError(f"cannot read {name}: {exc}", field) from None
-    if not rows:
-        raise InputError(f"{name}: empty (needs a header row and readings)", field)
-    hline, header = rows[0]
-    if all(_is_number(c) for c in header if c):
-        raise InputError(
-            f"{name} line {hline}: no header row; the first row must name the columns with "
-            "units, e.g. 'position [in],reading [Rho]'",
-            field,
-        )
-    where = f"{name} line {hline}"
-    pos_col, pos_factor, is_lane = None, 1.0, False
-    written_unit = ""
-    pass_col = None
-    value_cols: list[int] = []
-    scales: set[str] = set()
-    for j, cell in enumerate(header):
+        raise InputError(f"cannot read {path.name}: {exc}", field) from None
+    return rows
+
+
+@dataclass
+class _Columns:
+    """What the header row says: the position column (length unit or lane numbers), the
+    pass column, the reading columns and their scale."""
+
+    pos_col: int | None = None
+    pos_factor: float = 1.0
+    is_lane: bool = False
+    written_unit: str = ""
+    pass_col: int | None = None
+    values: list[int] = dataclasses.field(default_factory=list)
+    scales: set[str] = dataclasses.field(default_factory=set)
+
+    @property
+    def scale(self) -> str:
+        return next(iter(self.scales))
+
+    @classmethod
+    def of(cls, header: list[str], where: str, lane_width: float | None, field: str) -> _Columns:
+        cols = cls()
+        for j, cell in enumerate(header):
+            cols._add(j, cell, where, field)
+        cols._check(header, where, lane_width, field)
+        return cols
+
+    def _add(self, j: int, cell: str, where: str, field: str) -> None:
         base, unit = _split(cell)
-        if base in _POSITION_NAMES and pos_col is None:
+        if base in _POSITION_NAMES and self.pos_col is None:
             if unit is None:
                 raise InputError(
                     f"{where}: position column {cell!r} has no unit; write e.g. "
@@ -503,15 +568,15 @@ def read_readings(
                     field,
                 )
             if _key(unit) in _LANE_NAMES:
-                is_lane = True
+                self.is_lane = True
             else:
-                pos_factor = _length_scale(unit, where)
-                written_unit = display_unit(unit)
-            pos_col = j
-        elif base in _LANE_NAMES and pos_col is None:
-            pos_col, is_lane = j, True
+                self.pos_factor = _length_scale(unit, where)
+                self.written_unit = display_unit(unit)
+            self.pos_col = j
+        elif base in _LANE_NAMES and self.pos_col is None:
+            self.pos_col, self.is_lane = j, True
         elif base in _PASS_NAMES and unit is None:
-            pass_col = j
+            self.pass_col = j
         else:
             sc = _scale_of(unit) if unit is not None else _scale_of(base)
             if sc is None:
@@ -522,92 +587,78 @@ def read_readings(
                     f"(tapper), e.g. 'reading [Rho]'",
                     field,
                 )
-            value_cols.append(j)
-            scales.add(sc)
-    if pos_col is None:
-        raise InputError(
-            f"{where}: no position column ('position [in]', 'position [cm]', 'position [m]' "
-            f"or 'lane'); columns: {', '.join(header)}",
-            field,
-        )
-    if not value_cols:
-        raise InputError(f"{where}: no reading column (e.g. 'reading [Rho]', 'R', 'L', 'g')", field)
-    if len(scales) > 1:
-        raise InputError(
-            f"{where}: reading columns mix scales ({', '.join(sorted(scales))}); one "
-            "instrument per file",
-            field,
-        )
-    if pass_col is not None and len(value_cols) > 1:
-        raise InputError(
-            f"{where}: a 'pass' column and several reading columns; use one or the other",
-            field,
-        )
-    if is_lane:
-        if lane_width is None:
+            self.values.append(j)
+            self.scales.add(sc)
+
+    def _check(self, header: list[str], where: str, lane_width: float | None, field: str) -> None:
+        if self.pos_col is None:
             raise InputError(
-                f"{where}: positions are lane numbers: give the lane width "
-                '([readings] lane_width = "6 in", or --lane-width)',
+                f"{where}: no position column ('position [in]', 'position [cm]', "
+                f"'position [m]' or 'lane'); columns: {', '.join(header)}",
                 field,
             )
-        if not (math.isfinite(lane_width) and lane_width > 0):
-            raise InputError(f"lane width must be positive, got {lane_width!r} m", field)
-    if len(rows) < 2:
-        raise InputError(f"{name}: a header but no readings", field)
-    xs: list[float] = []
-    vs: list[float] = []
-    ps: list[int] = []
-    ls: list[int] = []
-    for line, row in rows[1:]:
-        at = f"{name} line {line}"
-        x = _number(row, pos_col, header, at, field)
-        if is_lane:
+        if not self.values:
+            raise InputError(
+                f"{where}: no reading column (e.g. 'reading [Rho]', 'R', 'L', 'g')", field
+            )
+        if len(self.scales) > 1:
+            raise InputError(
+                f"{where}: reading columns mix scales ({', '.join(sorted(self.scales))}); one "
+                "instrument per file",
+                field,
+            )
+        if self.pass_col is not None and len(self.values) > 1:
+            raise InputError(
+                f"{where}: a 'pass' column and several reading columns; use one or the other",
+                field,
+            )
+        if self.is_lane:
+            if lane_width is None:
+                raise InputError(
+                    f"{where}: positions are lane numbers: give the lane width "
+                    '([readings] lane_width = "6 in", or --lane-width)',
+                    field,
+                )
+            if not (math.isfinite(lane_width) and lane_width > 0):
+                raise InputError(f"lane width must be positive, got {lane_width!r} m", field)
+
+    def position(
+        self,
+        row: list[str],
+        header: list[str],
+        at: str,
+        width: float | None,
+        lane_width: float | None,
+        field: str,
+    ) -> float:
+        """The row's position [m] (a lane's centre), checked to lie on the roll."""
+        assert self.pos_col is not None
+        x = _number(row, self.pos_col, header, at, field)
+        if self.is_lane:
             if x != round(x) or x < 1:
                 raise InputError(
-                    f"{at}: lane {row[pos_col]!r} is not a lane number 1, 2, ...", field
+                    f"{at}: lane {row[self.pos_col]!r} is not a lane number 1, 2, ...", field
                 )
             pos = (x - 0.5) * lane_width  # type: ignore[operator]
         else:
-            pos = x * pos_factor
+            pos = x * self.pos_factor
         if width is not None and not (-EDGE_TOLERANCE <= pos <= width + EDGE_TOLERANCE):
             raise InputError(
-                f"{at}: position {row[pos_col]} ({pos:.4g} m) lies outside the roll "
+                f"{at}: position {row[self.pos_col]} ({pos:.4g} m) lies outside the roll "
                 f"(0 to {width:.4g} m from the reference edge): same edge and units?",
                 field,
             )
-        pass_no = None
-        if pass_col is not None:
-            p = _number(row, pass_col, header, at, field)
-            if p != round(p) or p < 1:
-                raise InputError(
-                    f"{at}: pass {row[pass_col]!r} is not a pass number 1, 2, ...", field
-                )
-            pass_no = int(p)
-        for k, j in enumerate(value_cols):
-            if len(value_cols) > 1 and (j >= len(row) or row[j] == ""):
-                continue  # a wide sheet may leave a pass empty at a position
-            v = _number(row, j, header, at, field)
-            check_on_scale(v, next(iter(scales)), f"{at}, column {header[j]!r}", field)
-            xs.append(pos)
-            vs.append(v)
-            ps.append(pass_no if pass_no is not None else k + 1)
-            ls.append(line)
-    if not vs:
-        raise InputError(f"{name}: no readings below the header", field)
-    x_arr = np.asarray(xs)
-    passes = np.asarray(ps, dtype=np.int64)
-    # a long sheet without a pass column: the k-th reading at a position is pass k
-    implicit = pass_col is None and len(value_cols) == 1
-    r = _assemble(
-        x_arr,
-        np.asarray(vs),
-        None if implicit else passes,
-        np.asarray(ls, dtype=np.int64),
-        next(iter(scales)),
-        lane_width if is_lane else None,
-        name,
-    )
-    return replace(r, position_unit=written_unit)
+        return pos
+
+    def pass_number(self, row: list[str], header: list[str], at: str, field: str) -> int | None:
+        if self.pass_col is None:
+            return None
+        p = _number(row, self.pass_col, header, at, field)
+        if p != round(p) or p < 1:
+            raise InputError(
+                f"{at}: pass {row[self.pass_col]!r} is not a pass number 1, 2, ...", field
+            )
+        return int(p)
 
 
 #: Length units positions are shown in, and their size [m].

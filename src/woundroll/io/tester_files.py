@@ -189,26 +189,7 @@ def read_tappi_sheet(
         raise InputError(f"{at}: the first column must be 'roll'", field)
     idx_pass = _col(header, "pass")
     idx_scale = _col(header, "scale")
-    positions: dict[int, float] = {}
-    for j, h in enumerate(header):
-        if j == 0 or j in (idx_pass, idx_scale):
-            continue
-        m = _LANE.match(h)
-        if m:
-            k = int(m.group(1))
-            if k < 1:
-                raise InputError(f"{at}: lane numbers start at 1, got {h!r}", field)
-            positions[j] = (k - 0.5) * lw
-            continue
-        m = _AT.match(h)
-        if m:
-            positions[j] = float(m.group(1).replace(",", ".")) * _UNITS[m.group(2)]
-            continue
-        raise InputError(
-            f"{at}: column {h!r} is neither 'lane N' nor a position with a unit ('3 in')", field
-        )
-    if not positions:
-        raise InputError(f"{at}: no lane columns", field)
+    positions = _tappi_positions(header, (idx_pass, idx_scale), lw, at, field)
     data: dict[str, dict[str, list[Any]]] = {}
     for i, row in enumerate(rows[1:], start=start + 2):
         if not row or not any(c.strip() for c in row) or row[0].lstrip().startswith("#"):
@@ -219,15 +200,7 @@ def read_tappi_sheet(
         roll = row[0].strip()
         if not roll:
             raise InputError(f"{where}: no roll id", field)
-        p = 0
-        if idx_pass is not None and idx_pass < len(row) and row[idx_pass].strip():
-            try:
-                p = int(row[idx_pass])
-            except ValueError:
-                msg = f"{where}: pass {row[idx_pass]!r} is not a whole number"
-                raise InputError(msg, field) from None
-            if p < 1:
-                raise InputError(f"{where}: passes are numbered from 1", field)
+        p = _tappi_pass(row, idx_pass, where, field)
         sc = "Rho"
         if idx_scale is not None and idx_scale < len(row) and row[idx_scale].strip():
             sc = _scale(row[idx_scale], f"{field} ({where})")
@@ -235,20 +208,7 @@ def read_tappi_sheet(
         if d["scale"][0] != sc:
             raise InputError(f"{where}: roll {roll} mixes scales {d['scale'][0]} and {sc}", field)
         d["n"][0] += 1
-        for j, x in positions.items():
-            cell = row[j].strip() if j < len(row) else ""
-            if not cell:
-                continue
-            try:
-                v = float(cell.replace(",", ".") if delim == ";" else cell)
-            except ValueError:
-                v = math.nan
-            if not math.isfinite(v):
-                raise InputError(f"{where}: {header[j]} = {cell!r} is not a number", field)
-            check_on_scale(v, sc, f"{where}, {header[j]}", field)
-            d["x"].append(x)
-            d["v"].append(v)
-            d["p"].append(p or d["n"][0])
+        _tappi_row_readings(d, row, header, positions, p, sc, delim == ";", where, field)
     if not data:
         raise InputError(f"{path.name}: no readings under the header", field)
     units = {m.group(2) for h in header if (m := _AT.match(h))}
@@ -269,6 +229,75 @@ def read_tappi_sheet(
         )
         out[roll] = replace(out[roll], position_unit=pos_unit)
     return out
+
+
+def _tappi_positions(
+    header: list[str], skip: tuple[int | None, int | None], lw: float, at: str, field: str
+) -> dict[int, float]:
+    """Column -> position [m]: ``lane N`` (the lane's centre) or a position with a unit."""
+    positions: dict[int, float] = {}
+    for j, h in enumerate(header):
+        if j == 0 or j in skip:
+            continue
+        m = _LANE.match(h)
+        if m:
+            k = int(m.group(1))
+            if k < 1:
+                raise InputError(f"{at}: lane numbers start at 1, got {h!r}", field)
+            positions[j] = (k - 0.5) * lw
+            continue
+        m = _AT.match(h)
+        if m:
+            positions[j] = float(m.group(1).replace(",", ".")) * _UNITS[m.group(2)]
+            continue
+        raise InputError(
+            f"{at}: column {h!r} is neither 'lane N' nor a position with a unit ('3 in')", field
+        )
+    if not positions:
+        raise InputError(f"{at}: no lane columns", field)
+    return positions
+
+
+def _tappi_pass(row: list[str], idx_pass: int | None, where: str, field: str) -> int:
+    """The row's pass number (0: none given, the row's count for its roll is used)."""
+    p = 0
+    if idx_pass is not None and idx_pass < len(row) and row[idx_pass].strip():
+        try:
+            p = int(row[idx_pass])
+        except ValueError:
+            msg = f"{where}: pass {row[idx_pass]!r} is not a whole number"
+            raise InputError(msg, field) from None
+        if p < 1:
+            raise InputError(f"{where}: passes are numbered from 1", field)
+    return p
+
+
+def _tappi_row_readings(
+    d: dict[str, list[Any]],
+    row: list[str],
+    header: list[str],
+    positions: dict[int, float],
+    p: int,
+    sc: str,
+    decimal_comma: bool,
+    where: str,
+    field: str,
+) -> None:
+    """The row's readings appended to its roll's lists ``d`` (an empty cell: no reading)."""
+    for j, x in positions.items():
+        cell = row[j].strip() if j < len(row) else ""
+        if not cell:
+            continue
+        try:
+            v = float(cell.replace(",", ".") if decimal_comma else cell)
+        except ValueError:
+            v = math.nan
+        if not math.isfinite(v):
+            raise InputError(f"{where}: {header[j]} = {cell!r} is not a number", field)
+        check_on_scale(v, sc, f"{where}, {header[j]}", field)
+        d["x"].append(x)
+        d["v"].append(v)
+        d["p"].append(p or d["n"][0])
 
 
 def _arrays(field: str, *args: Any, **kw: Any) -> Readings:
@@ -364,19 +393,7 @@ def read_profile_export(
     f = _UNITS[unit]
     if len(header) < 2:
         raise InputError(f"{path.name} line {header_at + 1}: no value column", field)
-    sc = scale
-    for h in header[1:]:
-        mh = _BRACKET.match(h)
-        if sc is None and mh and mh.group(2):
-            sc = mh.group(2)
-    for key in ("scale", "unit", "Scale", "Unit"):
-        if sc is None and key in meta:
-            sc = meta[key]
-    if sc is None:
-        raise InputError(
-            f"{path.name}: no scale: give the unit in the value header ('hardness [g]')", field
-        )
-    sc = _scale(sc, field)
+    sc = _export_scale(header, meta, scale, path.name, field)
     decimal_comma = delim != ","
     xs, vs, ps = [], [], []
     for i, ln in content:
@@ -405,6 +422,26 @@ def read_profile_export(
         raise InputError(f"{path.name}: no readings under the header", field)
     r = _arrays(field, xs, vs, scale=sc, passes=ps, width=width, source=path.name)
     return ProfileExport(replace(r, position_unit=unit), meta)
+
+
+def _export_scale(
+    header: list[str], meta: dict[str, str], scale: str | None, name: str, field: str
+) -> str:
+    """The export's scale: ``scale``, else the value columns' unit (``hardness [g]``), else
+    a ``scale``/``unit`` metadata entry."""
+    sc = scale
+    for h in header[1:]:
+        mh = _BRACKET.match(h)
+        if sc is None and mh and mh.group(2):
+            sc = mh.group(2)
+    for key in ("scale", "unit", "Scale", "Unit"):
+        if sc is None and key in meta:
+            sc = meta[key]
+    if sc is None:
+        raise InputError(
+            f"{name}: no scale: give the unit in the value header ('hardness [g]')", field
+        )
+    return _scale(sc, field)
 
 
 def _num(text: str, decimal_comma: bool) -> float:

@@ -33,8 +33,8 @@ class NoUpdate:
             "beta_N_per_m": self.stiffness.beta,
             "rho_fd": h["rho_fd"],
             "rho_energy": h["rho_energy"],
-            "impulse_Ns": h["impulse_Ns"],
-            "delta_max_m": h["delta_max_m"],
+            "impulse_N_s": h["impulse_N_s"],
+            "impact_depth_m": h["impact_depth_m"],
         }
 
 
@@ -73,9 +73,12 @@ class RunResult:
     dynamic: DynamicImpactResult | None = None
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict: ``{"case": ..., "winding": {...}, "contact": ..., "hardness": ...,
-        "flags": {...}, "warnings": [...]}`` (``flags``: :func:`result_flags`)."""
-        out: dict[str, Any] = {"case": self.case.record()}
+        """JSON-ready dict: ``{"schema_version": 2, "case": ..., "winding": {...}, "contact":
+        ..., "hardness": ..., "flags": {...}, "warnings": [...]}`` (``flags``:
+        :func:`result_flags`; the keys: :mod:`woundroll.pipeline.vocabulary`)."""
+        from woundroll.pipeline.vocabulary import SCHEMA_VERSION
+
+        out: dict[str, Any] = {"schema_version": SCHEMA_VERSION, "case": self.case.record()}
         for name in ("winding", "contact", "hardness", "no_update", "profile"):
             part = getattr(self, name)
             if part is not None:

@@ -129,6 +129,7 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     setup = case.tester_setup
     if case.winding.thickness_profile is not None:
         return _run_profile(case, web, core, r_out, schedule, options, setup, report)
+    # winding: the stresses in the roll
     winding = wind(
         web, core, r_out, schedule, options=options, progress=lambda f: report("winding", f)
     )
@@ -136,43 +137,56 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     if setup is None:
         flags, warns = result_flags(None, None, [], case.warnings, max_p)
         return RunResult(case=case, winding=winding, warnings=tuple(warns), flags=flags)
+    if setup.roll_spring is not None:
+        return _run_given_spring(case, winding, setup, web, core, r_out, max_p, report)
+    return _run_contact(case, winding, setup, web, core, r_out, max_p, report)
 
+
+def _run_given_spring(
+    case: Case,
+    winding: Any,
+    setup: TesterSetup,
+    web: Web,
+    core: Core,
+    r_out: float,
+    max_p: float,
+    report: Callable[[str, float], None],
+) -> RunResult:
+    """The impact on an explicit ``[tester.roll_spring]``: no contact model."""
     from woundroll.instruments import hardness_from_spring
 
-    if setup.roll_spring is not None:
-        report("impact", 0.0)
+    report("impact", 0.0)
+    hardness = hardness_from_spring(
+        setup, pile_height=r_out - core.outer_radius, density=web.density
+    )
+    notes = ["roll spring given explicitly: contact model bypassed"]
+    if web.radial_unloading is not None and not _restitution_given(case):
+        # the web's unloading law at the mean pressure under the head, F / contact area
+        a = setup.semi_contact_width
+        L = setup.instrument.head_length
+        area = 2.0 * a * L if L else math.pi * a * a
+        setup = _with_unloading(setup, web, hardness.energy.peak_force / area, notes)
         hardness = hardness_from_spring(
             setup, pile_height=r_out - core.outer_radius, density=web.density
         )
-        notes = ["roll spring given explicitly: contact model bypassed"]
-        if web.radial_unloading is not None and not _restitution_given(case):
-            # the web's unloading law at the mean pressure under the head, F / contact area
-            a = setup.semi_contact_width
-            L = setup.instrument.head_length
-            area = 2.0 * a * L if L else math.pi * a * a
-            setup = _with_unloading(setup, web, hardness.energy.peak_force / area, notes)
-            hardness = hardness_from_spring(
-                setup, pile_height=r_out - core.outer_radius, density=web.density
-            )
-        report("impact", 1.0)
-        flags, warns = result_flags(setup.instrument, hardness.reading, [], case.warnings, max_p)
-        return RunResult(
-            case=case,
-            winding=winding,
-            hardness=hardness,
-            notes=tuple(notes),
-            warnings=tuple(warns),
-            flags=flags,
-        )
+    report("impact", 1.0)
+    flags, warns = result_flags(setup.instrument, hardness.reading, [], case.warnings, max_p)
+    return RunResult(
+        case=case,
+        winding=winding,
+        hardness=hardness,
+        notes=tuple(notes),
+        warnings=tuple(warns),
+        flags=flags,
+    )
 
-    from woundroll.contact import roll_stiffness
 
-    H = r_out - core.outer_radius
-    a_given = "semi_contact_width" in (case.tester or {})
+def _contact_args(case: Case, setup: TesterSetup) -> tuple[dict[str, Any], bool]:
+    """The contact model's arguments; ``plane``: the FE impact runs on the plane-strain
+    roll, and the 1.5D models beside it take the same roll's spring, without the
+    CMD-spreading correction."""
     spec = case.contact
     model = spec.roll_model(setup.instrument.head_shape).name
-    # the FE impact (contact.dynamic) is on the plane-strain or the 3D roll: the 1.5D models
-    # beside it take the same roll's spring, without the CMD-spreading correction
     plane = spec.dynamic and model == "2d+cmd-spread"
     args = {
         "depth_max": spec.depth_max,
@@ -181,6 +195,26 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         "model": "2d" if plane else model,
         "options3d": spec.contact3d_options(),
     }
+    return args, plane
+
+
+def _run_contact(
+    case: Case,
+    winding: Any,
+    setup: TesterSetup,
+    web: Web,
+    core: Core,
+    r_out: float,
+    max_p: float,
+    report: Callable[[str, float], None],
+) -> RunResult:
+    """Contact: the roll's spring under the striker -> impact: the reading (and, as the
+    case asks, the frozen-modulus reading and the FE impact)."""
+    from woundroll.contact import roll_stiffness
+
+    H = r_out - core.outer_radius
+    a_given = "semi_contact_width" in (case.tester or {})
+    args, plane = _contact_args(case, setup)
     report("contact", 0.0)
     with _user_fields(case, H):
         stiff = roll_stiffness(web, core, winding.radius, winding.sigma_r, setup.instrument, **args)
@@ -191,52 +225,16 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     with _thin_roll(case, H, setup.instrument.head_radius):
         hardness = hardness_on_roll(setup, stiff, H, web.density, semi_contact_width_given=a_given)
     no_update = None
-    if spec.no_update:
+    if case.contact.no_update:
         report("contact", 0.5)
-        # E_r frozen is softer: the striker goes at least as deep, start where that ended
-        with _user_fields(case, H):
-            frozen = roll_stiffness(
-                web,
-                core,
-                winding.radius,
-                winding.sigma_r,
-                setup.instrument,
-                update_modulus=False,
-                start_depth=float(stiff.contact.delta[-1]),
-                **args,
-            )
-        no_update = NoUpdate(
-            frozen,
-            _thin_roll_call(
-                case,
-                H,
-                setup.instrument.head_radius,
-                lambda: hardness_on_roll(
-                    setup, frozen, H, web.density, semi_contact_width_given=a_given
-                ),
-            ),
-        )
+        no_update = _frozen_modulus(case, winding, setup, web, core, stiff, args, a_given, H)
     report("contact", 1.0)
     springs = [("contact", stiff), ("no update", no_update and no_update.stiffness)]
     flags, warns = result_flags(setup.instrument, hardness.reading, springs, case.warnings, max_p)
     dynamic = None
-    if spec.dynamic:
-        from woundroll.contact.dynamic.plane_strain import impact_dynamic
-        from woundroll.contact.solid3d.solver import Contact3DResult
-
+    if case.contact.dynamic:
         report("dynamic", 0.0)
-        dyn_args = (web, core, winding.radius, winding.sigma_r, setup.instrument)
-        dyn_kw = {
-            "contact_time": hardness.fd.contact_time,
-            "depth_scale": float(stiff.contact.delta[-1]),
-        }
-        if isinstance(stiff.contact, Contact3DResult):  # the same model as the spring's
-            from woundroll.contact.dynamic.solid3d import Dynamic3DOptions, impact_dynamic3d
-
-            opts3 = Dynamic3DOptions.from_2d(spec.dynamic_settings(), spec.contact3d_options())
-            dynamic = impact_dynamic3d(*dyn_args, **dyn_kw, options=opts3)
-        else:
-            dynamic = impact_dynamic(*dyn_args, **dyn_kw, options=spec.dynamic_settings())
+        dynamic = _fe_impact(case, winding, setup, web, core, stiff, hardness)
         report("dynamic", 1.0)
         if plane:
             unloading_notes.append(
@@ -254,6 +252,72 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         flags=flags,
         dynamic=dynamic,
     )
+
+
+def _frozen_modulus(
+    case: Case,
+    winding: Any,
+    setup: TesterSetup,
+    web: Web,
+    core: Core,
+    stiff: RollStiffness,
+    args: dict[str, Any],
+    a_given: bool,
+    H: float,
+) -> NoUpdate:
+    """The reading with E_r frozen at its pre-impact value (contact.no_update)."""
+    from woundroll.contact import roll_stiffness
+
+    # E_r frozen is softer: the striker goes at least as deep, start where that ended
+    with _user_fields(case, H):
+        frozen = roll_stiffness(
+            web,
+            core,
+            winding.radius,
+            winding.sigma_r,
+            setup.instrument,
+            update_modulus=False,
+            start_depth=float(stiff.contact.delta[-1]),
+            **args,
+        )
+    return NoUpdate(
+        frozen,
+        _thin_roll_call(
+            case,
+            H,
+            setup.instrument.head_radius,
+            lambda: hardness_on_roll(
+                setup, frozen, H, web.density, semi_contact_width_given=a_given
+            ),
+        ),
+    )
+
+
+def _fe_impact(
+    case: Case,
+    winding: Any,
+    setup: TesterSetup,
+    web: Web,
+    core: Core,
+    stiff: RollStiffness,
+    hardness: HardnessResult,
+) -> Any:
+    """The FE impact (contact.dynamic) on the same roll model as the spring's."""
+    from woundroll.contact.dynamic.plane_strain import impact_dynamic
+    from woundroll.contact.solid3d.solver import Contact3DResult
+
+    spec = case.contact
+    dyn_args = (web, core, winding.radius, winding.sigma_r, setup.instrument)
+    dyn_kw = {
+        "contact_time": hardness.fd.contact_time,
+        "depth_scale": float(stiff.contact.delta[-1]),
+    }
+    if isinstance(stiff.contact, Contact3DResult):  # the same model as the spring's
+        from woundroll.contact.dynamic.solid3d import Dynamic3DOptions, impact_dynamic3d
+
+        opts3 = Dynamic3DOptions.from_2d(spec.dynamic_settings(), spec.contact3d_options())
+        return impact_dynamic3d(*dyn_args, **dyn_kw, options=opts3)
+    return impact_dynamic(*dyn_args, **dyn_kw, options=spec.dynamic_settings())
 
 
 @contextmanager
@@ -301,6 +365,50 @@ def _thin_roll_call(case: Case, wound: float, head_radius: float, fn: Callable[[
         return fn()
 
 
+def _profile_nip(case: Case, schedule: Any, notes: list[str]) -> tuple[Any, Any]:
+    """The nip of a profile run: a roller beam on the sectors' foundation (its load then
+    leaves the schedule), or a uniform nip-induced tension."""
+    from woundroll.profile.hardness import NipSpec
+
+    nip = None
+    if case.winding.nip_roller is not None:
+        roller = case.winding.nip_roller.build(case.winding.nip_load, case.winding.friction)
+        nip = NipSpec(roller, foundation_stride=case.profile.foundation_stride)
+        schedule = replace(schedule, nip_load=0.0)
+    elif case.winding.nip_load > 0:
+        notes.append(
+            "nip: uniform nip-induced tension mu N / h across the CMD "
+            "(give [winding.nip_roller] for the beam-on-foundation distribution)"
+        )
+    return nip, schedule
+
+
+def _profile_contact(case: Case, web: Web, core: Core, instrument: Any, notes: list[str]) -> Any:
+    """The contact model solved once per CMD sector (a roll model fast enough for it)."""
+    from woundroll.contact.heads import head_length_of
+    from woundroll.profile.hardness import ContactModel
+
+    spec = case.profile
+    entry = case.contact.roll_model(instrument.head_shape)
+    if not entry.per_sector:
+        raise InputError(
+            f"the {entry.name!r} roll model is too slow to solve once per CMD sector "
+            f"({spec.sectors} sectors): use '2d' or '2d+cmd-spread' for a profile",
+            "contact.model",
+        )
+    notes += _calibration_notes(instrument, entry.name)
+    return ContactModel(
+        web,
+        core,
+        instrument.head_radius,
+        head_length_of(instrument),
+        spec.depth_max,
+        instrument=instrument,
+        options=case.contact.contact_options(),
+        model=entry.name,
+    )
+
+
 def _run_profile(
     case: Case,
     web: Web,
@@ -316,9 +424,8 @@ def _run_profile(
     The 1D winding at the nominal thickness (the result's reference ``winding``) runs on
     a sector worker while this process winds the (r, z) model, on the core the serial
     winding leaves free (inline when there are no workers)."""
-    from woundroll.contact.heads import head_length_of
     from woundroll.instruments import get_instrument, tester_from_spec
-    from woundroll.profile.hardness import ContactModel, NipSpec, early_pool, predict_profile
+    from woundroll.profile.hardness import early_pool, predict_profile
     from woundroll.winding.hakiel import wind
 
     if setup is not None and setup.roll_spring is not None:
@@ -334,34 +441,8 @@ def _run_profile(
         "winding: the 1D model at the nominal web thickness, for reference; "
         "profile: the axisymmetric model with the thickness profile",
     ]
-    nip = None
-    if case.winding.nip_roller is not None:
-        roller = case.winding.nip_roller.build(case.winding.nip_load, case.winding.friction)
-        nip = NipSpec(roller, foundation_stride=spec.foundation_stride)
-        schedule = replace(schedule, nip_load=0.0)
-    elif case.winding.nip_load > 0:
-        notes.append(
-            "nip: uniform nip-induced tension mu N / h across the CMD "
-            "(give [winding.nip_roller] for the beam-on-foundation distribution)"
-        )
-    entry = case.contact.roll_model(instrument.head_shape)
-    if not entry.per_sector:
-        raise InputError(
-            f"the {entry.name!r} roll model is too slow to solve once per CMD sector "
-            f"({spec.sectors} sectors): use '2d' or '2d+cmd-spread' for a profile",
-            "contact.model",
-        )
-    notes += _calibration_notes(instrument, entry.name)
-    contact = ContactModel(
-        web,
-        core,
-        instrument.head_radius,
-        head_length_of(instrument),
-        spec.depth_max,
-        instrument=instrument,
-        options=case.contact.contact_options(),
-        model=entry.name,
-    )
+    nip, schedule = _profile_nip(case, schedule, notes)
+    contact = _profile_contact(case, web, core, instrument, notes)
 
     def progress(stage: str, done: int, total: int) -> None:
         report(stage, done / max(total, 1))

@@ -320,7 +320,7 @@ class ProfileResult:
             "scale": None if self.scale is None else list(self.scale),
             "roll_model": self.roll_model,
             "thickness_m": lst(self.thickness),
-            "wot_Pa": lst(self.wot),
+            "wound_on_tension_Pa": lst(self.wot),
             "sigma_r_outer_Pa": lst(self.sigma_r_outer),
             "sigma_r_core_Pa": lst(self.sigma_r_core),
             "alpha_N_per_m2": lst(self.alpha),
@@ -328,7 +328,7 @@ class ProfileResult:
             "stats": {
                 "reading": None if self.rho_stats is None else self.rho_stats.to_dict(),
                 "reading_n_saturated": int(sat.sum()),
-                "thickness": self.thickness_stats.to_dict(),
+                "thickness_m": self.thickness_stats.to_dict(),
             },
             "slack": [bool(x) for x in self.slack],
             "n_layers": self.winding.n_layers,
@@ -365,6 +365,17 @@ class ProfileResult:
         and the radial-stress map sigma_r(r, z). Saves ``<prefix>_cmd.png`` and
         ``<prefix>_sigma_r.png`` when ``path_prefix`` is given (a ``.png`` suffix is
         dropped from it)."""
+        f1 = self._plot_cmd()
+        f2 = self._plot_sigma_r()
+        if path_prefix is not None:
+            p = str(path_prefix).removesuffix(".png")
+            f1.savefig(f"{p}_cmd.png", dpi=120)
+            f2.savefig(f"{p}_sigma_r.png", dpi=120)
+        return [f1, f2]
+
+    def _plot_cmd(self) -> Any:
+        """Thickness and reading along the CMD (twin axes), saturated and slack sectors
+        marked, the measured profile when compared."""
         from matplotlib.figure import Figure
 
         zc = self.z * 100.0
@@ -385,6 +396,28 @@ class ProfileResult:
                 lw=1,
                 label=f"{unit} (energy model, check)",
             )
+        self._mark_sectors(ax2, zc)
+        ax2.set_ylabel(f"{unit} (instrument scale)", color="tab:red")
+        title = f"{unit}: " + self.stats_title()
+        c = self.comparison
+        if c is not None:
+            ax2.plot(
+                c.measured.position * 100.0,
+                c.measured.reading,
+                "s",
+                color="black",
+                ms=4,
+                mfc="none",
+                label=f"{unit} (measured)",
+            )
+            r = "n/a" if c.correlation is None else f"{c.correlation:.2f}"
+            title += f"\nmeasured: bias {c.bias:+.1f}, RMS {c.rms:.1f}, correlation {r}"
+        ax2.legend(loc="best", fontsize=8)
+        ax.set_title(title)
+        return f1
+
+    def _mark_sectors(self, ax2: Any, zc: FloatArray) -> None:
+        """The scale's ends, and the saturated and slack sectors."""
         sat = self.saturated
         if self.scale is not None:
             for end in self.scale:
@@ -408,29 +441,17 @@ class ProfileResult:
                 ms=8,
                 label="slack sector (reading set by the E_r floor)",
             )
-        ax2.set_ylabel(f"{unit} (instrument scale)", color="tab:red")
-        title = f"{unit}: " + self.stats_title()
-        c = self.comparison
-        if c is not None:
-            ax2.plot(
-                c.measured.position * 100.0,
-                c.measured.reading,
-                "s",
-                color="black",
-                ms=4,
-                mfc="none",
-                label=f"{unit} (measured)",
-            )
-            r = "n/a" if c.correlation is None else f"{c.correlation:.2f}"
-            title += f"\nmeasured: bias {c.bias:+.1f}, RMS {c.rms:.1f}, correlation {r}"
-        ax2.legend(loc="best", fontsize=8)
-        ax.set_title(title)
+
+    def _plot_sigma_r(self) -> Any:
+        """The interlayer pressure over (r, z), log scale."""
+        from matplotlib.colors import LogNorm
+        from matplotlib.figure import Figure
+
+        zc = self.z * 100.0
         w = self.winding
         f2 = Figure(figsize=(8, 4.2), layout="constrained")
         bx = f2.subplots()
         zz = np.broadcast_to(zc[None, :], w.radius.shape)
-        from matplotlib.colors import LogNorm
-
         # log scale: thick lanes carry MPa while slack ones carry almost nothing
         pk = np.maximum(-w.sigma_r / 1e3, 0.0)
         top = max(float(pk.max()), 1e-9)
@@ -446,11 +467,7 @@ class ProfileResult:
         bx.set_xlabel("CMD position [cm]")
         bx.set_ylabel("radius [cm]")
         bx.set_title("radial stress over (r, z)")
-        if path_prefix is not None:
-            p = str(path_prefix).removesuffix(".png")
-            f1.savefig(f"{p}_cmd.png", dpi=120)
-            f2.savefig(f"{p}_sigma_r.png", dpi=120)
-        return [f1, f2]
+        return f2
 
 
 def _call(fn: ContactFn, radius: FloatArray, sigma_r: FloatArray) -> tuple[float, float]:
@@ -731,32 +748,16 @@ def _predict_profile(
     hook, f_depth = None, None
     if nip is not None:
         hook, f_depth, tension = _nip_on_the_roll(
-            web,
-            core,
-            tension,
-            thickness_profile,
-            outer_radius,
-            nip,
-            n_sectors=n_sectors,
-            n_groups=n_groups,
-            workers=workers,
-            progress=stage("foundation"),
-            pool=pool,
-        )
+            web, core, tension, thickness_profile, outer_radius, nip, n_sectors=n_sectors,
+            n_groups=n_groups, workers=workers, progress=stage("foundation"), pool=pool,
+        )  # fmt: skip
         timings["nip_foundation"] = time.perf_counter() - t0
     # 1. stresses in the roll, (r, z)
     t1 = time.perf_counter()
     w = wind_axisymmetric(
-        web,
-        core,
-        outer_radius,
-        tension,
-        thickness_profile,
-        n_sectors=n_sectors,
-        n_groups=n_groups,
-        nip=hook,
-        progress=stage("winding"),
-    )
+        web, core, outer_radius, tension, thickness_profile, n_sectors=n_sectors,
+        n_groups=n_groups, nip=hook, progress=stage("winding"),
+    )  # fmt: skip
     timings["winding"] = time.perf_counter() - t1
     # 2. the roll spring under the striker, sector by sector
     t2 = time.perf_counter()
@@ -770,18 +771,8 @@ def _predict_profile(
     )
     timings["contact"] = time.perf_counter() - t2
     # 3. the reading: the instrument's own (FD), the energy model beside it
-    scale, rho_energy, roll_model = None, None, None
-    if isinstance(readout, InstrumentReadout):
-        rho, rho_energy = readout.read(
-            alpha, beta, w.build_radius - w.core_radius, web.density, pool, workers
-        )
-        scale = readout.setup.instrument.reading_range
-    else:
-        rho = np.asarray(readout(alpha, beta), dtype=float).reshape(-1)
-    if rho.shape != alpha.shape or not np.all(np.isfinite(rho)):
-        raise InputError(
-            "the readout must return one finite reading per sector", "tester.instrument"
-        )
+    rho, rho_energy, scale = _sector_readings(readout, alpha, beta, w, web, pool, workers)
+    roll_model = None
     if isinstance(contact, ContactModel) and contact.instrument is not None:
         from woundroll.contact.models import resolve_model
 
@@ -806,6 +797,32 @@ def _predict_profile(
         scale=scale,
         roll_model=roll_model,
     )
+
+
+def _sector_readings(
+    readout: InstrumentReadout | ReadoutFn,
+    alpha: FloatArray,
+    beta: FloatArray,
+    w: Any,
+    web: Web,
+    pool: cf.Executor | None,
+    workers: int,
+) -> tuple[FloatArray, FloatArray | None, tuple[float, float] | None]:
+    """Each sector's reading from its roll spring (the energy model's beside it, and the
+    instrument's scale, for an instrument readout)."""
+    scale, rho_energy = None, None
+    if isinstance(readout, InstrumentReadout):
+        rho, rho_energy = readout.read(
+            alpha, beta, w.build_radius - w.core_radius, web.density, pool, workers
+        )
+        scale = readout.setup.instrument.reading_range
+    else:
+        rho = np.asarray(readout(alpha, beta), dtype=float).reshape(-1)
+    if rho.shape != alpha.shape or not np.all(np.isfinite(rho)):
+        raise InputError(
+            "the readout must return one finite reading per sector", "tester.instrument"
+        )
+    return rho, rho_energy, scale
 
 
 def sector_contacts(contact: ContactFn, slack: NDArray[np.bool_]) -> list[ContactFn]:

@@ -207,6 +207,29 @@ def solve_nip(
     InputError
         Bad arrays. ConvergenceError: Newton did not converge.
     """
+    e, a, b, g = _nip_inputs(edges, alpha, beta, gap, refine, bilateral)
+    n = e.size - 1
+    total = roller.line_load * (e[-1] - e[0])
+    z_mid = 0.5 * (e[1:] + e[:-1])
+    if total == 0:
+        zero = np.zeros(n)
+        return NipSolution(z_mid, zero, zero - g, e.copy(), np.zeros(e.size), 0.0, 0)
+    beam = _NipBeam(e, a, b, g, roller, refine, bilateral)
+    u = np.zeros(beam.ndof)
+    u[0::2] = _rigid_approach(e, a, b, g, total)
+    u, q, it = beam.newton(u, total)
+    return beam.solution(u, q, z_mid, it)
+
+
+def _nip_inputs(
+    edges: ArrayLike,
+    alpha: ArrayLike,
+    beta: ArrayLike,
+    gap: ArrayLike | None,
+    refine: int,
+    bilateral: bool,
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Sector edges, and alpha, beta, gap broadcast to one value per sector (checked)."""
     e = np.asarray(edges, dtype=float)
     if e.ndim != 1 or e.size < 2 or np.any(np.diff(e) <= 0) or not np.all(np.isfinite(e)):
         raise InputError("sector edges must be >= 2 increasing finite values", "winding.nip.edges")
@@ -226,90 +249,14 @@ def solve_nip(
         raise InputError("a bilateral foundation must be linear (alpha = 0)", "winding.nip.alpha")
     if not (isinstance(refine, int) and refine >= 1):
         raise InputError(f"must be a whole number >= 1, got {refine!r}", "winding.nip.refine")
-    total = roller.line_load * (e[-1] - e[0])
-    z_mid = 0.5 * (e[1:] + e[:-1])
-    if total == 0:
-        zero = np.zeros(n)
-        return NipSolution(z_mid, zero, zero - g, e.copy(), np.zeros(e.size), 0.0, 0)
+    return e, a, b, g
 
-    # mesh: sector edges subdivided, plus bearing nodes
-    sub = np.linspace(0.0, 1.0, refine + 1)[:-1]
-    nodes = np.concatenate([(e[:-1, None] + np.diff(e)[:, None] * sub[None, :]).ravel(), e[-1:]])
-    sector_of_el = np.repeat(np.arange(n), refine)
-    if roller.overhang > 0:
-        nodes = np.concatenate([[e[0] - roller.overhang], nodes, [e[-1] + roller.overhang]])
-        sector_of_el = np.concatenate([[-1], sector_of_el, [-1]])
-    L = np.diff(nodes)
-    ne = L.size
-    ndof = 2 * nodes.size
-    dof = np.stack(
-        [2 * np.arange(ne), 2 * np.arange(ne) + 1, 2 * np.arange(ne) + 2, 2 * np.arange(ne) + 3],
-        axis=1,
-    )
-    # beam stiffness in LAPACK band storage (Hermite dofs: 3 bands each side)
-    c = roller.EI / L**3
-    ke = np.empty((ne, 4, 4))
-    ke[:, 0] = np.stack([12 * c, 6 * c * L, -12 * c, 6 * c * L], 1)
-    ke[:, 1] = np.stack([6 * c * L, 4 * c * L**2, -6 * c * L, 2 * c * L**2], 1)
-    ke[:, 2] = -ke[:, 0]
-    ke[:, 3] = np.stack([6 * c * L, 2 * c * L**2, -6 * c * L, 4 * c * L**2], 1)
 
-    def banded(blocks: FloatArray) -> FloatArray:
-        ab = np.zeros((7, ndof))
-        for i in range(4):
-            for j in range(4):
-                np.add.at(ab, (3 + i - j, dof[:, j]), blocks[:, i, j])
-        return ab
-
-    def matvec(ab: FloatArray, x: FloatArray) -> FloatArray:
-        y = ab[3] * x
-        for k in range(1, 4):
-            y[:-k] += ab[3 - k, k:] * x[k:]
-            y[k:] += ab[3 + k, :-k] * x[:-k]
-        return y
-
-    K = banded(ke)
-    K_abs = np.abs(K)
-    zc = nodes - nodes.mean()
-
-    def bending(u: FloatArray) -> FloatArray:
-        """u minus its rigid-body part (w = a + b z, theta = b), which K maps to zero exactly:
-        K u is then computed without the round-off of the large rigid displacements."""
-        w = u[0::2]
-        b = float(np.dot(zc, w - w.mean()) / np.dot(zc, zc))
-        out = u.copy()
-        out[0::2] -= w.mean() + b * zc
-        out[1::2] -= b
-        return out
-
-    def beam_force(u: FloatArray) -> FloatArray:
-        return matvec(K, bending(u))
-
-    F = np.zeros(ndof)
-    F[0] = F[-2] = 0.5 * total
-    # foundation at Gauss points of the elements that lie on the web
-    on = sector_of_el >= 0
-    Nq = np.stack([_hermite(np.full(ne, x), L) for x in _GP], axis=1)  # (ne, 3, 4)
-    wq = 0.5 * L[:, None] * _GW[None, :] * on[:, None]  # (ne, 3)
-    s = np.where(on, sector_of_el, 0)
-    aq, bq, gq = a[s][:, None], b[s][:, None], g[s][:, None]
-
-    def foundation(u: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        w = np.einsum("eqk,ek->eq", Nq, u[dof])
-        if bilateral:
-            d = w - gq
-            return_k = np.broadcast_to(bq, d.shape)
-            q = bq * d
-        else:
-            d = np.maximum(w - gq, 0.0)
-            q = aq * d * d + bq * d
-            return_k = np.where(w > gq, 2 * aq * d + bq, 0.0)
-        kq = return_k
-        fint = np.zeros(ndof)
-        np.add.at(fint, dof, np.einsum("eq,eqk->ek", wq * q, Nq))
-        return fint, kq, q
-
-    # rigid-roller start: uniform approach d0 with sum of sector loads = total
+def _rigid_approach(
+    e: FloatArray, a: FloatArray, b: FloatArray, g: FloatArray, total: float
+) -> float:
+    """Rigid-roller start: the uniform approach d0 at which the sector loads sum to
+    ``total`` (bisection; the upper end of the last bracket)."""
     width = np.diff(e)
 
     def carried(d0: float) -> float:
@@ -324,63 +271,178 @@ def solve_nip(
     for _ in range(200):
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if carried(mid) < total else (lo, mid)
-    u = np.zeros(ndof)
-    u[0::2] = hi
-    fint, kq, q = foundation(u)
-    R = beam_force(u) + fint - F
-    tol = 1e-10 * total
-    it = 0
-    hist: list[float] = []
-    for it in range(1, 61):  # noqa: B007
-        Kt = K + banded(np.einsum("eq,eqk,eql->ekl", wq * kq, Nq, Nq))
-        # tiny spring on every dof, relative to the foundation, against lift-off modes
-        Kt[3] += 1e-9 * max(float(np.max(wq * kq)), 1e-300)
-        du = solve_banded((3, 3), Kt, -R, check_finite=False)
-        r0 = np.linalg.norm(R)
-        # round-off floor of the residual: the beam terms K u cancel to ~eps |K| |u|
-        floor = 1e-13 * float(np.linalg.norm(matvec(K_abs, np.abs(bending(u)))))
-        # the foundation must carry the bearing forces (to the beam's round-off floor)
-        balanced = abs(float(np.sum(fint[0::2])) - total) <= max(1e-8 * total, floor)
-        hist.append(r0)
-        # stagnation at a small residual: a very stiff roller (EI / L^3 >> foundation) makes
-        # the Newton system ill-conditioned; accept once the foundation carries the load
-        stalled = it > 5 and r0 < 1e-4 * total and r0 > 0.5 * hist[-6]
-        if balanced and (
-            r0 < max(tol, floor) or np.linalg.norm(du) <= 1e-12 * np.linalg.norm(u) or stalled
-        ):
-            break
-        step = 1.0
-        for _ in range(30):
-            u_try = u + step * du
-            f_try, kq_try, q_try = foundation(u_try)
-            R_try = beam_force(u_try) + f_try - F
-            if np.linalg.norm(R_try) < r0 or step < 1e-6:
-                break
-            step *= 0.5
-        u, R, kq, q, fint = u_try, R_try, kq_try, q_try, f_try
-    else:
-        raise ConvergenceError(
-            f"nip beam: Newton did not converge (residual "
-            f"{np.linalg.norm(R) / total:.2e} of the load after 60 iterations)"
+    return hi
+
+
+class _NipBeam:
+    """The roller as Hermite beam elements (sector edges subdivided, plus the bearing
+    overhang) on the sectors' foundation, its stiffness in LAPACK band storage."""
+
+    def __init__(
+        self,
+        e: FloatArray,
+        a: FloatArray,
+        b: FloatArray,
+        g: FloatArray,
+        roller: NipRoller,
+        refine: int,
+        bilateral: bool,
+    ) -> None:
+        n = e.size - 1
+        self.e, self.bilateral, self.n = e, bilateral, n
+        # mesh: sector edges subdivided, plus bearing nodes
+        sub = np.linspace(0.0, 1.0, refine + 1)[:-1]
+        nodes = np.concatenate(
+            [(e[:-1, None] + np.diff(e)[:, None] * sub[None, :]).ravel(), e[-1:]]
         )
-    # per-sector mean load and centre indentation
-    load = np.zeros(n)
-    np.add.at(load, s[on], (wq * q)[on].sum(axis=1))
-    load /= width
-    w_mid = np.einsum("ek,ek->e", _hermite(np.zeros(ne), L)[:, :], u[dof])
-    ind = np.zeros(n)
-    cnt = np.zeros(n)
-    np.add.at(ind, s[on], w_mid[on])
-    np.add.at(cnt, s[on], 1.0)
-    return NipSolution(
-        z=z_mid,
-        load=load,
-        indentation=ind / cnt - g,
-        node_z=nodes,
-        deflection=u[0::2].copy(),
-        total=float(np.sum(load * width)),
-        iterations=it,
-    )
+        sector_of_el = np.repeat(np.arange(n), refine)
+        if roller.overhang > 0:
+            nodes = np.concatenate([[e[0] - roller.overhang], nodes, [e[-1] + roller.overhang]])
+            sector_of_el = np.concatenate([[-1], sector_of_el, [-1]])
+        L = np.diff(nodes)
+        ne = L.size
+        self.nodes, self.L, self.ne = nodes, L, ne
+        self.ndof = 2 * nodes.size
+        self.dof = np.stack(
+            [
+                2 * np.arange(ne),
+                2 * np.arange(ne) + 1,
+                2 * np.arange(ne) + 2,
+                2 * np.arange(ne) + 3,
+            ],
+            axis=1,
+        )
+        # beam stiffness in LAPACK band storage (Hermite dofs: 3 bands each side)
+        c = roller.EI / L**3
+        ke = np.empty((ne, 4, 4))
+        ke[:, 0] = np.stack([12 * c, 6 * c * L, -12 * c, 6 * c * L], 1)
+        ke[:, 1] = np.stack([6 * c * L, 4 * c * L**2, -6 * c * L, 2 * c * L**2], 1)
+        ke[:, 2] = -ke[:, 0]
+        ke[:, 3] = np.stack([6 * c * L, 2 * c * L**2, -6 * c * L, 4 * c * L**2], 1)
+        self.K = self.banded(ke)
+        self.K_abs = np.abs(self.K)
+        self.zc = nodes - nodes.mean()
+        # foundation at Gauss points of the elements that lie on the web
+        self.on = sector_of_el >= 0
+        self.Nq = np.stack([_hermite(np.full(ne, x), L) for x in _GP], axis=1)  # (ne, 3, 4)
+        self.wq = 0.5 * L[:, None] * _GW[None, :] * self.on[:, None]  # (ne, 3)
+        s = np.where(self.on, sector_of_el, 0)
+        self.s = s
+        self.aq, self.bq, self.gq = a[s][:, None], b[s][:, None], g[s][:, None]
+        self.g = g
+
+    def banded(self, blocks: FloatArray) -> FloatArray:
+        ab = np.zeros((7, self.ndof))
+        for i in range(4):
+            for j in range(4):
+                np.add.at(ab, (3 + i - j, self.dof[:, j]), blocks[:, i, j])
+        return ab
+
+    @staticmethod
+    def matvec(ab: FloatArray, x: FloatArray) -> FloatArray:
+        y = ab[3] * x
+        for k in range(1, 4):
+            y[:-k] += ab[3 - k, k:] * x[k:]
+            y[k:] += ab[3 + k, :-k] * x[:-k]
+        return y
+
+    def bending(self, u: FloatArray) -> FloatArray:
+        """u minus its rigid-body part (w = a + b z, theta = b), which K maps to zero exactly:
+        K u is then computed without the round-off of the large rigid displacements."""
+        zc = self.zc
+        w = u[0::2]
+        b = float(np.dot(zc, w - w.mean()) / np.dot(zc, zc))
+        out = u.copy()
+        out[0::2] -= w.mean() + b * zc
+        out[1::2] -= b
+        return out
+
+    def beam_force(self, u: FloatArray) -> FloatArray:
+        return self.matvec(self.K, self.bending(u))
+
+    def foundation(self, u: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Nodal foundation forces, tangent stiffness and load at the Gauss points."""
+        Nq, aq, bq, gq = self.Nq, self.aq, self.bq, self.gq
+        w = np.einsum("eqk,ek->eq", Nq, u[self.dof])
+        if self.bilateral:
+            d = w - gq
+            kq = np.broadcast_to(bq, d.shape)
+            q = bq * d
+        else:
+            d = np.maximum(w - gq, 0.0)
+            q = aq * d * d + bq * d
+            kq = np.where(w > gq, 2 * aq * d + bq, 0.0)
+        fint = np.zeros(self.ndof)
+        np.add.at(fint, self.dof, np.einsum("eq,eqk->ek", self.wq * q, Nq))
+        return fint, kq, q
+
+    def newton(self, u: FloatArray, total: float) -> tuple[FloatArray, FloatArray, int]:
+        """Newton with a backtracking line search on the residual, from ``u``: half the load
+        at each bearing. Returns u, the Gauss-point loads and the iterations."""
+        K, wq, Nq = self.K, self.wq, self.Nq
+        F = np.zeros(self.ndof)
+        F[0] = F[-2] = 0.5 * total
+        fint, kq, q = self.foundation(u)
+        R = self.beam_force(u) + fint - F
+        tol = 1e-10 * total
+        it = 0
+        hist: list[float] = []
+        for it in range(1, 61):  # noqa: B007
+            Kt = K + self.banded(np.einsum("eq,eqk,eql->ekl", wq * kq, Nq, Nq))
+            # tiny spring on every dof, relative to the foundation, against lift-off modes
+            Kt[3] += 1e-9 * max(float(np.max(wq * kq)), 1e-300)
+            du = solve_banded((3, 3), Kt, -R, check_finite=False)
+            r0 = np.linalg.norm(R)
+            # round-off floor of the residual: the beam terms K u cancel to ~eps |K| |u|
+            floor = 1e-13 * float(np.linalg.norm(self.matvec(self.K_abs, np.abs(self.bending(u)))))
+            # the foundation must carry the bearing forces (to the beam's round-off floor)
+            balanced = abs(float(np.sum(fint[0::2])) - total) <= max(1e-8 * total, floor)
+            hist.append(r0)
+            # stagnation at a small residual: a very stiff roller (EI / L^3 >> foundation)
+            # makes the Newton system ill-conditioned; accept once the foundation carries
+            # the load
+            stalled = it > 5 and r0 < 1e-4 * total and r0 > 0.5 * hist[-6]
+            if balanced and (
+                r0 < max(tol, floor) or np.linalg.norm(du) <= 1e-12 * np.linalg.norm(u) or stalled
+            ):
+                break
+            step = 1.0
+            for _ in range(30):
+                u_try = u + step * du
+                f_try, kq_try, q_try = self.foundation(u_try)
+                R_try = self.beam_force(u_try) + f_try - F
+                if np.linalg.norm(R_try) < r0 or step < 1e-6:
+                    break
+                step *= 0.5
+            u, R, kq, q, fint = u_try, R_try, kq_try, q_try, f_try
+        else:
+            raise ConvergenceError(
+                f"nip beam: Newton did not converge (residual "
+                f"{np.linalg.norm(R) / total:.2e} of the load after 60 iterations)"
+            )
+        return u, q, it
+
+    def solution(self, u: FloatArray, q: FloatArray, z_mid: FloatArray, it: int) -> NipSolution:
+        """Per-sector mean load and centre indentation."""
+        n, s, on, ne, L = self.n, self.s, self.on, self.ne, self.L
+        width = np.diff(self.e)
+        load = np.zeros(n)
+        np.add.at(load, s[on], (self.wq * q)[on].sum(axis=1))
+        load /= width
+        w_mid = np.einsum("ek,ek->e", _hermite(np.zeros(ne), L)[:, :], u[self.dof])
+        ind = np.zeros(n)
+        cnt = np.zeros(n)
+        np.add.at(ind, s[on], w_mid[on])
+        np.add.at(cnt, s[on], 1.0)
+        return NipSolution(
+            z=z_mid,
+            load=load,
+            indentation=ind / cnt - self.g,
+            node_z=self.nodes,
+            deflection=u[0::2].copy(),
+            total=float(np.sum(load * width)),
+            iterations=it,
+        )
 
 
 def nip_hook(

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple, Protocol
 import numpy as np
 
 from woundroll.errors import InputError
+from woundroll.pipeline.vocabulary import versioned
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -85,7 +86,7 @@ def _measure(name: str, overrides: Sequence[str], keep: Sequence[str] = ()) -> d
     h = res.hardness.to_dict()
     stiffness = res.contact  # the spring used (alpha, beta) ...
     c = stiffness.contact  # ... and the contact solution under it
-    d_fd = h["delta_max_m"]
+    d_fd = h["impact_depth_m"]
     row: dict[str, Any] = {
         "case": name,
         "title": case.title,
@@ -95,18 +96,18 @@ def _measure(name: str, overrides: Sequence[str], keep: Sequence[str] = ()) -> d
         "pile_height_m": float(res.winding.radius[-1] - res.winding.radius[0]),
         "rho_fd": h["rho_fd"],
         "rho_energy": h["rho_energy"],
-        "impulse_Ns": h["impulse_Ns"],
-        "elastic_impulse_bound_Ns": 2.0 * res.hardness.instrument.mass * h["impact_speed_m_per_s"],
+        "impulse_N_s": h["impulse_N_s"],
+        "elastic_impulse_bound_N_s": 2.0 * res.hardness.instrument.mass * h["impact_speed_m_per_s"],
         "alpha_N_per_m2": float(stiffness.alpha),
         "beta_N_per_m": float(stiffness.beta),
         "semi_contact_width_m": float(np.interp(d_fd, c.delta, c.half_width)),
-        "delta_max_m": d_fd,
-        "delta_max_energy_m": h["delta_max_energy_m"],
+        "impact_depth_m": d_fd,
+        "impact_depth_energy_m": h["impact_depth_energy_m"],
         "peak_force_N": h["peak_force_N"],
         "peak_contact_pressure_Pa": float(np.interp(d_fd, c.delta, c.peak_pressure)),
         "contact_time_s": h["contact_time_s"],
         "effective_mass_kg": h["effective_mass_kg"],
-        "contact_depth_max_m": float(c.delta[-1]),
+        "depth_max_m": float(c.delta[-1]),
     }
     if res.no_update is not None:
         nu = res.no_update.to_dict()
@@ -114,7 +115,7 @@ def _measure(name: str, overrides: Sequence[str], keep: Sequence[str] = ()) -> d
             {
                 "rho_fd_no_update": nu["rho_fd"],
                 "rho_energy_no_update": nu["rho_energy"],
-                "impulse_no_update_Ns": nu["impulse_Ns"],
+                "impulse_no_update_N_s": nu["impulse_N_s"],
                 "alpha_no_update_N_per_m2": nu["alpha_N_per_m2"],
                 "beta_no_update_N_per_m": nu["beta_N_per_m"],
             }
@@ -179,7 +180,9 @@ def _write(result: Any, out_dir: str | Path) -> list[Path]:
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     p = out / "study.json"
-    p.write_text(json.dumps(result.to_dict(), indent=1, allow_nan=False) + "\n", encoding="utf-8")
+    p.write_text(
+        json.dumps(versioned(result.to_dict()), indent=1, allow_nan=False) + "\n", encoding="utf-8"
+    )
     return [p, *result.plot(out)]
 
 

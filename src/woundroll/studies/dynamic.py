@@ -91,7 +91,7 @@ def _measure_roll(name: str, overrides: tuple[str, ...], model: str = "2d") -> d
         frozen = {
             "rho_dynamic_no_update": d0.rho,
             "rho_fd_no_update": nu.hardness.fd.rho,
-            "impulse_dynamic_no_update_Ns": d0.impulse,
+            "impulse_dynamic_no_update_N_s": d0.impulse,
             "restitution_dynamic_no_update": d0.restitution,
         }
     return {
@@ -111,7 +111,7 @@ def _measure_roll(name: str, overrides: tuple[str, ...], model: str = "2d") -> d
 _NO_UPDATE_KEYS = (
     "rho_dynamic_no_update",
     "rho_fd_no_update",
-    "impulse_dynamic_no_update_Ns",
+    "impulse_dynamic_no_update_N_s",
     "restitution_dynamic_no_update",
 )
 
@@ -123,14 +123,14 @@ def _comparison(dy: Any, fd: Any, en: Any) -> dict[str, Any]:
         "rho_dynamic": dy.rho,
         "rho_fd": fd.rho,
         "rho_energy": en.rho,
-        "impulse_dynamic_Ns": dy.impulse,
-        "impulse_fd_Ns": fd.impulse,
+        "impulse_dynamic_N_s": dy.impulse,
+        "impulse_fd_N_s": fd.impulse,
         "peak_time_dynamic_s": dy.peak_time,
         "peak_time_fd_s": _peak_time(fd.time, fd.deceleration, fd.contact_start),
         "contact_time_dynamic_s": dy.contact_time,
         "contact_time_fd_s": fd.contact_time,
-        "delta_max_dynamic_m": dy.max_depth,
-        "delta_max_fd_m": fd.max_depth,
+        "impact_depth_dynamic_m": dy.max_depth,
+        "impact_depth_fd_m": fd.max_depth,
         "restitution_dynamic": dy.restitution,
         "energy_in_J": dy.energy_in,
         "energy_left_in_roll_J": dy.energy_roll_left,
@@ -225,8 +225,8 @@ _COLUMNS = (
     ("rho_dynamic", "Rho FE dyn", lambda v: f"{v:.1f}"),
     ("rho_fd", "Rho FD", lambda v: f"{v:.1f}"),
     ("rho_energy", "Rho energy", lambda v: f"{v:.1f}"),
-    ("impulse_dynamic_Ns", "impulse FE [N s]", lambda v: f"{v:.3f}"),
-    ("impulse_fd_Ns", "impulse FD [N s]", lambda v: f"{v:.3f}"),
+    ("impulse_dynamic_N_s", "impulse FE [N s]", lambda v: f"{v:.3f}"),
+    ("impulse_fd_N_s", "impulse FD [N s]", lambda v: f"{v:.3f}"),
     ("peak_time_dynamic_s", "peak FE [ms]", lambda v: f"{v * 1e3:.2f}"),
     ("peak_time_fd_s", "peak FD [ms]", lambda v: f"{v * 1e3:.2f}"),
     ("restitution_dynamic", "e FE", lambda v: f"{v:.2f}"),
@@ -260,7 +260,7 @@ class DynamicStudy:
         return {
             "study": self.name,
             "figures": "reference paper, Figures 6-10 and 14-15 (dynamic FE against 1.5D)",
-            "manual_impulse_Ns": MANUAL_IMPULSE_NS,
+            "manual_impulse_N_s": MANUAL_IMPULSE_NS,
             "block_manual_rho": BLOCK_MANUAL_RHO,
             "block_abaqus_rho": BLOCK_ABAQUS_RHO,
             "rolls": [
@@ -320,8 +320,8 @@ class DynamicStudy:
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3, axis="y")
         for dx, key, lab in (
-            (-0.2, "impulse_dynamic_Ns", "FE dynamic"),
-            (0.2, "impulse_fd_Ns", "FD"),
+            (-0.2, "impulse_dynamic_N_s", "FE dynamic"),
+            (0.2, "impulse_fd_N_s", "FD"),
         ):
             ax2.bar(x + dx, [r[key] for r in self.rolls], width=0.4, label=lab)
         ax2.axhline(MANUAL_IMPULSE_NS, color="k", ls="--", label="device manual 0.267 N s")

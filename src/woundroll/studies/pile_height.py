@@ -107,7 +107,7 @@ class PileHeightStudy:
                     f"{r['alpha_N_per_m2']:.3g}",
                     f"{r['beta_N_per_m']:.3g}",
                     f"{r['semi_contact_width_m'] * 1e3:.2f}",
-                    f"{r['delta_max_m'] * 1e3:.2f}",
+                    f"{r['impact_depth_m'] * 1e3:.2f}",
                     f"{r['approach_share_deeper_1cm'] * 100:.0f}",
                 )
             )
@@ -287,7 +287,7 @@ def _pile_height_job(
     radius, sigma_r = out["radius"], out["sigma_r"]
     case = load_case(name, list(overrides))
     web, core = case.web.build(), case.core.build()
-    out["axis_pressure"] = _axis_pressure(out["contact"], row["delta_max_m"])
+    out["axis_pressure"] = _axis_pressure(out["contact"], row["impact_depth_m"])
     row.update(_axis_locality(out.pop("contact"), web))
     row["contact_model"] = case.contact.roll_model(case.tester_setup.instrument.head_shape).name
     setup = case.tester_setup
@@ -298,7 +298,7 @@ def _pile_height_job(
             "effective_mass": row["effective_mass_kg"],
             "depth": depth[::-1].copy(),
             "sigma_r": sigma_r[::-1].copy(),
-            "depth_max": 1.25 * row["delta_max_m"],
+            "depth_max": 1.25 * row["impact_depth_m"],
         }
         out["ref"] = ref
     m_ref = ref["effective_mass"]
@@ -347,6 +347,22 @@ def _thin(radius: np.ndarray, values: np.ndarray, n: int = 400) -> tuple[list[fl
         ).clip(0, radius.size - 1)
     )
     return radius[keep].tolist(), values[keep].tolist()
+
+
+def _pressure_profiles(heights: list[float], outs: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Each roll's interlayer pressure over the radius (thinned) and under the head."""
+    profiles = []
+    for h, o in zip(heights, outs, strict=True):
+        rr, pp = _thin(o["radius"], -o["sigma_r"])
+        profiles.append(
+            {
+                "pile_height_m": h,
+                "radius_m": rr,
+                "pressure_Pa": pp,
+                "under_head_at_impact": o["axis_pressure"],
+            }
+        )
+    return profiles
 
 
 def pile_height_study(
@@ -412,17 +428,7 @@ def pile_height_study(
         label=lambda i: f"pile height: H = {heights[i] * 100:.2f} cm",
     )
     outs = [*rest, ref_out]
-    profiles = []
-    for h, o in zip(heights, outs, strict=True):
-        rr, pp = _thin(o["radius"], -o["sigma_r"])
-        profiles.append(
-            {
-                "pile_height_m": h,
-                "radius_m": rr,
-                "pressure_Pa": pp,
-                "under_head_at_impact": o["axis_pressure"],
-            }
-        )
+    profiles = _pressure_profiles(heights, outs)
     _report(progress, "done", 1.0)
     return PileHeightStudy(
         case=case,

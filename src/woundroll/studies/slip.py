@@ -53,7 +53,7 @@ class SlipStudy:
     n_unbounded : int
         Elements within 3 a sheared with no interlayer pressure (SF = inf).
     emulation : tuple of dict
-        Figure 19: per roll ``case``, ``rho_fd``/``rho_energy``/``delta_max_m`` without slip
+        Figure 19: per roll ``case``, ``rho_fd``/``rho_energy``/``impact_depth_m`` without slip
         and the same with ``_slip`` appended with the reduced-shear emulation, and
         ``slipped_elements`` (empty unless asked for).
     emulation_model : str
@@ -86,7 +86,7 @@ class SlipStudy:
             "figures": "reference paper, Figure 18",
             "case": self.case,
             "friction": self.friction,
-            "impact_depth_m": self.row["delta_max_m"],
+            "impact_depth_m": self.row["impact_depth_m"],
             "fields_depth_m": self.fields_depth_m,
             "fields_source": self.fields_source,
             "semi_contact_width_m": self.row["semi_contact_width_m"],
@@ -130,7 +130,7 @@ class SlipStudy:
             (
                 self.case,
                 f"{self.friction:g}",
-                f"{self.row['delta_max_m'] * 1e3:.2f}",
+                f"{self.row['impact_depth_m'] * 1e3:.2f}",
                 f"{self.fields_depth_m * 1e3:.2f}",
                 f"{self.row['semi_contact_width_m'] * 1e3:.2f}",
                 _fmt(self.max_slip_factor),
@@ -165,8 +165,8 @@ class SlipStudy:
                             f"{100 * (r['rho_fd_slip'] / r['rho_fd'] - 1):+.0f}",
                             f"{r['rho_energy']:.1f}",
                             f"{r['rho_energy_slip']:.1f}",
-                            f"{r['delta_max_m'] * 1e3:.2f}",
-                            f"{r['delta_max_m_slip'] * 1e3:.2f}",
+                            f"{r['impact_depth_m'] * 1e3:.2f}",
+                            f"{r['impact_depth_slip_m'] * 1e3:.2f}",
                             f"{r['slipped_elements']}",
                         )
                         for r in self.emulation
@@ -271,48 +271,15 @@ def slip_factor_study(
     )
     row = out["row"]
     contact = out["contact"]
-    depth_at = min(row["delta_max_m"], float(contact.delta[-1]))
+    depth_at = min(row["impact_depth_m"], float(contact.delta[-1]))
     fields, source = contact.at_depth(depth_at), "at_depth"
     a = fields.semi_contact_width
     near = fields.outer_radius * np.abs(np.asarray(fields.element_theta)) <= 3.0 * a
     sf = np.asarray(fields.slip_factor)[near]
     d, w = fields.slip_extent(3.0 * a)
-    emulation: list[dict[str, Any]] = []
-    if emulation_cases:
-        base = (
-            f"contact.friction={float(friction)!r}",
-            "contact.no_update=false",
-            f"contact.model='{model}'",
-            f"contact.slip_shear_fraction={float(slip_shear_fraction)!r}",
-        )
-        jobs = [
-            (name, (*base, f"contact.slip='{mode}'"), ("contact",) if mode != "none" else ())
-            for name in emulation_cases
-            for mode in ("none", "reduced-shear")
-        ]
-        rows = _map(
-            _measure,
-            jobs,
-            workers=workers,
-            progress=None if progress is None else lambda s, f: progress(s, 0.1 + 0.9 * f),
-            label=lambda i: f"slip emulation: {jobs[i][0]}",
-        )
-        for i, name in enumerate(emulation_cases):
-            plain, slip = rows[2 * i]["row"], rows[2 * i + 1]
-            c = slip["contact"]
-            n = c.stats["slipped_elements"] if c.slipped is None else int(np.sum(c.slipped))
-            emulation.append(
-                {
-                    "case": name,
-                    "rho_fd": plain["rho_fd"],
-                    "rho_energy": plain["rho_energy"],
-                    "delta_max_m": plain["delta_max_m"],
-                    "rho_fd_slip": slip["row"]["rho_fd"],
-                    "rho_energy_slip": slip["row"]["rho_energy"],
-                    "delta_max_m_slip": slip["row"]["delta_max_m"],
-                    "slipped_elements": n,
-                }
-            )
+    emulation = _emulation_rows(
+        emulation_cases, friction, model, slip_shear_fraction, workers, progress
+    )
     _report(progress, "done", 1.0)
     return SlipStudy(
         emulation=tuple(emulation),
@@ -332,6 +299,55 @@ def slip_factor_study(
         slip_depth_whole_m=fields.slip_extent(math.pi * fields.outer_radius)[0],
         contact=fields,
     )
+
+
+def _emulation_rows(
+    emulation_cases: Sequence[str],
+    friction: float,
+    model: str,
+    slip_shear_fraction: float,
+    workers: int,
+    progress: Progress | None,
+) -> list[dict[str, Any]]:
+    """Figure 19: each case read with and without ``contact.slip = "reduced-shear"``."""
+    emulation: list[dict[str, Any]] = []
+    if not emulation_cases:
+        return emulation
+    base = (
+        f"contact.friction={float(friction)!r}",
+        "contact.no_update=false",
+        f"contact.model='{model}'",
+        f"contact.slip_shear_fraction={float(slip_shear_fraction)!r}",
+    )
+    jobs = [
+        (name, (*base, f"contact.slip='{mode}'"), ("contact",) if mode != "none" else ())
+        for name in emulation_cases
+        for mode in ("none", "reduced-shear")
+    ]
+    rows = _map(
+        _measure,
+        jobs,
+        workers=workers,
+        progress=None if progress is None else lambda s, f: progress(s, 0.1 + 0.9 * f),
+        label=lambda i: f"slip emulation: {jobs[i][0]}",
+    )
+    for i, name in enumerate(emulation_cases):
+        plain, slip = rows[2 * i]["row"], rows[2 * i + 1]
+        c = slip["contact"]
+        n = c.stats["slipped_elements"] if c.slipped is None else int(np.sum(c.slipped))
+        emulation.append(
+            {
+                "case": name,
+                "rho_fd": plain["rho_fd"],
+                "rho_energy": plain["rho_energy"],
+                "impact_depth_m": plain["impact_depth_m"],
+                "rho_fd_slip": slip["row"]["rho_fd"],
+                "rho_energy_slip": slip["row"]["rho_energy"],
+                "impact_depth_slip_m": slip["row"]["impact_depth_m"],
+                "slipped_elements": n,
+            }
+        )
+    return emulation
 
 
 def run(

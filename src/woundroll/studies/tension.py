@@ -30,11 +30,11 @@ _TENSION_COLUMNS: tuple[tuple[str, str, Callable[[float], str]], ...] = (
     ("rho_energy", "Rho energy", lambda v: f"{v:.1f}"),
     ("rho_fd_no_update", "Rho FD no-upd", lambda v: f"{v:.1f}"),
     ("rho_energy_no_update", "Rho en. no-upd", lambda v: f"{v:.1f}"),
-    ("impulse_Ns", "impulse [N s]", lambda v: f"{v:.3f}"),
+    ("impulse_N_s", "impulse [N s]", lambda v: f"{v:.3f}"),
     ("alpha_N_per_m2", "alpha [N/m^2]", lambda v: f"{v:.3g}"),
     ("beta_N_per_m", "beta [N/m]", lambda v: f"{v:.3g}"),
     ("semi_contact_width_m", "a [mm]", lambda v: f"{v * 1e3:.2f}"),
-    ("delta_max_m", "max depth [mm]", lambda v: f"{v * 1e3:.2f}"),
+    ("impact_depth_m", "max depth [mm]", lambda v: f"{v * 1e3:.2f}"),
 )
 
 
@@ -47,14 +47,14 @@ class TensionStudy:
     rolls : list of dict
         One row per roll, SI with the unit in the key (see :meth:`rows`). ``a`` and the
         maximum depth are the FD model's: ``semi_contact_width_m`` is the contact model's
-        a(d) at ``delta_max_m``. ``elastic_impulse_bound_Ns`` = 2 m_s v at first contact.
+        a(d) at ``impact_depth_m``. ``elastic_impulse_bound_N_s`` = 2 m_s v at first contact.
     """
 
     rolls: list[dict[str, Any]]
     name: str = "tension"
 
     def rows(self) -> list[dict[str, Any]]:
-        """The table, one dict per roll (keys with units: ``tension_N``, ``impulse_Ns``...)."""
+        """The table, one dict per roll (keys with units: ``tension_N``, ``impulse_N_s``...)."""
         return [dict(r) for r in self.rolls]
 
     def material(self, material: str) -> list[dict[str, Any]]:
@@ -67,7 +67,7 @@ class TensionStudy:
         return {
             "study": self.name,
             "figures": "reference paper, Figures 14-15 (and 8-9: no update)",
-            "manual_impulse_Ns": MANUAL_IMPULSE_NS,
+            "manual_impulse_N_s": MANUAL_IMPULSE_NS,
             "rolls": self.rows(),
         }
 
@@ -86,7 +86,7 @@ class TensionStudy:
         if self.rolls:
             notes.append(
                 f"Device manual impulse: {MANUAL_IMPULSE_NS} N s; elastic bound 2 m v = "
-                f"{self.rolls[0]['elastic_impulse_bound_Ns']:.3f} N s."
+                f"{self.rolls[0]['elastic_impulse_bound_N_s']:.3f} N s."
             )
         return notes
 
@@ -134,7 +134,7 @@ class TensionStudy:
             rows = self.material(m)
             ax.plot(
                 [r["tension_N"] for r in rows],
-                [r["impulse_Ns"] for r in rows],
+                [r["impulse_N_s"] for r in rows],
                 "o-",
                 color=colors[m],
                 label=f"{m} FD",
@@ -142,7 +142,7 @@ class TensionStudy:
         ax.axhline(MANUAL_IMPULSE_NS, color="k", ls="--", label="device manual 0.267 N s")
         if self.rolls:
             ax.axhline(
-                self.rolls[0]["elastic_impulse_bound_Ns"],
+                self.rolls[0]["elastic_impulse_bound_N_s"],
                 color="0.5",
                 ls=":",
                 label="elastic bound 2 m v",

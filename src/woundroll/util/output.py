@@ -145,16 +145,21 @@ class OutputDir:
         return written, notes
 
 
-def write_result_files(out_dir: str | Path, name: str, result: Any) -> list[Path]:
-    """``name.json`` (strict JSON of ``result.to_dict()``) and ``name.png``
-    (``result.plot(path)``) into ``out_dir``, atomically beside whatever is there."""
+def write_result_files(
+    out_dir: str | Path, name: str, result: Any, head: dict[str, Any] | None = None
+) -> list[Path]:
+    """``name.json`` (strict JSON of ``head`` followed by ``result.to_dict()``: ``head``
+    carries the ``schema_version``) and ``name.png`` (``result.plot(path)``) into
+    ``out_dir``, atomically beside whatever is there."""
     import matplotlib
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 
     with OutputDir(out_dir) as od:
-        (od.tmp / f"{name}.json").write_text(strict_json(result.to_dict()), encoding="utf-8")
+        (od.tmp / f"{name}.json").write_text(
+            strict_json({**(head or {}), **result.to_dict()}), encoding="utf-8"
+        )
         plt.close(result.plot(od.tmp / f"{name}.png"))
         written, _ = od.publish([f"{name}.png", f"{name}.json"], replaces_run=False)
     return written

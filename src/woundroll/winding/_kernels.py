@@ -142,48 +142,9 @@ def _push(P, t, e, hist, thist):
 
 
 @njit(cache=True)
-def _refresh(
-    t,
-    k,
-    top,
-    wnodes,
-    flush_every,
-    B,
-    S,
-    r,
-    invr,
-    dlog,
-    invd,
-    F,
-    st,
-    hist,
-    thist,
-    w_deep,
-    kp,
-    ke,
-    slope,
-    Et,
-    floor,
-    alpha,
-    beta,
-    c,
-    state_i,
-):
-    """Refresh number ``k`` (at increment ``t``, surface node ``top``): levels 1..L, L = 1 +
-    (trailing zero bits of k).
-
-    Level l >= 1 is the band of elements B[l] <= e < B[l-1]; level 0 (e >= B[0]) is the
-    window re-solved every increment. Band l is refreshed every 2^(l-1) refreshes and, once
-    placed, starts wnodes 2^(l-1) nodes below the surface, so the period over which its
-    moduli stay frozen is a fixed fraction (flush_every / window) of its depth at every
-    level: O(log N) work per increment, amortised.
-
-    1. The pending increments of levels 1..L are applied with their frozen shapes, top down.
-    2. The boundaries B[0..L-1] are placed at wnodes 2^l below the surface (not below B[L]).
-    3. Elements B[L] .. B[0]-1 get moduli at the pressure predicted for the middle of their
-       next frozen period (rate of change since their last refresh x half the period), and
-       the Riccati recursion is re-run over them from beta[B[L]-1].
-    """
+def _flush_levels(k, B, S, r, F, st, alpha, beta, c):
+    """Step 1 of :func:`_refresh`: the levels L = 1 + (trailing zero bits of k) apply their
+    pending increments with their frozen shapes, top down. Returns L."""
     nlev = B.shape[0] - 1
     L = 1
     kk = k
@@ -200,6 +161,13 @@ def _refresh(
         S[lev] = 0.0
         if lo > 0:
             S[lev + 1] += d
+    return L
+
+
+@njit(cache=True)
+def _place_levels(L, top, wnodes, B):
+    """Step 2 of :func:`_refresh`: boundaries B[0..L-1] at wnodes 2^l below the surface
+    (not below B[L])."""
     lo = B[L]
     span = wnodes
     for lev in range(L):
@@ -209,6 +177,31 @@ def _refresh(
         B[lev] = b_new
         if span < top:
             span *= 2
+
+
+@njit(cache=True)
+def _refresh(
+    t, k, top, wnodes, flush_every, B, S, r, invr, dlog, invd, F, st, hist, thist, w_deep, kp,
+    ke, slope, Et, floor, alpha, beta, c, state_i,
+):  # fmt: skip
+    """Refresh number ``k`` (at increment ``t``, surface node ``top``): levels 1..L, L = 1 +
+    (trailing zero bits of k).
+
+    Level l >= 1 is the band of elements B[l] <= e < B[l-1]; level 0 (e >= B[0]) is the
+    window re-solved every increment. Band l is refreshed every 2^(l-1) refreshes and, once
+    placed, starts wnodes 2^(l-1) nodes below the surface, so the period over which its
+    moduli stay frozen is a fixed fraction (flush_every / window) of its depth at every
+    level: O(log N) work per increment, amortised.
+
+    1. The pending increments of levels 1..L are applied with their frozen shapes, top down.
+    2. The boundaries B[0..L-1] are placed at wnodes 2^l below the surface (not below B[L]).
+    3. Elements B[L] .. B[0]-1 get moduli at the pressure predicted for the middle of their
+       next frozen period (rate of change since their last refresh x half the period), and
+       the Riccati recursion is re-run over them from beta[B[L]-1].
+    """
+    L = _flush_levels(k, B, S, r, F, st, alpha, beta, c)
+    lo = B[L]
+    _place_levels(L, top, wnodes, B)
     state_i[4] += B[0] - lo
     b = beta[lo - 1] if lo > 0 else c
     lev = L
@@ -260,43 +253,93 @@ def _refresh(
         _push(-0.5 * (F[e] * invr[e] + F[e + 1] * invr[e + 1]), t, e, hist, thist)
 
 
+@njit(cache=True, inline="always")
+def _increment(
+    n_inc, J, dsub, nsub, r, invr, dlog, invd, F, st, alpha, beta, dF, dFold, kp, ke, slope, Et,
+    c, floor, w, iterate, rtol, maxit, S, state_i,
+):  # fmt: skip
+    """One increment: the load ``dsub`` at node ``n_inc`` applied in ``nsub`` substeps on the
+    window ``J..n_inc`` (warm start, fixed-point iteration of E_r, then the update of F,
+    sigma_theta and the pending increment ``S[1]`` of the first frozen level). Returns
+    False when the iteration did not converge in ``maxit`` iterations."""
+    for _sub in range(nsub):
+        # warm start: the previous increment's shape at the same depth below the
+        # load, scaled to this one (midpoint/end rules; docs/winding.md)
+        warm = iterate and w != 0.0 and state_i[5] >= 0
+        if warm:
+            n_prev = state_i[5]
+            shift = n_inc - n_prev
+            lo_g = state_i[6] + shift
+            if lo_g < J:
+                lo_g = J
+            scale = dsub / dF[n_prev]
+            for e in range(n_inc, J - 1, -1):  # top down: reads below, shift >= 0
+                dF[e] = dF[e - shift] * scale if e >= lo_g else 0.0
+        err_prev = 0.0
+        for it in range(maxit + 1):
+            state_i[3] += n_inc - J
+            _sweep(
+                J,
+                n_inc,
+                beta[J - 1] if J > 0 else c,
+                invr,
+                dlog,
+                invd,
+                F,
+                dF,
+                w if (it > 0 or warm) else 0.0,
+                kp,
+                ke,
+                slope,
+                Et,
+                floor,
+                alpha,
+                beta,
+            )
+            dF[n_inc] = dsub
+            for e in range(n_inc - 1, J - 1, -1):
+                dF[e] = alpha[e] * dF[e + 1]
+            if not iterate:
+                break
+            if it > 0:
+                err = 0.0
+                for e in range(J, n_inc):
+                    d = abs(dF[e] - dFold[e])
+                    if d > err:
+                        err = d
+                # converged: the change, or the contraction's a-posteriori bound
+                # on the remaining error, err * rho / (1 - rho) with
+                # rho = err / err_prev (docs/winding.md), is within rtol
+                tol = rtol * abs(dsub)
+                if err <= tol or (
+                    it > 1 and err <= 0.5 * err_prev and err * err <= tol * (err_prev - err)
+                ):
+                    if it > state_i[2]:
+                        state_i[2] = it
+                    break
+                if it == maxit:
+                    return False
+                err_prev = err
+            for e in range(J, n_inc):
+                dFold[e] = dF[e]
+        state_i[5] = n_inc
+        state_i[6] = J
+        for i in range(J, n_inc):
+            F[i] += dF[i]
+            bl = beta[i - 1] if i > 0 else c
+            st[i] += bl * dF[i] / r[i]
+        if J > 0:
+            S[1] += dF[J]
+        F[n_inc] += dsub
+    return True
+
+
 @njit(cache=True)
 def run_groups(
-    g0,
-    g1,
-    gnode,
-    r,
-    invr,
-    dlog,
-    invd,
-    F,
-    st,
-    Fself,
-    stself,
-    alpha,
-    beta,
-    hist,
-    thist,
-    dF,
-    dFold,
-    kp,
-    ke,
-    Et,
-    c,
-    floor,
-    w,
-    iterate,
-    w_deep,
-    rtol,
-    maxit,
-    wnodes,
-    flush_every,
-    nsub,
-    body,
-    B,
-    S,
-    state_i,
-):
+    g0, g1, gnode, r, invr, dlog, invd, F, st, Fself, stself, alpha, beta, hist, thist, dF,
+    dFold, kp, ke, Et, c, floor, w, iterate, w_deep, rtol, maxit, wnodes, flush_every, nsub,
+    body, B, S, state_i,
+):  # fmt: skip
     """Wind groups g0..g1-1 (one increment each). Returns -1, or the group that failed.
 
     ``state_i = [increments since the last refresh, refreshes so far, max iterations used,
@@ -319,78 +362,13 @@ def run_groups(
             J = B[0]
             if J > m:
                 J = m
-            dsub = dtop / nsub
-            for _sub in range(nsub):
-                # warm start: the previous increment's shape at the same depth below the
-                # load, scaled to this one (midpoint/end rules; docs/winding.md)
-                warm = iterate and w != 0.0 and state_i[5] >= 0
-                if warm:
-                    n_prev = state_i[5]
-                    shift = n_inc - n_prev
-                    lo_g = state_i[6] + shift
-                    if lo_g < J:
-                        lo_g = J
-                    scale = dsub / dF[n_prev]
-                    for e in range(n_inc, J - 1, -1):  # top down: reads below, shift >= 0
-                        dF[e] = dF[e - shift] * scale if e >= lo_g else 0.0
-                err_prev = 0.0
-                for it in range(maxit + 1):
-                    state_i[3] += n_inc - J
-                    _sweep(
-                        J,
-                        n_inc,
-                        beta[J - 1] if J > 0 else c,
-                        invr,
-                        dlog,
-                        invd,
-                        F,
-                        dF,
-                        w if (it > 0 or warm) else 0.0,
-                        kp,
-                        ke,
-                        slope,
-                        Et,
-                        floor,
-                        alpha,
-                        beta,
-                    )
-                    dF[n_inc] = dsub
-                    for e in range(n_inc - 1, J - 1, -1):
-                        dF[e] = alpha[e] * dF[e + 1]
-                    if not iterate:
-                        break
-                    if it > 0:
-                        err = 0.0
-                        for e in range(J, n_inc):
-                            d = abs(dF[e] - dFold[e])
-                            if d > err:
-                                err = d
-                        # converged: the change, or the contraction's a-posteriori bound
-                        # on the remaining error, err * rho / (1 - rho) with
-                        # rho = err / err_prev (docs/winding.md), is within rtol
-                        tol = rtol * abs(dsub)
-                        if err <= tol or (
-                            it > 1 and err <= 0.5 * err_prev and err * err <= tol * (err_prev - err)
-                        ):
-                            if it > state_i[2]:
-                                state_i[2] = it
-                            break
-                        if it == maxit:
-                            state_i[0] = count
-                            state_i[1] = k
-                            return g
-                        err_prev = err
-                    for e in range(J, n_inc):
-                        dFold[e] = dF[e]
-                state_i[5] = n_inc
-                state_i[6] = J
-                for i in range(J, n_inc):
-                    F[i] += dF[i]
-                    bl = beta[i - 1] if i > 0 else c
-                    st[i] += bl * dF[i] / r[i]
-                if J > 0:
-                    S[1] += dF[J]
-                F[n_inc] += dsub
+            if not _increment(
+                n_inc, J, dtop / nsub, nsub, r, invr, dlog, invd, F, st, alpha, beta, dF, dFold,
+                kp, ke, slope, Et, c, floor, w, iterate, rtol, maxit, S, state_i,
+            ):  # fmt: skip
+                state_i[0] = count
+                state_i[1] = k
+                return g
         # the new group's own state (for g = 0 its pressure acts on the core alone)
         if body:
             for i in range(m, top + 1):
@@ -407,32 +385,10 @@ def run_groups(
         if wnodes >= 0 and count >= flush_every:
             k += 1
             _refresh(
-                g,
-                k,
-                top,
-                wnodes,
-                flush_every,
-                B,
-                S,
-                r,
-                invr,
-                dlog,
-                invd,
-                F,
-                st,
-                hist,
-                thist,
-                w_deep,
-                kp,
-                ke,
-                slope,
-                Et,
-                floor,
-                alpha,
-                beta,
-                c,
+                g, k, top, wnodes, flush_every, B, S, r, invr, dlog, invd, F, st,
+                hist, thist, w_deep, kp, ke, slope, Et, floor, alpha, beta, c,
                 state_i,
-            )
+            )  # fmt: skip
             count = 0
     state_i[0] = count
     state_i[1] = k

@@ -189,6 +189,63 @@ def _refresh(
         _push(-0.5 * (Fs[:-1] + Fs[1:]), t, b0, top, hist, thist)
 
 
+def _increment(
+    n, J, dsub, nsub, r, invr, dlog, invd, F, st, alpha, beta, dF, kp, ke, slope, Et, c, floor,
+    w, iterate, rtol, maxit, S, state_i,
+):  # fmt: skip
+    """NumPy version of :func:`woundroll.winding._kernels._increment` (same contract)."""
+    b = beta[J - 1] if J > 0 else c
+    for _sub in range(nsub):
+        Fs = F[J : n + 1] * invr[J : n + 1]
+        P0 = -0.5 * (Fs[:-1] + Fs[1:])
+        d_old = None
+        # warm start: the previous increment's shape at the same depth below the
+        # load, scaled to this one (as the compiled kernel)
+        warm = iterate and w != 0.0 and state_i[5] >= 0
+        if warm:
+            n_prev = int(state_i[5])
+            shift = n - n_prev
+            lo_g = max(J, int(state_i[6]) + shift)
+            guess = np.zeros(n + 1 - J)
+            if lo_g <= n:
+                guess[lo_g - J :] = dF[lo_g - shift : n_prev + 1] * (dsub / dF[n_prev])
+            dF[J : n + 1] = guess
+        err_prev = 0.0
+        for it in range(maxit + 1):
+            state_i[3] += n - J
+            if (it > 0 or warm) and w != 0.0:
+                ds = dF[J : n + 1] * invr[J : n + 1]
+                P = P0 - w * 0.5 * (ds[:-1] + ds[1:])
+            else:
+                P = P0
+            p, q = _pq(Et / _moduli(P, kp, ke, floor, slope), dlog[J:n], invd[J:n])
+            _riccati(p, q, b, alpha, beta, J)
+            dF[n] = dsub
+            dF[J:n] = np.cumprod(alpha[J:n][::-1])[::-1] * dsub
+            if not iterate:
+                break
+            if d_old is not None:
+                err = float(np.max(np.abs(dF[J:n] - d_old)))
+                tol = rtol * abs(dsub)  # change, or the contraction's bound on it
+                if err <= tol or (
+                    it > 1 and err <= 0.5 * err_prev and err * err <= tol * (err_prev - err)
+                ):
+                    state_i[2] = max(int(state_i[2]), it)
+                    break
+                if it == maxit:
+                    return False
+                err_prev = err
+            d_old = dF[J:n].copy()
+        state_i[5] = n
+        state_i[6] = J
+        F[J:n] += dF[J:n]
+        st[J:n] += _below(beta, c, J, n) * dF[J:n] / r[J:n]
+        if J > 0:
+            S[1] += dF[J]
+        F[n] += dsub
+    return True
+
+
 def run_groups(
     g0, g1, gnode, r, invr, dlog, invd, F, st, Fself, stself, alpha, beta, hist, thist, dF,
     dFold, kp, ke, Et, c, floor, w, iterate, w_deep, rtol, maxit, wnodes, flush_every, nsub,
@@ -205,58 +262,13 @@ def run_groups(
         n = top if body else m
         if n > 0 and dtop != 0.0:
             J = min(int(B[0]), m)
-            dsub = dtop / nsub
-            b = beta[J - 1] if J > 0 else c
-            for _sub in range(nsub):
-                Fs = F[J : n + 1] * invr[J : n + 1]
-                P0 = -0.5 * (Fs[:-1] + Fs[1:])
-                d_old = None
-                # warm start: the previous increment's shape at the same depth below the
-                # load, scaled to this one (as the compiled kernel)
-                warm = iterate and w != 0.0 and state_i[5] >= 0
-                if warm:
-                    n_prev = int(state_i[5])
-                    shift = n - n_prev
-                    lo_g = max(J, int(state_i[6]) + shift)
-                    guess = np.zeros(n + 1 - J)
-                    if lo_g <= n:
-                        guess[lo_g - J :] = dF[lo_g - shift : n_prev + 1] * (dsub / dF[n_prev])
-                    dF[J : n + 1] = guess
-                err_prev = 0.0
-                for it in range(maxit + 1):
-                    state_i[3] += n - J
-                    if (it > 0 or warm) and w != 0.0:
-                        ds = dF[J : n + 1] * invr[J : n + 1]
-                        P = P0 - w * 0.5 * (ds[:-1] + ds[1:])
-                    else:
-                        P = P0
-                    p, q = _pq(Et / _moduli(P, kp, ke, floor, slope), dlog[J:n], invd[J:n])
-                    _riccati(p, q, b, alpha, beta, J)
-                    dF[n] = dsub
-                    dF[J:n] = np.cumprod(alpha[J:n][::-1])[::-1] * dsub
-                    if not iterate:
-                        break
-                    if d_old is not None:
-                        err = float(np.max(np.abs(dF[J:n] - d_old)))
-                        tol = rtol * abs(dsub)  # change, or the contraction's bound on it
-                        if err <= tol or (
-                            it > 1 and err <= 0.5 * err_prev and err * err <= tol * (err_prev - err)
-                        ):
-                            state_i[2] = max(int(state_i[2]), it)
-                            break
-                        if it == maxit:
-                            state_i[0] = count
-                            state_i[1] = k
-                            return g
-                        err_prev = err
-                    d_old = dF[J:n].copy()
-                state_i[5] = n
-                state_i[6] = J
-                F[J:n] += dF[J:n]
-                st[J:n] += _below(beta, c, J, n) * dF[J:n] / r[J:n]
-                if J > 0:
-                    S[1] += dF[J]
-                F[n] += dsub
+            if not _increment(
+                n, J, dtop / nsub, nsub, r, invr, dlog, invd, F, st, alpha, beta, dF, kp, ke,
+                slope, Et, c, floor, w, iterate, rtol, maxit, S, state_i,
+            ):  # fmt: skip
+                state_i[0] = count
+                state_i[1] = k
+                return g
         if not body:
             F[m : top + 1] = Fself[m : top + 1]
         st[m : top + 1] = stself[m : top + 1]

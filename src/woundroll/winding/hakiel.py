@@ -415,72 +415,12 @@ def wind(
         from woundroll.winding import _kernels_numpy as K  # no compiler cost (docs/winding.md)
     else:
         from woundroll.winding import _kernels as K
-    F = np.zeros(nn)
-    st = np.zeros(nn)
-    alpha = np.zeros(max(nn - 1, 1))
-    beta = np.zeros_like(alpha)
-    hist = np.zeros((alpha.size, 2))  # pressure of each element at its last two refreshes
-    thist = np.full((alpha.size, 2), -1, dtype=np.int64)  # and when (increments; -1: none)
-    invr = 1.0 / prob.r
-    invd = 1.0 / prob.dlog if nn > 1 else np.ones(1)
-    dF = np.zeros(nn)
-    dFold = np.zeros(nn)
-    w = _MODES[options.modulus_update]
-    iterate = options.modulus_update != "explicit"
-    # a frozen deep element stands for the moduli of every (sub)step of its period: the
-    # rule evaluates substep j of nsub at fraction (j - 1 + w) / nsub of the increment
-    nsub = options.load_substeps
-    w_deep = ((nsub - 1) / 2 + w) / nsub
-    if options.window_layers is None:
-        wnodes = -1
-    else:
-        # the window must hold the groups added since the last flush
-        wl = max(options.window_layers, 2 * options.flush_interval * options.layers_per_increment)
-        wnodes = wl * options.subdivisions
-    state_i = np.zeros(7, dtype=np.int64)
-    state_i[5] = -1  # no increment iterated yet (warm start, _kernels.run_groups)
-    B = np.zeros(_MAX_LEVELS + 1, dtype=np.int64)  # level boundaries (elements)
-    S = np.zeros(_MAX_LEVELS + 1)  # pending increment at the top of each level
+    ws = _Workspace.for_problem(prob, options)
     n_groups = prob.gnode.size - 1
     n_chunks = 1 if progress is None else min(n_groups, 50)
     bounds = np.linspace(0, n_groups, n_chunks + 1).round().astype(np.int64)
     for g0, g1 in zip(bounds[:-1], bounds[1:], strict=True):
-        failed = K.run_groups(
-            int(g0),
-            int(g1),
-            prob.gnode,
-            prob.r,
-            invr,
-            prob.dlog,
-            invd,
-            F,
-            st,
-            prob.Fself,
-            prob.stself,
-            alpha,
-            beta,
-            hist,
-            thist,
-            dF,
-            dFold,
-            prob.kp,
-            prob.ke,
-            prob.E_theta,
-            prob.c,
-            prob.floor,
-            w,
-            iterate,
-            w_deep,
-            options.rtol,
-            options.max_iterations,
-            wnodes,
-            options.flush_interval,
-            options.load_substeps,
-            options.new_layer == "elastic",
-            B,
-            S,
-            state_i,
-        )
+        failed = ws.run_groups(K, prob, options, int(g0), int(g1))
         if failed >= 0:
             raise ConvergenceError(
                 f"E_r fixed-point iteration did not reach rtol={options.rtol:g} in "
@@ -489,15 +429,90 @@ def wind(
             )
         if progress is not None:
             progress(float(g1) / n_groups)
-    K.flush_all(_MAX_LEVELS, B, S, prob.r, F, st, alpha, beta, prob.c)
+    K.flush_all(_MAX_LEVELS, ws.B, ws.S, prob.r, ws.F, ws.st, ws.alpha, ws.beta, prob.c)
     stats = {
         "increments": int(n_groups),
-        "max_iterations_used": int(state_i[2]),
+        "max_iterations_used": int(ws.state_i[2]),
         "nodes": int(nn),
-        "element_evaluations_window": int(state_i[3]),
-        "element_evaluations_refresh": int(state_i[4]),
+        "element_evaluations_window": int(ws.state_i[3]),
+        "element_evaluations_refresh": int(ws.state_i[4]),
     }
-    return _result(prob, F, st, web, core, tension, options, stats)
+    return _result(prob, ws.F, ws.st, web, core, tension, options, stats)
+
+
+@dataclass
+class _Workspace:
+    """The kernels' state between calls: F and sigma_theta per node, the Riccati
+    coefficients, the elements' refresh history, the increment's work arrays, the lazy
+    deep part's level boundaries ``B`` and pending increments ``S``, and ``state_i``
+    (:func:`woundroll.winding._kernels.run_groups`)."""
+
+    F: FloatArray
+    st: FloatArray
+    alpha: FloatArray
+    beta: FloatArray
+    hist: FloatArray
+    thist: NDArray[np.int64]
+    invr: FloatArray
+    invd: FloatArray
+    dF: FloatArray
+    dFold: FloatArray
+    w: float
+    iterate: bool
+    w_deep: float
+    wnodes: int
+    state_i: NDArray[np.int64]
+    B: NDArray[np.int64]
+    S: FloatArray
+
+    @classmethod
+    def for_problem(cls, prob: _Problem, options: WindingOptions) -> _Workspace:
+        nn = prob.r.size
+        alpha = np.zeros(max(nn - 1, 1))
+        w = _MODES[options.modulus_update]
+        # a frozen deep element stands for the moduli of every (sub)step of its period: the
+        # rule evaluates substep j of nsub at fraction (j - 1 + w) / nsub of the increment
+        nsub = options.load_substeps
+        if options.window_layers is None:
+            wnodes = -1
+        else:
+            # the window must hold the groups added since the last flush
+            wl = max(
+                options.window_layers, 2 * options.flush_interval * options.layers_per_increment
+            )
+            wnodes = wl * options.subdivisions
+        state_i = np.zeros(7, dtype=np.int64)
+        state_i[5] = -1  # no increment iterated yet (warm start, _kernels.run_groups)
+        return cls(
+            F=np.zeros(nn),
+            st=np.zeros(nn),
+            alpha=alpha,
+            beta=np.zeros_like(alpha),
+            hist=np.zeros((alpha.size, 2)),  # pressure of each element at its last two refreshes
+            thist=np.full((alpha.size, 2), -1, dtype=np.int64),  # and when (-1: none)
+            invr=1.0 / prob.r,
+            invd=1.0 / prob.dlog if nn > 1 else np.ones(1),
+            dF=np.zeros(nn),
+            dFold=np.zeros(nn),
+            w=w,
+            iterate=options.modulus_update != "explicit",
+            w_deep=((nsub - 1) / 2 + w) / nsub,
+            wnodes=wnodes,
+            state_i=state_i,
+            B=np.zeros(_MAX_LEVELS + 1, dtype=np.int64),  # level boundaries (elements)
+            S=np.zeros(_MAX_LEVELS + 1),  # pending increment at the top of each level
+        )
+
+    def run_groups(self, K: Any, prob: _Problem, options: WindingOptions, g0: int, g1: int) -> int:
+        """Wind groups g0..g1-1 with the kernels ``K``: -1, or the group that failed."""
+        return K.run_groups(
+            g0, g1, prob.gnode, prob.r, self.invr, prob.dlog, self.invd, self.F, self.st,
+            prob.Fself, prob.stself, self.alpha, self.beta, self.hist, self.thist, self.dF,
+            self.dFold, prob.kp, prob.ke, prob.E_theta, prob.c, prob.floor, self.w,
+            self.iterate, self.w_deep, options.rtol, options.max_iterations, self.wnodes,
+            options.flush_interval, options.load_substeps, options.new_layer == "elastic",
+            self.B, self.S, self.state_i,
+        )  # fmt: skip
 
 
 def wind_reference(
@@ -514,38 +529,13 @@ def wind_reference(
     modulus is refreshed every increment) and no compiled code: a reference for tests and
     ``benchmarks/bench_winding.py``. ``options.window_layers``/``flush_interval`` are ignored.
     """
-    from scipy.linalg import solve_banded
-
     options = options if options is not None else WindingOptions()
     prob = build_problem(web, core, outer_radius, tension, options)
-    r, dlog, c = prob.r, prob.dlog, prob.c
+    r = prob.r
     nn = r.size
     F = np.zeros(nn)
     st = np.zeros(nn)
-    w = _MODES[options.modulus_update]
     max_it = 0
-
-    def moduli(P: FloatArray) -> FloatArray:
-        E = np.interp(P, prob.kp, prob.ke)
-        slope = (prob.ke[-1] - prob.ke[-2]) / (prob.kp[-1] - prob.kp[-2])
-        E = np.where(P > prob.kp[-1], prob.ke[-1] + slope * (P - prob.kp[-1]), E)
-        return np.maximum(E, prob.floor)
-
-    def pq(g: FloatArray, d: FloatArray) -> tuple[FloatArray, FloatArray]:
-        k = np.sqrt(g)
-        x = k * d
-        small = x < 0.1
-        x2 = x * x
-        em = np.exp(-np.where(small, 1.0, x))
-        e2 = em * em
-        p = np.where(
-            small, (1 + x2 * (1 / 3 + x2 * (-1 / 45 + x2 * 2 / 945))) / d, k * (1 + e2) / (1 - e2)
-        )
-        q = np.where(
-            small, (1 + x2 * (-1 / 6 + x2 * (7 / 360 - x2 * 31 / 15120))) / d, 2 * k * em / (1 - e2)
-        )
-        return p, q
-
     elastic = options.new_layer == "elastic"
     for g in range(prob.gnode.size - 1):
         m, top = int(prob.gnode[g]), int(prob.gnode[g + 1])
@@ -553,41 +543,8 @@ def wind_reference(
         n = top if elastic else m  # the node the group's load acts on
         for _sub in range(options.load_substeps if n > 0 and dtop != 0.0 else 0):
             dsub = dtop / options.load_substeps
-            P0 = -F[: n + 1] / r[: n + 1]
-            P0e = 0.5 * (P0[:-1] + P0[1:])
-            d_old: FloatArray | None = None
-            d_full = np.zeros(n + 1)
-            for it in range(options.max_iterations + 1):
-                if it == 0:
-                    Pe = P0e
-                else:
-                    dP = -d_full / r[: n + 1]
-                    Pe = P0e + w * 0.5 * (dP[:-1] + dP[1:])
-                p, q = pq(prob.E_theta / moduli(Pe), dlog[:n])
-                # unknowns dF_0..dF_{n-1}; node i: q_{i-1} dF_{i-1} - (p_{i-1} + p_i) dF_i
-                # + q_i dF_{i+1} = 0, node 0: -(p_0 + c) dF_0 + q_0 dF_1 = 0
-                ab = np.zeros((3, n))
-                ab[1, :] = -(p + np.concatenate(([c], p[:-1])))
-                ab[0, 1:] = q[:-1]
-                ab[2, :-1] = q[:-1]
-                rhs = np.zeros(n)
-                rhs[-1] = -q[-1] * dsub
-                d_full = np.append(solve_banded((1, 1), ab, rhs), dsub)
-                if options.modulus_update == "explicit":
-                    break
-                if d_old is not None:
-                    if np.max(np.abs(d_full - d_old)) <= options.rtol * abs(dsub):
-                        max_it = max(max_it, it)
-                        break
-                    if it == options.max_iterations:
-                        raise ConvergenceError(f"E_r iteration did not converge in group {g}")
-                d_old = d_full
-            flux = np.empty(n)
-            flux[0] = c * d_full[0]
-            flux[1:] = p[:-1] * d_full[1:n] - q[:-1] * d_full[: n - 1]
-            F[:n] += d_full[:n]
-            st[:n] += flux / r[:n]
-            F[n] += dsub
+            its = _reference_substep(prob, options, F, st, n, dsub, g)
+            max_it = max(max_it, its)
         if not elastic:
             F[m : top + 1] = prob.Fself[m : top + 1]
         st[m : top + 1] = prob.stself[m : top + 1]
@@ -597,3 +554,84 @@ def wind_reference(
         "nodes": int(nn),
     }
     return _result(prob, F, st, web, core, tension, options, stats)
+
+
+def _reference_moduli(prob: _Problem, P: FloatArray) -> FloatArray:
+    """E_r at the pressures P: the law's knots, extrapolated linearly, floored."""
+    E = np.interp(P, prob.kp, prob.ke)
+    slope = (prob.ke[-1] - prob.ke[-2]) / (prob.kp[-1] - prob.kp[-2])
+    E = np.where(P > prob.kp[-1], prob.ke[-1] + slope * (P - prob.kp[-1]), E)
+    return np.maximum(E, prob.floor)
+
+
+def _reference_pq(g: FloatArray, d: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """The element relation's coefficients (the exact power-law solution; series for
+    small k d)."""
+    k = np.sqrt(g)
+    x = k * d
+    small = x < 0.1
+    x2 = x * x
+    em = np.exp(-np.where(small, 1.0, x))
+    e2 = em * em
+    p = np.where(
+        small, (1 + x2 * (1 / 3 + x2 * (-1 / 45 + x2 * 2 / 945))) / d, k * (1 + e2) / (1 - e2)
+    )
+    q = np.where(
+        small, (1 + x2 * (-1 / 6 + x2 * (7 / 360 - x2 * 31 / 15120))) / d, 2 * k * em / (1 - e2)
+    )
+    return p, q
+
+
+def _reference_substep(
+    prob: _Problem,
+    options: WindingOptions,
+    F: FloatArray,
+    st: FloatArray,
+    n: int,
+    dsub: float,
+    g: int,
+) -> int:
+    """One load step ``dsub`` at node ``n``: the E_r fixed point on the whole roll below
+    it (banded solve per iteration), then F and sigma_theta updated in place. Returns the
+    iterations the fixed point used (0 when it stopped by the iteration rule)."""
+    from scipy.linalg import solve_banded
+
+    r, dlog, c = prob.r, prob.dlog, prob.c
+    w = _MODES[options.modulus_update]
+    max_it = 0
+    P0 = -F[: n + 1] / r[: n + 1]
+    P0e = 0.5 * (P0[:-1] + P0[1:])
+    d_old: FloatArray | None = None
+    d_full = np.zeros(n + 1)
+    for it in range(options.max_iterations + 1):
+        if it == 0:
+            Pe = P0e
+        else:
+            dP = -d_full / r[: n + 1]
+            Pe = P0e + w * 0.5 * (dP[:-1] + dP[1:])
+        p, q = _reference_pq(prob.E_theta / _reference_moduli(prob, Pe), dlog[:n])
+        # unknowns dF_0..dF_{n-1}; node i: q_{i-1} dF_{i-1} - (p_{i-1} + p_i) dF_i
+        # + q_i dF_{i+1} = 0, node 0: -(p_0 + c) dF_0 + q_0 dF_1 = 0
+        ab = np.zeros((3, n))
+        ab[1, :] = -(p + np.concatenate(([c], p[:-1])))
+        ab[0, 1:] = q[:-1]
+        ab[2, :-1] = q[:-1]
+        rhs = np.zeros(n)
+        rhs[-1] = -q[-1] * dsub
+        d_full = np.append(solve_banded((1, 1), ab, rhs), dsub)
+        if options.modulus_update == "explicit":
+            break
+        if d_old is not None:
+            if np.max(np.abs(d_full - d_old)) <= options.rtol * abs(dsub):
+                max_it = it
+                break
+            if it == options.max_iterations:
+                raise ConvergenceError(f"E_r iteration did not converge in group {g}")
+        d_old = d_full
+    flux = np.empty(n)
+    flux[0] = c * d_full[0]
+    flux[1:] = p[:-1] * d_full[1:n] - q[:-1] * d_full[: n - 1]
+    F[:n] += d_full[:n]
+    st[:n] += flux / r[:n]
+    F[n] += dsub
+    return max_it

@@ -17,7 +17,7 @@ _COLUMNS = (
     ("sigma_r", "sigma_r_Pa", "sigma_r [Pa]"),
     ("sigma_theta", "sigma_theta_Pa", "sigma_theta [Pa]"),
     ("E_r", "E_r_Pa", "E_r [Pa]"),
-    ("wot", "wot_Pa", "wound-on tension [Pa]"),
+    ("wot", "wound_on_tension_Pa", "wound-on tension [Pa]"),
 )
 
 

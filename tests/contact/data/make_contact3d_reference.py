@@ -80,7 +80,7 @@ def run_case(key: str, name: str, overrides: list[str], model: str) -> dict:
         "outer_radius_m": float(res.winding.radius[-1]),
         "rho_fd": h["rho_fd"],
         "rho_energy": h["rho_energy"],
-        "delta_max_m": h["delta_max_m"],
+        "delta_max_m": h["impact_depth_m"],  # the stored file keeps its schema-1 key
         "alpha_N_per_m2": float(st.alpha),
         "beta_N_per_m": float(st.beta),
         "semi_contact_width_m": float(st.semi_contact_width),

@@ -102,6 +102,7 @@ def calibrate_head_cmd(
     from woundroll.app.cli.console import fail, out
     from woundroll.contact.block import calibrate_head_in_model
     from woundroll.instruments import get_instrument
+    from woundroll.pipeline.vocabulary import versioned
     from woundroll.util.output import strict_json
 
     try:
@@ -131,7 +132,7 @@ def calibrate_head_cmd(
     if write is not None:
         d["written"] = str(write)
     if as_json:
-        sys.stdout.write(strict_json(d) + "\n")
+        sys.stdout.write(strict_json(versioned(d)) + "\n")
         return
     t = Table(
         "quantity",
@@ -214,6 +215,7 @@ def calibrate_cmd(
 
     from woundroll.app.cli.console import err, fail, out
     from woundroll.inverse.site_calibration import calibrate_site
+    from woundroll.pipeline.vocabulary import versioned
     from woundroll.util.output import strict_json
 
     live = not (quiet or as_json) and err.is_terminal  # a pipe or a log gets no progress
@@ -242,7 +244,7 @@ def calibrate_cmd(
     if live:
         err.print("")
     if as_json:
-        sys.stdout.write(strict_json(cal.to_dict()) + "\n")
+        sys.stdout.write(strict_json(versioned(cal.to_dict())) + "\n")
         return
     u = cal.scale_name
     t = Table("parameter", "fitted", "1 SE", title="site calibration")

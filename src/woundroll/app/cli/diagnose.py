@@ -17,6 +17,7 @@ from rich.table import Table
 
 from woundroll.app.cli.options import CaseArg, JsonOpt, LaneWidthOpt, SetOpt, out_option
 from woundroll.errors import ConvergenceError, InputError
+from woundroll.pipeline.vocabulary import SCHEMA_VERSION, versioned
 from woundroll.util.output import strict_json, write_result_files
 
 
@@ -93,10 +94,10 @@ def readings_cmd(
     """Read a sheet of hardness readings; print the mean and scatter per position, the
     profile's CoV, peak-to-peak, band verdict and hard/soft bands; with several rolls the
     roll-to-roll trend."""
-    from woundroll.app.cli.console import fail, out
+    from woundroll.app.cli.console import fail
     from woundroll.assess.profile_check import FAULT_BAND
     from woundroll.io.readings import DISPLAY_UNITS
-    from woundroll.io.tester_files import FORMATS, detect_format, read_tester_file
+    from woundroll.io.tester_files import FORMATS
 
     try:
         if fmt not in FORMATS:
@@ -114,20 +115,8 @@ def readings_cmd(
                 )
             _readings_trend(csv_files, fmt, w, lw, frac, unit, out_dir, as_json)
             return
-        csv_file = csv_files[0]
-        layout = detect_format(csv_file, "CSV_FILE") if fmt == "auto" else fmt
-        try:
-            r = read_tester_file(
-                csv_file, format=layout, roll=roll, width=w, lane_width=lw, field="CSV_FILE"
-            )
-        except InputError as exc:
-            # a missing or unknown roll id is the --roll option's error
-            if layout == "tappi" and (
-                exc.message.startswith("no roll") or "pick one" in exc.message
-            ):
-                raise InputError(exc.message, "--roll") from None
-            raise
-        check = _check_one(csv_file, layout, r, frac)
+        layout, r = _read_one(csv_files[0], fmt, roll, w, lw)
+        check = _check_one(csv_files[0], layout, r, frac)
         if out_dir is not None:
             _write_readings(out_dir, r, check, unit)
     except InputError as exc:
@@ -135,10 +124,34 @@ def readings_cmd(
     except ConvergenceError as exc:  # pragma: no cover - nothing iterative here
         fail(exc, 1)
     if as_json:
-        payload = r.to_dict()
+        payload = versioned(r.to_dict())
         payload["profile_check"] = None if check is None else check.to_dict()
         sys.stdout.write(strict_json(payload) + "\n")
         return
+    _print_readings(r, check, unit, out_dir)
+
+
+def _read_one(csv_file: str, fmt: str, roll: str | None, w: float | None, lw: float | None):  # type: ignore[no-untyped-def]
+    """(layout, readings) of one file; a missing or unknown roll id is --roll's error."""
+    from woundroll.io.tester_files import detect_format, read_tester_file
+
+    layout = detect_format(csv_file, "CSV_FILE") if fmt == "auto" else fmt
+    try:
+        r = read_tester_file(
+            csv_file, format=layout, roll=roll, width=w, lane_width=lw, field="CSV_FILE"
+        )
+    except InputError as exc:
+        if layout == "tappi" and (exc.message.startswith("no roll") or "pick one" in exc.message):
+            raise InputError(exc.message, "--roll") from None
+        raise
+    return layout, r
+
+
+def _print_readings(r, check, unit: str | None, out_dir: Path | None) -> None:  # type: ignore[no-untyped-def]
+    """The readings per position, their repeatability and the profile check, as tables."""
+    from woundroll.app.cli.console import out
+    from woundroll.io.readings import DISPLAY_UNITS
+
     u = unit or r.position_unit or "in"
     f = DISPLAY_UNITS[u]
     cols = [f"position [{u}]"] + ([] if u == "m" else ["position [m]"])
@@ -225,7 +238,7 @@ def _write_readings(out_dir: Path, r, check, unit) -> None:  # type: ignore[no-u
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 
-    payload = r.to_dict()
+    payload = versioned(r.to_dict())
     payload["profile_check"] = None if check is None else check.to_dict()
     u = unit or r.position_unit or "in"
     try:
@@ -267,14 +280,14 @@ def _readings_trend(  # type: ignore[no-untyped-def]
         try:
             out_dir.mkdir(parents=True, exist_ok=True)
             (out_dir / "trend.json").write_text(
-                strict_json(tr.to_dict(), indent=1), encoding="utf-8"
+                strict_json(versioned(tr.to_dict()), indent=1), encoding="utf-8"
             )
             (out_dir / "trend.csv").write_text(tr.to_csv(), encoding="utf-8")
             plt.close(tr.plot(out_dir / "trend.png"))
         except OSError as exc:
             raise InputError(f"cannot write to {out_dir}: {exc.strerror or exc}", "--out") from None
     if as_json:
-        sys.stdout.write(strict_json(tr.to_dict()) + "\n")
+        sys.stdout.write(strict_json(versioned(tr.to_dict())) + "\n")
         return
     s = tr.scale
     lots = any("lot" in c.ids for c in checks)
@@ -360,7 +373,7 @@ def diagnose_cmd(
     ] = 3,
 ) -> None:
     """Readings -> the effective wound-on tension and near-surface pressure at each position."""
-    from woundroll.app.cli.console import fail, out, with_progress
+    from woundroll.app.cli.console import fail, with_progress
     from woundroll.case import load_case
     from woundroll.inverse.diagnosis import diagnose
     from woundroll.io.readings import read_readings
@@ -383,21 +396,12 @@ def diagnose_cmd(
 
         defects = defect_report(c, d)
         payload = {
+            "schema_version": SCHEMA_VERSION,
             "case": {"title": c.display_title},
             "readings": d.readings.to_dict(),
             "diagnosis": {**d.to_dict(), "defects": defects.to_dict()},
         }
-        fit = None
-        if causes:
-            from woundroll.inverse.causes import fit_causes
-
-            fit = fit_causes(c, d.readings, n_bands=bands, full_level=full_level)
-            fd = fit.to_dict()
-            payload["diagnosis"]["profile"] = fd["profile"]
-            payload["diagnosis"]["causes"] = fd["causes"]
-            payload["diagnosis"]["cause_fit"] = {
-                k: fd[k] for k in ("parameters", "verification", "forward_runs", "notes")
-            }
+        fit = _causes_into(payload, c, d, bands, full_level) if causes else None
         written = _write(out_dir, payload, d, defects) if out_dir is not None else []
         if fit is not None and out_dir is not None:
             import matplotlib.pyplot as plt
@@ -413,6 +417,27 @@ def diagnose_cmd(
         return
     if quiet:
         return
+    _print_diagnosis(c.display_title or case, d, defects, fit, written)
+
+
+def _causes_into(payload: dict, c, d, bands: int | None, full_level: int):  # type: ignore[no-untyped-def]
+    """Fit the causes of the CMD profile and put them into the diagnosis payload."""
+    from woundroll.inverse.causes import fit_causes
+
+    fit = fit_causes(c, d.readings, n_bands=bands, full_level=full_level)
+    fd = fit.to_dict()
+    payload["diagnosis"]["profile"] = fd["profile"]
+    payload["diagnosis"]["causes"] = fd["causes"]
+    payload["diagnosis"]["cause_fit"] = {
+        k: fd[k] for k in ("parameters", "verification", "forward_runs", "notes")
+    }
+    return fit
+
+
+def _print_diagnosis(title: str, d, defects, fit, written: list[Path]) -> None:  # type: ignore[no-untyped-def]
+    """The diagnosis' sentence, its table, the defect risks and the causes, as tables."""
+    from woundroll.app.cli.console import out
+
     out.print(escape(d.sentence()), highlight=False, soft_wrap=True)
     # headers escaped: rich reads "[in]" and "[kPa]" as markup and drops them
     t = Table(
@@ -421,10 +446,7 @@ def diagnose_cmd(
         escape("wound-on tension [MPa]"),
         escape(f"P at {d.pressure_depth * 1e3:.1f} mm [kPa]"),
         "status",
-        title=escape(
-            f"{c.display_title or case}: diagnosis "
-            f"({100 * d.confidence:.0f} % intervals in brackets)"
-        ),
+        title=escape(f"{title}: diagnosis ({100 * d.confidence:.0f} % intervals in brackets)"),
     )
     for row in d.summary():
         t.add_row(*[escape(v) for v in row])
@@ -484,13 +506,13 @@ def defects_cmd(
         c = load_case(case, set_ or [])
         rep = defect_report(c)
         if out_dir is not None:
-            write_result_files(out_dir, "defects", rep)
+            write_result_files(out_dir, "defects", rep, versioned({}))
     except InputError as exc:
         fail(exc, 2)
     except ConvergenceError as exc:
         fail(exc, 1)
     if as_json:
-        sys.stdout.write(strict_json({"defects": rep.to_dict()}) + "\n")
+        sys.stdout.write(strict_json(versioned({"defects": rep.to_dict()})) + "\n")
         return
     _print_defects(rep)
 
@@ -667,13 +689,13 @@ def design_cmd(
         )
         d = design_setpoints(c, tgt)
         if out_dir is not None:
-            write_result_files(out_dir, "design", d)
+            write_result_files(out_dir, "design", d, versioned({}))
     except InputError as exc:
         fail(exc, 2)
     except ConvergenceError as exc:
         fail(exc, 1)
     if as_json:
-        sys.stdout.write(strict_json({"design": d.to_dict()}) + "\n")
+        sys.stdout.write(strict_json(versioned({"design": d.to_dict()})) + "\n")
         return
     tb = Table("quantity", "value", title=escape(f"{c.display_title or case}: setpoint design"))
     for name, value in d.summary():

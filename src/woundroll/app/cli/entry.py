@@ -15,7 +15,17 @@ from typing import Annotated, Any
 import typer
 from rich.markup import escape
 
-from woundroll.app.cli import calibrate, diagnose, materials, report, run, serve, study, sweep
+from woundroll.app.cli import (
+    calibrate,
+    diagnose,
+    materials,
+    report,
+    run,
+    schema,
+    serve,
+    study,
+    sweep,
+)
 from woundroll.app.cli.console import err, out
 
 
@@ -92,7 +102,7 @@ def _main(
     """Wound-roll stresses from winder settings, and the hardness readings they cause."""
 
 
-for _group in (run, study, materials, diagnose, report, sweep, serve, calibrate):
+for _group in (run, study, materials, diagnose, report, sweep, serve, calibrate, schema):
     _group.register(app)
 
 

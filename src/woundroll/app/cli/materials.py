@@ -66,6 +66,7 @@ def fit_stack_cmd(
 
     from woundroll.materials.radial_modulus import read_stack_csv
     from woundroll.materials.stack_fit import FIT_LAWS, check_stack_data, fit_stack
+    from woundroll.pipeline.vocabulary import versioned
     from woundroll.util.output import strict_json
 
     try:
@@ -98,7 +99,7 @@ def fit_stack_cmd(
     except ConvergenceError as exc:
         fail(exc, 1)
     if as_json:
-        sys.stdout.write(strict_json({k: f.to_dict() for k, f in fits.items()}) + "\n")
+        sys.stdout.write(strict_json(versioned({k: f.to_dict() for k, f in fits.items()})) + "\n")
         return
     t = Table("law", "R^2", "RMS rel. error", "max rel. error", "case-file table")
     for name, f in fits.items():

@@ -40,6 +40,7 @@ def study(
     ] = None,
 ) -> None:
     """Run one of the reference paper's studies on its Table 2 rolls; print its tables."""
+    from woundroll.pipeline.vocabulary import versioned
     from woundroll.studies import run_study
     from woundroll.util.output import strict_json
 
@@ -65,7 +66,7 @@ def study(
             err.print(f"stopped by {exc}: workers ended, no output written", highlight=False)
             raise typer.Exit(128 + exc.signum) from None
     if as_json:
-        sys.stdout.write(strict_json(result.to_dict()) + "\n")
+        sys.stdout.write(strict_json(versioned(result.to_dict())) + "\n")
         return
     wide = out if out.is_terminal else Console(width=160, emoji=False)
     for title, header, rows in result.summary():

@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from woundroll.errors import ConvergenceError, InputError
+from woundroll.pipeline.vocabulary import versioned
 from woundroll.util.output import strict_json
 
 
@@ -32,7 +33,7 @@ def fit_cycle_cmd(
         fail(exc, 1)
         return
     if as_json:
-        sys.stdout.write(strict_json(fit.to_dict()) + "\n")
+        sys.stdout.write(strict_json(versioned(fit.to_dict())) + "\n")
         return
     t = Table("branch", "points", "RMS rel. error", "case-file key")
     t.add_row(

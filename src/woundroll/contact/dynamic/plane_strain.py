@@ -393,10 +393,10 @@ class DynamicImpactResult:
 
         return {
             "model": self.model,
-            "rho": self.rho,
-            "impulse_Ns": self.impulse,
+            "rho_dynamic": self.rho,
+            "impulse_N_s": self.impulse,
             "contact_time_s": self.contact_time,
-            "delta_max_m": self.max_depth,
+            "impact_depth_m": self.max_depth,
             "peak_deceleration_m_per_s2": self.peak_deceleration,
             "peak_time_s": self.peak_time,
             "peak_force_N": self.peak_force,
