@@ -141,3 +141,25 @@ def test_load_step_refinement_converges() -> None:
         f.append(run(0.3, LayeredOptions(base=base, layered_depth=5 * H)))
     print("steps 4, 8, 16:", f, _order(f))
     assert 0.5 <= _order(f) <= 2.5
+
+
+def test_layered_study_json_is_described() -> None:
+    # the study's JSON uses the vocabulary's keys only (a synthetic row: the study itself
+    # runs minutes)
+    from woundroll.pipeline import vocabulary as vocab
+    from woundroll.studies.layered import LayeredStudy
+
+    row = {
+        "case": "pet2-53.4N",
+        "series": "pile-height",
+        "pile_height_m": 0.02,
+        "rho_2d": 30.0,
+        "delta_max_2d_m": 2e-3,
+    }
+    for m in (0.1, 0.3, 0.5):
+        row[f"rho_layered_mu{m:g}"] = 25.0
+        row[f"delta_max_layered_mu{m:g}_m"] = 2.2e-3
+    study = LayeredStudy(rows=(row,))
+    assert vocab.undescribed_keys(study.to_dict()) == []
+    assert len(study.summary()) == 1
+    assert "2d" in study.summary()[0][1][2]

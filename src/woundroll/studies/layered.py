@@ -52,7 +52,29 @@ class LayeredStudy:
     name: str = field(default="layered")
 
     def to_dict(self) -> dict[str, Any]:
-        return {"study": self.name, "frictions": list(self.frictions), "rows": list(self.rows)}
+        rolls = []
+        for r in self.rows:
+            readings = [
+                {"model": "2d", "rho_fd": r["rho_2d"], "impact_depth_m": r["delta_max_2d_m"]}
+            ]
+            for m in self.frictions:
+                readings.append(
+                    {
+                        "model": "layered",
+                        "friction": m,
+                        "rho_fd": r[f"rho_layered_mu{m:g}"],
+                        "impact_depth_m": r[f"delta_max_layered_mu{m:g}_m"],
+                    }
+                )
+            rolls.append(
+                {
+                    "case": r["case"],
+                    "series": r["series"],
+                    "pile_height_m": r["pile_height_m"],
+                    "model_readings": readings,
+                }
+            )
+        return {"study": self.name, "rolls": rolls}
 
     def summary(self) -> list[SummaryTable]:
         header = (
