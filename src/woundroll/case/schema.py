@@ -10,6 +10,7 @@ dotted key (``web.thickness``); unknown keys are errors too, so a typo cannot pa
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from functools import cached_property, partial
@@ -68,6 +69,11 @@ class WebSpec(_Section):
     G_r_z: Q("pressure") | None = None
     G_theta_z: Q("pressure") | None = None
     radial_unloading: Any = None
+    alpha_r: float = 0.0  # 1/K, thermal expansion (woundroll.winding.storage)
+    alpha_theta: float = 0.0
+    beta_r: float = 0.0  # hygroscopic: strain per unit moisture content
+    beta_theta: float = 0.0
+    tensile_strength: Q("pressure") | None = None
 
     @model_validator(mode="before")
     @classmethod
@@ -78,7 +84,10 @@ class WebSpec(_Section):
             from woundroll.materials.unloading import unloading_from_spec
 
             data = dict(data)
-            data["radial_unloading"] = unloading_from_spec(data["radial_unloading"])
+            un = data["radial_unloading"]
+            # "elastic": no unloading law (unloading follows E_r), over a preset's law
+            elastic = isinstance(un, str) and un.strip().lower() == "elastic"
+            data["radial_unloading"] = None if elastic else unloading_from_spec(un)
         if isinstance(data, dict) and isinstance(data.get("radial_modulus"), dict):
             _check_tabulated_types(data["radial_modulus"])
             data = dict(data)
@@ -116,6 +125,7 @@ class CoreSpec(_Section):
     inner_radius: Q("length", "nonnegative") | None = None
     E: Q("pressure") | None = None
     nu: Q("dimensionless", "nonnegative") | None = None
+    thermal_expansion: float = 0.0  # 1/K (woundroll.winding.storage)
 
     @model_validator(mode="after")
     def _one_way(self) -> CoreSpec:
@@ -140,10 +150,12 @@ class CoreSpec(_Section):
     def build(self) -> Core:
         """The :class:`~woundroll.materials.web.Core` of this section."""
         if self.rigid:
-            return Core(self.outer_radius, math.inf)
-        if self.stiffness is not None:
-            return Core(self.outer_radius, self.stiffness)
-        return Core.tube(self.outer_radius, self.inner_radius, self.E, self.nu)
+            core = Core(self.outer_radius, math.inf)
+        elif self.stiffness is not None:
+            core = Core(self.outer_radius, self.stiffness)
+        else:
+            core = Core.tube(self.outer_radius, self.inner_radius, self.E, self.nu)
+        return dataclasses.replace(core, thermal_expansion=self.thermal_expansion)
 
 
 class TaperSpec(_Section):
@@ -507,6 +519,40 @@ class DefectsSpec(_Section):
     slack_fraction: float = Field(default=0.7, gt=0.0, lt=1.0)
 
 
+def _kelvin(value: Any) -> Any:
+    """A temperature change: a number [K] or text with ``K`` / ``degC`` / ``°C`` (a change
+    of one degree Celsius is one kelvin)."""
+    if isinstance(value, str):
+        text = value.strip()
+        for unit in ("degC", "°C", "K"):
+            if text.endswith(unit):
+                text = text[: -len(unit)].strip()
+                break
+        try:
+            return float(text)
+        except ValueError:
+            raise ValueError(f"must be a number of kelvin such as '-20 K', got {value!r}") from None
+    return value
+
+
+class StorageSpec(_Section):
+    """``[storage]``: temperature and moisture after winding
+    (:mod:`woundroll.winding.storage`): ``temperature_change`` [K], roll and core in storage
+    minus at winding; ``moisture_change`` [-], the web's moisture content change (mass
+    fraction, ``"1 %"`` accepted). The web's and core's expansion coefficients are
+    ``web.alpha_r``, ``web.alpha_theta``, ``web.beta_r``, ``web.beta_theta`` and
+    ``core.thermal_expansion``."""
+
+    temperature_change: Annotated[float, BeforeValidator(_kelvin)] = 0.0
+    moisture_change: Q("dimensionless", "any") = 0.0
+
+    def build(self) -> Any:
+        """The :class:`~woundroll.winding.storage.StorageChange` of this section."""
+        from woundroll.winding.storage import StorageChange
+
+        return StorageChange(self.temperature_change, self.moisture_change)
+
+
 class Case(_Section):
     """A whole case: ``title``, ``[web]``, ``[core]``, ``[winding]``, optional ``[tester]``,
     ``[contact]``, ``[profile]`` (their tables are passed to the models that own them)."""
@@ -521,6 +567,7 @@ class Case(_Section):
     readings: ReadingsSpec | None = None
     uncertainty: UncertaintySpec | None = None
     defects: DefectsSpec | None = None
+    storage: StorageSpec | None = None
     _base_dir: Path | None = PrivateAttr(default=None)
     _warnings: tuple[str, ...] = PrivateAttr(default=())
     _given: dict[str, Any] = PrivateAttr(default_factory=dict)

@@ -13,6 +13,9 @@ from typing import Any
 
 from woundroll.errors import InputError
 
+#: preset keys that document the material and are not web keys
+_INFO_KEYS = frozenset({"description", "source", "friction"})
+
 
 @lru_cache(maxsize=1)
 def _all_presets() -> dict[str, dict[str, Any]]:
@@ -31,10 +34,12 @@ def list_materials() -> dict[str, dict[str, Any]]:
 
 
 def material_preset(name: str, field: str = "web.preset") -> dict[str, Any]:
-    """The web keys of preset ``name`` (case-insensitive), without description/source."""
+    """The web keys of preset ``name`` (case-insensitive), without the keys that document
+    it (``description``, ``source``, ``friction``: the interlayer friction a case gives as
+    ``winding.friction`` / ``contact.friction``)."""
     table = _all_presets().get(str(name).upper())
     if table is None:
         raise InputError(
             f"unknown material preset {name!r}; bundled: {', '.join(_all_presets())}", field
         )
-    return {k: v for k, v in table.items() if k not in {"description", "source"}}
+    return {k: v for k, v in table.items() if k not in _INFO_KEYS}

@@ -59,6 +59,15 @@ class Web:
     radial_unloading : PfeifferUnloading or None
         Unloading branch of the radial response (:mod:`woundroll.materials.unloading`);
         None: unloading follows E_r (elastic, as in the paper).
+    alpha_r, alpha_theta : float [1/K]
+        Thermal expansion coefficients of the wound stack (radial, i.e. through the stack)
+        and of the web along the MD (hoop); 0 by default (no thermal strain).
+    beta_r, beta_theta : float [-]
+        Hygroscopic expansion coefficients: strain per unit change of moisture content
+        (mass fraction), radial and MD; 0 by default.
+    tensile_strength : float or None [Pa]
+        MD tensile strength; None: not checked (:mod:`woundroll.winding.storage` flags a
+        hoop stress above it).
     """
 
     thickness: float
@@ -74,8 +83,19 @@ class Web:
     G_r_z: float | None = None
     G_theta_z: float | None = None
     radial_unloading: Any = None
+    alpha_r: float = 0.0
+    alpha_theta: float = 0.0
+    beta_r: float = 0.0
+    beta_theta: float = 0.0
+    tensile_strength: float | None = None
 
     def __post_init__(self) -> None:
+        for name in ("alpha_r", "alpha_theta", "beta_r", "beta_theta"):
+            v = getattr(self, name)
+            if not isinstance(v, int | float) or not math.isfinite(v):
+                raise InputError(f"must be a finite number, got {v!r}", f"web.{name}")
+        if self.tensile_strength is not None:
+            _positive(self.tensile_strength, "web.tensile_strength")
         if self.E_z is None:
             object.__setattr__(self, "E_z", self.E_theta)
         for name in ("thickness", "width", "E_theta", "E_z", "density"):
@@ -137,6 +157,8 @@ class Core:
 
     ``stiffness`` E_c [Pa] is defined by ``u(r_c) = r_c sigma_r(r_c) / E_c`` (Hakiel's core
     condition); ``math.inf`` is a rigid core. :meth:`tube` builds it from an isotropic tube.
+    ``thermal_expansion`` [1/K]: the core's linear expansion coefficient (its outer radius
+    grows by ``r_c alpha_c dT`` when free; 0 by default, the core does not change).
     """
 
     outer_radius: float
@@ -144,8 +166,12 @@ class Core:
     inner_radius: float | None = None
     E: float | None = None
     nu: float | None = None
+    thermal_expansion: float = 0.0
 
     def __post_init__(self) -> None:
+        v = self.thermal_expansion
+        if not isinstance(v, int | float) or not math.isfinite(v):
+            raise InputError(f"must be a finite number, got {v!r}", "core.thermal_expansion")
         _positive(self.outer_radius, "core.outer_radius")
         _positive(self.stiffness, "core.stiffness", allow_inf=True)
 

@@ -128,18 +128,50 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     options = WindingOptions.from_dict(case.winding.options, "winding.options")
     setup = case.tester_setup
     if case.winding.thickness_profile is not None:
+        if case.storage is not None:
+            raise InputError(
+                "a storage change is not modelled with winding.thickness_profile yet", "storage"
+            )
         return _run_profile(case, web, core, r_out, schedule, options, setup, report)
     # winding: the stresses in the roll
     winding = wind(
         web, core, r_out, schedule, options=options, progress=lambda f: report("winding", f)
     )
+    winding, storage_warnings = _after_storage(case, winding, web, core)
     max_p = float(-np.min(winding.sigma_r))
     if setup is None:
         flags, warns = result_flags(None, None, [], case.warnings, max_p)
-        return RunResult(case=case, winding=winding, warnings=tuple(warns), flags=flags)
-    if setup.roll_spring is not None:
-        return _run_given_spring(case, winding, setup, web, core, r_out, max_p, report)
-    return _run_contact(case, winding, setup, web, core, r_out, max_p, report)
+        result = RunResult(case=case, winding=winding, warnings=tuple(warns), flags=flags)
+    elif setup.roll_spring is not None:
+        result = _run_given_spring(case, winding, setup, web, core, r_out, max_p, report)
+    else:
+        result = _run_contact(case, winding, setup, web, core, r_out, max_p, report)
+    if case.storage is None:
+        return result
+    st = winding.storage
+    note = (
+        f"storage: temperature change {st['temperature_change_K']:g} K, moisture change "
+        f"{st['moisture_change']:g}: core pressure {st['core_pressure_before_Pa'] / 1e3:.4g} -> "
+        f"{st['core_pressure_Pa'] / 1e3:.4g} kPa; stresses and reading are after the change"
+    )
+    return replace(
+        result,
+        notes=(*result.notes, note),
+        warnings=result.warnings + storage_warnings,
+        flags={**result.flags, "storage_overstress": bool(storage_warnings)},
+    )
+
+
+def _after_storage(case: Case, winding: Any, web: Web, core: Any) -> tuple[Any, tuple[str, ...]]:
+    """``[storage]``: the roll after its temperature and moisture change
+    (:func:`woundroll.winding.storage.apply_storage`); everything downstream (contact,
+    reading) sees the roll after the change. No ``[storage]``: the wound-in roll as is."""
+    if case.storage is None:
+        return winding, ()
+    from woundroll.winding.storage import apply_storage
+
+    res = apply_storage(winding, web, core, case.storage.build())
+    return replace(res.winding, storage=res.to_dict()), res.warnings
 
 
 def _run_given_spring(

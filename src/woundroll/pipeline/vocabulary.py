@@ -43,6 +43,7 @@ UNIT_SUFFIXES: dict[str, str] = {
     "m/s^2": "_m_per_s2",
     "N s": "_N_s",
     "N m": "_N_m",
+    "K": "_K",
     "pli": "_pli",  # lbf/in: the US copy of a tension per width beside its SI key
 }
 
@@ -322,6 +323,17 @@ _TERMS: tuple[Term, ...] = (
     _b("spring_extrapolated", "the striker goes deeper than the contact model solved"),
     _b("implausible_input", "a case value outside its plausible range"),
     _b("pressure_implausible", "the largest pressure beyond its plausible range"),
+    _b("storage_overstress", "after the storage change layers separate or exceed strength"),
+    # ------------------------------------------------------------------ storage
+    _o("storage", "the roll's change after winding: temperature and moisture"),
+    _t("temperature_change_K", "K", "temperature in storage minus at winding", "ΔT"),
+    _t("moisture_change", "", "change of the web's moisture content (mass fraction)", "ΔM"),
+    _t("core_pressure_before_Pa", "Pa", "core pressure before the storage change"),
+    _t("max_sigma_theta_Pa", "Pa", "largest hoop stress in the roll"),
+    _t("min_sigma_theta_Pa", "Pa", "smallest hoop stress in the roll"),
+    _t("delta_sigma_r_Pa", "Pa", "change of the radial stress by the storage change (per node)"),
+    _t("delta_sigma_theta_Pa", "Pa", "change of the hoop stress by the storage change (per node)"),
+    _i("iterations", "iterations used"),
     # ------------------------------------------------------------------ profile
     _t("z_m", "m", "CMD position of a sector's centre", "z"),
     _r("reading_energy", "readout", "the energy model's reading"),

@@ -63,6 +63,8 @@ class WindingResult:
     inputs: dict[str, Any] = field(default_factory=dict)
     options: dict[str, Any] = field(default_factory=dict)
     stats: dict[str, Any] = field(default_factory=dict)
+    #: the change after winding (:mod:`woundroll.winding.storage`), when one was applied
+    storage: dict[str, Any] | None = None
 
     @property
     def pressure(self) -> FloatArray:
@@ -96,6 +98,8 @@ class WindingResult:
             options=self.options,
             stats=self.stats,
         )
+        if self.storage is not None:
+            out["storage"] = self.storage
         return out
 
     def to_table(self) -> str:
