@@ -40,6 +40,7 @@ CONTACT_LAYERS: list[tuple[str, ...]] = [
     ("result", "heads", "stepping"),
     ("plane_strain",),
     ("solid3d",),
+    ("layered",),
     ("models",),
     ("spring",),
     ("dynamic",),

@@ -191,7 +191,7 @@ def test_pile_height_study_is_consistent(piles):
 
 
 def test_registry_rejects_unknown_name():
-    assert set(STUDIES) == {"tension", "pile-height", "slip", "all", "dynamic"}
+    assert set(STUDIES) == {"tension", "pile-height", "slip", "all", "dynamic", "layered"}
     with pytest.raises(InputError) as exc:
         run_study("hardness")
     assert exc.value.field == "study"

@@ -71,6 +71,35 @@ def _solid3d(web: Any, core: Any, r: Any, sigma_r: Any, instrument: Any, **kw: A
     return res, None
 
 
+def _layered(web: Any, core: Any, r: Any, sigma_r: Any, instrument: Any, **kw: Any) -> Any:
+    """The plane-strain layered roll (:func:`woundroll.contact.layered.solver.indent_layered`):
+    sheets with Coulomb friction (``friction``) in a layered zone under the head, the 2D
+    continuum below; the 2D options carry the mesh and step settings. (result, None)."""
+    import dataclasses
+
+    from woundroll.contact.heads import head_length_of
+    from woundroll.contact.layered.solver import LayeredOptions, indent_layered
+
+    kw.pop("options3d", None)
+    base = kw.pop("options", None)
+    options = (
+        LayeredOptions()
+        if base is None
+        else LayeredOptions(base=dataclasses.replace(base, newton=False))
+    )
+    res = indent_layered(
+        web,
+        core,
+        r,
+        sigma_r,
+        head_radius=instrument.head_radius,
+        head_length=head_length_of(instrument),
+        options=options,
+        **kw,
+    )
+    return res, None
+
+
 @dataclass(frozen=True)
 class RollModelEntry:
     """One roll model of the registry.
@@ -147,6 +176,16 @@ ROLL_MODELS: dict[str, RollModelEntry] = {
             "(0.4-1.3 %), Hertz sphere, linear orthotropic layers",
             _solid3d,
             False,
+        ),
+        RollModelEntry(
+            "layered",
+            "plane strain, layered: sheets with Coulomb friction under the head",
+            ("cylinder",),
+            False,
+            "equals the 2D continuum on its mesh when every interface sticks (6e-6); "
+            "layers-per-shell refinement (docs/contact.md, 'The layered roll')",
+            _layered,
+            True,
         ),
     )
 }

@@ -52,7 +52,7 @@ from collections.abc import Callable
 from typing import Any
 
 from woundroll.errors import InputError
-from woundroll.studies import all_studies, dynamic, pile_height, slip, tension
+from woundroll.studies import all_studies, dynamic, layered, pile_height, slip, tension
 from woundroll.studies._common import TABLE2, Progress, StudyResult, SummaryTable
 from woundroll.studies.all_studies import AllStudies
 from woundroll.studies.pile_height import DEFAULT_PILE_HEIGHTS, PileHeightStudy, pile_height_study
@@ -67,6 +67,7 @@ STUDIES: dict[str, Callable[..., Any]] = {
     "slip": slip.run,
     "all": all_studies.run,
     "dynamic": dynamic.run,
+    "layered": layered.run,
 }
 
 

@@ -1,0 +1,197 @@
+"""The layered roll beside the continuum (issue 25, item 3): does interlayer friction bring
+the model toward the paper's measured facts?
+
+Per roll of Table 2 and per pile height of the PET2 53.4 N roll (H = 2, 4, 6, 8.89 cm,
+Figures 16/17) the Rho reading (FD {4}-{13}) with the plane-strain continuum (``"2d"``) and
+the layered roll (``"layered"``) at mu = 0.1, 0.3, 0.5 (``contact.friction``). The facts to
+compare with (docs/studies.md): the paper's tests read nearly the same at every pile height,
+and soft PET2 reads below the continuum models.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from woundroll.studies._common import (
+    TABLE2,
+    Progress,
+    SummaryTable,
+    _fmt,
+    _map,
+    _measure,
+    _savefig,
+    _write,
+)
+from woundroll.studies.pile_height import DEFAULT_PILE_HEIGHTS
+
+#: Friction coefficients of the layered rows [-].
+FRICTIONS: tuple[float, ...] = (0.1, 0.3, 0.5)
+#: The roll of the pile-height series.
+PILE_CASE = "pet2-53.4N"
+#: Core outer radius of the bundled PET cases [m] (pile height = outer radius - this).
+_PILE_OVERRIDE = "winding.outer_radius={r!r} m"
+
+
+@dataclass(frozen=True)
+class LayeredStudy:
+    """Rho of each roll by the continuum and the layered model.
+
+    Attributes
+    ----------
+    rows : tuple of dict
+        ``case``, ``pile_height_m``, ``series`` ("table2" or "pile-height"), ``rho_2d`` and
+        ``rho_layered_mu<mu>`` per friction [-], and ``delta_max_m`` of each.
+    frictions : tuple of float
+    """
+
+    rows: tuple[dict[str, Any], ...]
+    frictions: tuple[float, ...] = FRICTIONS
+    name: str = field(default="layered")
+
+    def to_dict(self) -> dict[str, Any]:
+        rolls = []
+        for r in self.rows:
+            readings = [
+                {"model": "2d", "rho_fd": r["rho_2d"], "impact_depth_m": r["delta_max_2d_m"]}
+            ]
+            for m in self.frictions:
+                readings.append(
+                    {
+                        "model": "layered",
+                        "friction": m,
+                        "rho_fd": r[f"rho_layered_mu{m:g}"],
+                        "impact_depth_m": r[f"delta_max_layered_mu{m:g}_m"],
+                    }
+                )
+            rolls.append(
+                {
+                    "case": r["case"],
+                    "series": r["series"],
+                    "pile_height_m": r["pile_height_m"],
+                    "model_readings": readings,
+                }
+            )
+        return {"study": self.name, "rolls": rolls}
+
+    def summary(self) -> list[SummaryTable]:
+        header = (
+            "case",
+            "H [cm]",
+            "Rho 2d [-]",
+            *(f"Rho layered mu={m:g} [-]" for m in self.frictions),
+        )
+        tables = []
+        for series, title in (
+            ("table2", "Table 2 rolls: continuum (2d) and layered"),
+            ("pile-height", f"Pile heights of {PILE_CASE}: continuum and layered"),
+        ):
+            rows = [
+                (
+                    r["case"],
+                    f"{r['pile_height_m'] * 100:.2f}",
+                    _fmt(r["rho_2d"]),
+                    *(_fmt(r[f"rho_layered_mu{m:g}"]) for m in self.frictions),
+                )
+                for r in self.rows
+                if r["series"] == series
+            ]
+            if rows:
+                tables.append(SummaryTable(title, header, rows))
+        return tables
+
+    def notes(self) -> list[str]:
+        pile = [r for r in self.rows if r["series"] == "pile-height"]
+        out = []
+        if len(pile) >= 2:
+            lo, hi = pile[0], pile[-1]
+            out.append(
+                f"pile height {lo['pile_height_m'] * 100:.2f} -> {hi['pile_height_m'] * 100:.2f}"
+                f" cm: 2d {lo['rho_2d'] / hi['rho_2d']:.2f}x; layered "
+                + ", ".join(
+                    f"mu={m:g} {lo[f'rho_layered_mu{m:g}'] / hi[f'rho_layered_mu{m:g}']:.2f}x"
+                    for m in self.frictions
+                )
+                + " (the paper's tests: nearly 1x)"
+            )
+        return out
+
+    def write(self, out_dir: str | Path) -> list[Path]:
+        return _write(self, out_dir)
+
+    def plot(self, out_dir: str | Path) -> list[Path]:
+        """``layered_pile_height.png``: Rho against pile height, 2d and layered."""
+        import matplotlib.pyplot as plt
+
+        pile = [r for r in self.rows if r["series"] == "pile-height"]
+        if not pile:
+            return []
+        h = [r["pile_height_m"] * 100 for r in pile]
+        fig, ax = plt.subplots(figsize=(6, 4))
+        ax.plot(h, [r["rho_2d"] for r in pile], "ko-", label="2d continuum")
+        for m in self.frictions:
+            ax.plot(h, [r[f"rho_layered_mu{m:g}"] for r in pile], "s--", label=f"layered mu={m:g}")
+        ax.set_xlabel("pile height H [cm]")
+        ax.set_ylabel("Rho (FD) [-]")
+        ax.set_title(f"{PILE_CASE}: continuum against layered")
+        ax.legend()
+        return [_savefig(fig, Path(out_dir) / "layered_pile_height.png")]
+
+
+def _job(case: str, overrides: tuple[str, ...]) -> dict[str, Any]:
+    row = _measure(case, overrides)
+    return {k: row[k] for k in ("case", "pile_height_m", "rho_fd", "delta_max_m")}
+
+
+def layered_study(
+    cases: Sequence[str] = TABLE2,
+    pile_heights: Sequence[float] = DEFAULT_PILE_HEIGHTS,
+    frictions: Sequence[float] = FRICTIONS,
+    progress: Progress | None = None,
+    *,
+    workers: int = 1,
+) -> LayeredStudy:
+    """Rho by ``"2d"`` and ``"layered"`` (each mu of ``frictions``) for ``cases`` and for
+    :data:`PILE_CASE` wound to core radius + each of ``pile_heights`` [m]."""
+    from woundroll.case import load_case
+
+    models = [("2d", ("contact.model='2d'",))] + [
+        (f"layered_mu{m:g}", ("contact.model='layered'", f"contact.friction={m!r}"))
+        for m in frictions
+    ]
+    r_core = load_case(PILE_CASE).core.build().outer_radius
+    rolls: list[tuple[str, str, tuple[str, ...]]] = [(c, "table2", ()) for c in cases]
+    rolls += [
+        (PILE_CASE, "pile-height", (_PILE_OVERRIDE.format(r=r_core + h),)) for h in pile_heights
+    ]
+    jobs = [
+        (case, (*over, "contact.no_update=false", *m_over))
+        for case, _, over in rolls
+        for _, m_over in models
+    ]
+    out = _map(
+        _job, jobs, workers=workers, progress=progress, label=lambda i: f"{jobs[i][0]} ({i + 1})"
+    )
+    rows = []
+    for k, (case, series, _) in enumerate(rolls):
+        got = out[k * len(models) : (k + 1) * len(models)]
+        row: dict[str, Any] = {
+            "case": case,
+            "series": series,
+            "pile_height_m": got[0]["pile_height_m"],
+        }
+        for (name, _), g in zip(models, got, strict=True):
+            row[f"rho_{name}"] = g["rho_fd"]
+            row[f"delta_max_{name}_m"] = g["delta_max_m"]
+        rows.append(row)
+    return LayeredStudy(rows=tuple(rows), frictions=tuple(frictions))
+
+
+def run(
+    progress: Progress | None = None, *, workers: int = 1, model: str | None = None
+) -> LayeredStudy:
+    """The registry's entry (``woundroll study layered``); ``model`` is not used (the
+    study fixes its models: 2d and layered)."""
+    return layered_study(progress=progress, workers=workers)
