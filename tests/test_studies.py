@@ -40,9 +40,12 @@ FD_ENERGY_RTOL = 0.06
 # Measured: 0.41 of the updated reading for PET1, 0.66-0.70 for PET2.
 NO_UPDATE_MAX_RATIO = 0.8
 # Impulse: below the elastic bound 2 m_s v (the striker cannot leave faster than it came),
-# and not far below the manual's 0.267 N s: measured 0.219-0.263 N s (softest roll lowest:
-# more of the energy goes into the roll's active mass in the plastic collision).
-IMPULSE_MIN = 0.75 * MANUAL_IMPULSE_NS
+# and not far below the manual's 0.267 N s. Measured with the PET presets' typical unloading
+# law (K2u = 1.6 K2, data/materials/pet.toml): 0.195 (PET2 26.7 N) to 0.230 N s (PET1), the
+# softest roll lowest (more energy into the roll's active mass and its hysteresis); 0.219-0.263
+# N s with an elastic stack. The bound, 0.7 x the manual, fails a roll that loses a third more
+# energy than the softest Table 2 roll does now.
+IMPULSE_MIN = 0.7 * MANUAL_IMPULSE_NS
 
 
 @pytest.fixture(scope="module")
