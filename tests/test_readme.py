@@ -141,6 +141,11 @@ def _check(command: str, out: str, workdir: Path) -> None:
         assert inputs["winding.tension"]["value"] == pytest.approx(350.25367, rel=1e-6)  # N/m
         assert inputs["web.radial_modulus.K2"]["value"] == 80
         assert math.isfinite(d["hardness"]["reading"])
+    elif args == ["run", "newsprint-300Nm"]:
+        # a paper preset with its sources reads on the Rho-meter's dial (docs: 42.9 Rho)
+        m = re.search(r"rho reading \(rho-meter, roll model 2d\)\s*│\s*(\d+\.\d)", out)
+        assert m and 0.0 < float(m.group(1)) < 100.0
+        assert re.search(r"web\.thickness\s*│.*│\s*preset NEWSPRINT", out)
     elif args[:2] == ["run", "pet3-2.3MPa"]:
         d = json.loads((workdir / args[args.index("--out") + 1] / "result.json").read_text())
         rho = d["profile"]["reading"]  # one reading per CMD sector (3 here), on the dial
