@@ -48,7 +48,7 @@ def test_numbers_and_provenance(html, result):
     assert case_hash(result.case) in html
     # inputs with units and sources: the material preset with its source, the instrument's
     # own [sources] entries, the case file
-    assert "preset PET1 (Reference paper, Table 2)" in html
+    assert "preset PET1 (Reference paper, Table 2;" in html  # then the typical values named
     assert "reference paper, Table 1 (0.8 cm)" in html  # rho-meter release_position source
     assert re.search(r"web.thickness</code></td><td class=\"num\">100</td><td>um", html)
     assert "roll spring given explicitly: contact model bypassed" in html  # run notes
