@@ -4,10 +4,37 @@ across the CMD).
 
 * :mod:`~woundroll.pipeline.runner` -- :func:`run` chains the steps;
 * :mod:`~woundroll.pipeline.results` -- :class:`RunResult` and the flags of a run;
-* :mod:`~woundroll.pipeline.summary` -- the headline lines of a result (CLI, report, web).
+* :mod:`~woundroll.pipeline.summary` -- the headline lines of a result (CLI, report, web);
+* :mod:`~woundroll.pipeline.vocabulary` -- every JSON key, its unit and meaning.
+
+The names below load on first use, so that importing one light submodule (the vocabulary,
+the summary) does not import the models: ``woundroll --help`` stays fast.
 """
 
-from woundroll.pipeline.results import NoUpdate, RunResult, result_flags
-from woundroll.pipeline.runner import Progress, hardness_on_roll, run
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from woundroll.pipeline.results import NoUpdate, RunResult, result_flags
+    from woundroll.pipeline.runner import Progress, hardness_on_roll, run
+
+_LAZY = {
+    "NoUpdate": "woundroll.pipeline.results",
+    "RunResult": "woundroll.pipeline.results",
+    "result_flags": "woundroll.pipeline.results",
+    "Progress": "woundroll.pipeline.runner",
+    "hardness_on_roll": "woundroll.pipeline.runner",
+    "run": "woundroll.pipeline.runner",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        import importlib
+
+        value = getattr(importlib.import_module(_LAZY[name]), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'woundroll.pipeline' has no attribute {name!r}")
+
 
 __all__ = ["NoUpdate", "Progress", "RunResult", "hardness_on_roll", "result_flags", "run"]
