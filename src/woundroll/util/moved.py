@@ -9,8 +9,6 @@ modules named in the docs of the earlier layout); private helpers moved without 
 from __future__ import annotations
 
 import importlib
-import importlib.abc
-import importlib.util
 import sys
 import warnings
 from types import ModuleType
@@ -38,7 +36,7 @@ MOVED: dict[str, str] = {
 }
 
 
-class _Alias(importlib.abc.Loader):
+class _Alias:  # an importlib Loader (duck-typed: importlib.abc costs ~15 ms of start-up)
     def __init__(self, new: str) -> None:
         self.new = new
 
@@ -49,7 +47,7 @@ class _Alias(importlib.abc.Loader):
         pass
 
 
-class MovedFinder(importlib.abc.MetaPathFinder):
+class MovedFinder:  # an importlib MetaPathFinder (duck-typed, as _Alias)
     """Finds an old module path of :data:`MOVED`, after every other finder has failed."""
 
     def find_spec(self, fullname: str, path: Any = None, target: Any = None) -> Any:
@@ -61,6 +59,8 @@ class MovedFinder(importlib.abc.MetaPathFinder):
             DeprecationWarning,
             stacklevel=2,
         )
+        import importlib.util
+
         return importlib.util.spec_from_loader(fullname, _Alias(new))
 
 
