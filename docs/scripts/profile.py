@@ -45,21 +45,17 @@ def table3() -> str:
 
 def _scaled_profile(factor: float, into: str) -> str:
     """The bundled Table 3 profile with its deviations from the mean scaled by ``factor``,
-    written as a CSV file in directory ``into``; its path."""
-    from importlib import resources
+    written as a CSV file (SI) in directory ``into``; its path."""
     from pathlib import Path
 
-    import numpy as np
+    from woundroll.materials.thickness_profile import bundled_profile
 
-    src = resources.files("woundroll.data").joinpath("profiles", "table3_synthetic_pet.csv")
-    lines = src.read_text().splitlines()
-    head = [ln for ln in lines if ln.startswith("#") or not ln[:1].isdigit()]
-    rows = np.array([[float(x) for x in ln.split(",")] for ln in lines if ln[:1].isdigit()])
-    mean = rows[:, 1].mean()
-    rows[:, 1] = mean + factor * (rows[:, 1] - mean)
+    prof = bundled_profile("table3_synthetic_pet")
+    mean = prof.thickness.mean()
+    scaled = mean + factor * (prof.thickness - mean)
+    rows = [f"{float(x)!r},{float(h)!r}" for x, h in zip(prof.position, scaled, strict=True)]
     path = Path(into) / f"profile_x{factor:g}.csv"
-    body = [f"{x:g},{t:.6f}" for x, t in rows]
-    path.write_text("\n".join([*head, *body]) + "\n")
+    path.write_text("position [m],thickness [m]\n" + "\n".join(rows) + "\n")
     return str(path)
 
 

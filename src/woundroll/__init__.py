@@ -13,9 +13,10 @@ winder settings (:mod:`woundroll.case`)
 The layout, and the rule that imports flow one way down it: docs/architecture.md.
 """
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from woundroll.errors import ConvergenceError, InputError, WoundrollError
+from woundroll.util.lazy import lazy_names
 from woundroll.util.moved import install as _install_moved
 
 _install_moved()  # old module paths keep working, with a DeprecationWarning
@@ -36,14 +37,7 @@ _LAZY = {
 }
 
 
-def __getattr__(name: str) -> Any:
-    if name in _LAZY:
-        import importlib
-
-        value = getattr(importlib.import_module(_LAZY[name]), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'woundroll' has no attribute {name!r}")
+__getattr__ = lazy_names(__name__, _LAZY)
 
 
 __all__ = [

@@ -11,7 +11,9 @@ The names below load on first use, so that importing one light submodule (the vo
 the summary) does not import the models: ``woundroll --help`` stays fast.
 """
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from woundroll.util.lazy import lazy_names
 
 if TYPE_CHECKING:
     from woundroll.pipeline.results import NoUpdate, RunResult, result_flags
@@ -27,14 +29,7 @@ _LAZY = {
 }
 
 
-def __getattr__(name: str) -> Any:
-    if name in _LAZY:
-        import importlib
-
-        value = getattr(importlib.import_module(_LAZY[name]), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'woundroll.pipeline' has no attribute {name!r}")
+__getattr__ = lazy_names(__name__, _LAZY)
 
 
 __all__ = ["NoUpdate", "Progress", "RunResult", "hardness_on_roll", "result_flags", "run"]
