@@ -367,8 +367,16 @@ def test_diagnosis_progress_sentence_and_caveat(server, browser, monkeypatch):
     t0 = time.time()
     while not _results_count(drv):
         assert time.time() - t0 < 180, "the diagnosis did not finish"
-        bar = drv.find_element(By.ID, "progress")
-        samples.append((drv.find_element(By.ID, "stage").text, bar.get_dom_attribute("value")))
+        # both read in one script: the page's poll cannot run between them (two separate
+        # reads once caught the text of one poll and the bar of the next)
+        samples.append(
+            tuple(
+                drv.execute_script(
+                    "return [document.getElementById('stage').textContent,"
+                    " document.getElementById('progress').getAttribute('value')];"
+                )
+            )
+        )
         time.sleep(0.05)
     running = [(t, v) for t, v in samples if t.startswith("running")]
     # never 100 % while the work goes on; after a stage is done the bar moves without a
