@@ -387,12 +387,13 @@ class AirResult:
             2e3 * self.outer_radius_at_winding,
             2e3 * self.outer_radius_after,
         )
+        film = self.film_at_lay_on * 1e6
         return (
-            f"air at {self.settings.speed:g} m/s: film at lay-on {self.film_at_lay_on * 1e6:.3g} um "
+            f"air at {self.settings.speed:g} m/s: film at lay-on {film:.3g} um "
             f"(entrained {self.air * 1e6:.3g} um/layer); outer diameter {d1:.1f} mm with air, "
             f"{d2:.1f} mm after it left, {d0:.1f} mm without air; core pressure "
-            f"{self.at_winding.core_pressure / 1e3:.4g} kPa at winding, "
-            f"{self.after.core_pressure / 1e3:.4g} kPa after "
+            f"{self.at_winding.core_pressure / 1e3 + 0.0:.4g} kPa at winding, "
+            f"{self.after.core_pressure / 1e3 + 0.0:.4g} kPa after "
             f"({self.no_air.core_pressure / 1e3:.4g} without air); air leaves in "
             f"~{_duration(float(np.max(self.leakage_time, initial=0.0)))}"
         )
@@ -475,7 +476,7 @@ def wind_with_air(
     copts = replace(options, modulus_floor=options.modulus_floor / f)  # same floor in Pa
     wc = wind(cweb, core, rc + n1 * pitch, ctension, options=copts)
     at_winding = replace(wc, sigma_theta=wc.sigma_theta / f, wot=wc.wot / f)
-    after, iters, converged = _air_leaves(wc, web, core, a0, air.pressure, floor, f)
+    after, _iters, converged = _air_leaves(wc, web, core, a0, air.pressure, floor, f)
     r_wind = outer_radius_compacted(wc, web, core, a0, air.pressure, floor)
     # after: the outer layer moves by its hoop strain (the layers let go keep their gap:
     # the air left there at ambient pressure)
@@ -499,10 +500,7 @@ def wind_with_air(
             f"{r.max() * 100:.2f} cm are pulled apart (the roll is loose there: the layers "
             "can slip or telescope), which the model does not follow"
         )
-    after = replace(
-        after,
-        inputs={**after.inputs, "air_iterations": iters},
-    )
+    after = replace(after, inputs={**no_air.inputs, "outer_radius_m": float(after.radius[-1])})
     return AirResult(
         air, s, film, a0, at_winding, after, no_air, r_no_air, r_wind, r_after, tau,
         tuple(warnings),
