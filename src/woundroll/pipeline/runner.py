@@ -159,7 +159,7 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
             result,
             notes=(*result.notes, *air_notes),
             warnings=result.warnings + air_warnings,
-            flags={**result.flags, "air_loose": bool(air_warnings)},
+            flags={**result.flags, "air_loose": loose},
         )
     if case.storage is None:
         return result
@@ -179,13 +179,13 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
 
 def _after_air(
     case: Case, winding: Any, web: Web, core: Any, r_out: float, schedule: Any, options: Any
-) -> tuple[Any, tuple[str, ...], tuple[str, ...]]:
+) -> tuple[Any, tuple[str, ...], tuple[str, ...], bool]:
     """``winding.speed`` > 0: the roll wound with entrained air
     (:func:`woundroll.winding.air.wind_with_air`); everything downstream (storage, contact,
     reading) sees the roll after the air has left (the contact model knows the stack's law,
     not the air layer). Speed 0 (the default): the roll as wound, untouched."""
     if not case.winding.speed > 0:
-        return winding, (), ()
+        return winding, (), (), False
     from woundroll.case.schema import AirSpec
     from woundroll.winding.air import wind_with_air
 
@@ -200,7 +200,7 @@ def _after_air(
         "air: the roll downstream (storage, contact, reading) is the roll after the air has "
         "left; 'air' in result.json holds the roll at winding and the diameters",
     )
-    return replace(res.after, air=res.to_dict()), notes, res.warnings
+    return replace(res.after, air=res.to_dict()), notes, res.warnings, res.loose
 
 
 def _after_storage(case: Case, winding: Any, web: Web, core: Any) -> tuple[Any, tuple[str, ...]]:

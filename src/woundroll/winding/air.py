@@ -349,6 +349,12 @@ class AirResult:
     warnings: tuple[str, ...] = ()
 
     @property
+    def loose(self) -> bool:
+        """True when, after the air has left, layers are apart (sigma_r = 0 below the
+        surface): a loose roll."""
+        return self.air > 0 and bool(np.any(self.after.sigma_r[:-1] >= 0.0))
+
+    @property
     def film_at_lay_on(self) -> float:
         """The film [m] at the lay-on line at the end of winding (the last layer's)."""
         return float(self.film[-1]) if self.film.size else 0.0
@@ -487,6 +493,13 @@ def wind_with_air(
     gap = air_thickness(Pn, a0, air.pressure) + air.roughness
     tau = 12.0 * air.viscosity * web.width**2 / (math.pi**2 * (air.pressure + Pn) * gap**2)
     warnings: list[str] = []
+    if a0 > h:
+        warnings.append(
+            f"air: {a0 * 1e6:.3g} um of air is wound in under each {h * 1e6:.3g} um layer: the "
+            "roll floats on air (it can telescope or shift while winding), and the gas spring in "
+            "series with the stack is a rough model there; raise the tension, add a nip or "
+            "slow down"
+        )
     if not converged:
         warnings.append(
             f"air: the roll after the air has left did not settle in {MAX_ITERATIONS} "
