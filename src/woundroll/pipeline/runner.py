@@ -142,7 +142,7 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     winding = wind(
         web, core, r_out, schedule, options=options, progress=lambda f: report("winding", f)
     )
-    winding, air_notes, air_warnings = _after_air(
+    winding, air_notes, air_warnings, loose = _after_air(
         case, winding, web, core, r_out, schedule, options
     )
     winding, storage_warnings = _after_storage(case, winding, web, core)
