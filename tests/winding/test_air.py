@@ -322,3 +322,25 @@ def test_thickness_profile_with_speed_is_refused(tmp_path):
     path = _case(tmp_path, winding='speed = 5\nthickness_profile = "p.csv"\n')
     res = runner.invoke(app, ["run", str(path), "-q"])
     assert res.exit_code == 2 and "winding.speed" in res.output, res.output
+
+
+def test_diameter_curve_ends_at_the_outer_diameters(fast_roll):
+    """The diameter against wound length (where metre L sits in the finished roll) starts at
+    the core and ends at the outer diameters (the same length: within one layer's share)."""
+    _, res = fast_roll
+    L, d0, d1 = res.curve
+    assert L[0] == 0.0 and d0[0] == pytest.approx(2 * CORE.outer_radius)
+    assert np.all(np.diff(d0) > 0) and np.all(d1 >= d0)
+    assert d0[-1] == pytest.approx(2 * res.outer_radius_no_air, rel=1e-3)
+    assert d1[-1] == pytest.approx(2 * res.outer_radius_at_winding, rel=1e-3)
+
+
+def test_air_figure_is_written(tmp_path):
+    path = _case(tmp_path, winding="speed = 3\n")
+    out = tmp_path / "out"
+    res = runner.invoke(app, ["run", str(path), "-q", "--out", str(out)])
+    assert res.exit_code == 0, res.output
+    assert (out / "winding.png").is_file() and (out / "winding_air.png").is_file()
+    doc = json.loads((out / "result.json").read_text())
+    assert "winding_air.png" in doc["files"]
+    assert len(doc["winding"]["air"]["wound_length_m"]) == 101

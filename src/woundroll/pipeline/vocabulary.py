@@ -348,6 +348,9 @@ _TERMS: tuple[Term, ...] = (
     _t("sigma_theta_at_winding_Pa", "Pa", "wound-in (hoop) stress of the web with the air in (per node)", "σ_θ"),  # noqa: E501
     _t("sigma_r_after_Pa", "Pa", "radial stress after the air has left (per node)", "σ_r"),
     _t("sigma_theta_after_Pa", "Pa", "hoop stress of the web after the air has left (per node)", "σ_θ"),  # noqa: E501
+    _t("wound_length_m", "m", "web length wound up to a point of the finished roll"),
+    _t("diameter_no_air_m", "m", "diameter where that length sits, roll wound without air"),
+    _t("diameter_with_air_m", "m", "diameter where that length sits, roll wound with air"),
     _t("air_leakage_time_s", "s", "time constant of the air leaving at the roll's edges (slowest layer)", "τ"),  # noqa: E501
     # ------------------------------------------------------------------ storage
     _o("storage", "the roll's change after winding: temperature and moisture"),

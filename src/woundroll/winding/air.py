@@ -311,6 +311,32 @@ def outer_radius_compacted(
     return float(core.outer_radius + u_core + np.sum(frac * t))
 
 
+def radius_along_length(
+    w: WindingResult, web: Web, core: Core, a0: float, p_atm: float, floor: float
+) -> tuple[FloatArray, FloatArray]:
+    """``(L, r)`` at the nodes of the wound roll ``w``: the web length [m] wound up to a
+    node (each layer as long as the circumference it was laid on) and the node's radius [m]
+    in the finished, compacted roll (each element's web and
+    air thickness at its pressure, as :func:`outer_radius_compacted`)."""
+    P = _element_pressure(w)
+    h = web.thickness
+    frac = np.diff(w.radius) / (h + a0)
+    t = frac * (
+        h * (1.0 - stack_strain(web.radial_modulus, P, floor)) + air_thickness(P, a0, p_atm)
+    )
+    p_core = max(float(-w.sigma_r[0]), 0.0)
+    u_core = 0.0 if core.rigid else -core.outer_radius * p_core / core.stiffness
+    r = core.outer_radius + u_core + np.concatenate(([0.0], np.cumsum(t)))
+    # the web's length: each layer as long as the roll's circumference where it was laid on
+    rg = 0.5 * (w.radius[1:] + w.radius[:-1])
+    L = np.concatenate(([0.0], np.cumsum(2.0 * math.pi * rg * frac)))
+    return L, r
+
+
+#: Points of the diameter-against-length curve in result.json.
+CURVE_POINTS = 101
+
+
 @dataclass(frozen=True)
 class AirResult:
     """A roll wound with entrained air, and the same roll after the air has left.
@@ -347,6 +373,9 @@ class AirResult:
     outer_radius_after: float
     leakage_time: FloatArray
     warnings: tuple[str, ...] = ()
+    #: the diameter against the wound length [m]: ``(L, D without air, D with air)``
+    #: where metre L sits in the finished roll (radius_along_length)
+    curve: tuple[FloatArray, FloatArray, FloatArray] | None = None
 
     @property
     def loose(self) -> bool:
@@ -384,6 +413,15 @@ class AirResult:
             "sigma_r_after_Pa": a.sigma_r.tolist(),
             "sigma_theta_after_Pa": a.sigma_theta.tolist(),
             "air_leakage_time_s": float(np.max(self.leakage_time, initial=0.0)),
+            **(
+                {}
+                if self.curve is None
+                else {
+                    "wound_length_m": self.curve[0].tolist(),
+                    "diameter_no_air_m": self.curve[1].tolist(),
+                    "diameter_with_air_m": self.curve[2].tolist(),
+                }
+            ),
         }
 
     def summary(self) -> str:
@@ -514,9 +552,13 @@ def wind_with_air(
             "can slip or telescope), which the model does not follow"
         )
     after = replace(after, inputs={**no_air.inputs, "outer_radius_m": float(after.radius[-1])})
+    L0, rn = radius_along_length(no_air, web, core, 0.0, air.pressure, floor)
+    L1, ra = radius_along_length(wc, web, core, a0, air.pressure, floor)
+    Lg = np.linspace(0.0, min(L0[-1], L1[-1]), CURVE_POINTS)
+    curve = (Lg, 2.0 * np.interp(Lg, L0, rn), 2.0 * np.interp(Lg, L1, ra))
     return AirResult(
         air, s, film, a0, at_winding, after, no_air, r_no_air, r_wind, r_after, tau,
-        tuple(warnings),
+        tuple(warnings), curve,
     )  # fmt: skip
 
 

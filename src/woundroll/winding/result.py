@@ -165,4 +165,9 @@ class WindingResult:
             ax.grid(alpha=0.3)
         if path is not None:
             fig.savefig(path, dpi=120)
+        if self.air is not None:  # and the roll wound with entrained air
+            from woundroll.winding.air_plot import plot_air
+
+            p = None if path is None else Path(path).with_name(Path(path).stem + "_air.png")
+            return [fig, plot_air(self.air, p)]
         return fig
