@@ -17,8 +17,11 @@ Model (every assumption named; docs/winding.md, "Speed and entrained air")
    (Eshel and Elrod, "The theory of the infinitely wide, perfectly flexible, self-acting
    foil bearing", J. Basic Eng. 87 (1965) 831-836; Knox and Sweeney, "Fluid effects
    associated with web handling", Ind. Eng. Chem. Process Des. Dev. 10 (1971) 201-205),
-   ``R`` the roll radius, ``U`` the mean surface speed (web and roll move at the winding
-   speed), ``T`` the web tension per width [N/m], ``eta`` the air's viscosity. Good and
+   ``R`` the roll radius, ``U`` the winding speed (web and roll surface move together at
+   it), ``T`` the web tension per width [N/m], ``eta`` the air's viscosity. Assumed: U is
+   the winding speed, not the sum of the two surface speeds (that reading, ``12 eta U``,
+   gives 2^(2/3) = 1.59 times the film); a published example (TopWeb's 3000 m PET roll,
+   tests/winding/test_air.py) is within 1 % in diameter with this reading. Good and
    Holmberg ("The effect of air entrainment in centerwound rolls", Proc. IWEB 2, Oklahoma
    State University, 1993) measured the entrained film on a centre-winding roll and found
    the foil-bearing theory adequate; they wound it into a reduced radial modulus, as here.
@@ -27,7 +30,9 @@ Model (every assumption named; docs/winding.md, "Speed and entrained air")
    isoviscous-elastic one (Herrebrugh 1968, soft EHL: ``h = 2.32 R_n (eta U / (E' R_n))^0.6
    (w / (E' R_n))^-0.2``), ``w`` the nip load per width, ``R_n = (1/R + 1/R_nip)^-1``,
    ``E' = 2 E*`` with ``E*`` the nip's contact modulus (the regime whose assumption holds
-   gives the larger film). A nip only removes air: the film is ``min(h_f, h_nip)``, which
+   gives the larger film; Herrebrugh's coefficient and exponents as quoted in Hamrock,
+   Schmid and Jacobson, *Fundamentals of Fluid Film Lubrication*, 2004, not checked against
+   the 1968 paper here). A nip only removes air: the film is ``min(h_f, h_nip)``, which
    tends to the foil-bearing film as the nip load goes to 0. Assumed: the film leaves the
    nip at ambient pressure (Forrest, "Air entrainment during film winding with layon
    rolls", Proc. IWEB 3, 1995, follows the compressed air out of the nip; not done here).
@@ -36,7 +41,9 @@ Model (every assumption named; docs/winding.md, "Speed and entrained air")
    the web already holds the air in the roughness, so the air that counts is what the film
    holds beyond the summits: ``a0 = max(h_film - 3 sigma, 0)`` (``SUMMIT_HEIGHT`` = 3: the
    full-film criterion Lambda = h / sigma >= 3 of lubrication; below it the asperities
-   carry load). A smooth web (``sigma = 0``) keeps the whole film.
+   carry load; Ducotey and Good, "Predicting traction in web handling", J. Tribol. 121
+   (1999) 618-624: traction is lost once the film exceeds three times the combined rms
+   roughness). A smooth web (``sigma = 0``) keeps the whole film.
 4. **The air layer in the roll** is a gas spring compressed isothermally by the pressure
    ``P`` the later layers add: ``(p_atm + P) h_a = p_atm a0``. In series with the stack,
    a layer of pitch ``p = h + a0`` has the tangent radial modulus
