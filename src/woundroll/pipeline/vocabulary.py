@@ -333,6 +333,8 @@ _TERMS: tuple[Term, ...] = (
     _t("roughness_m", "m", "combined Rq of the two web faces in contact", "σ"),
     _t("viscosity_Pa_s", "Pa s", "dynamic viscosity of the air", "η"),
     _t("ambient_pressure_Pa", "Pa", "ambient (absolute) air pressure", "p_atm"),
+    _t("nip_modulus_Pa", "Pa", "contact modulus E* of the lay-on roller's cover against the roll", "E*"),  # noqa: E501
+    _t("nip_radius_m", "m", "lay-on (nip) roller radius", "R_nip"),
     _t("film_at_lay_on_m", "m", "air film at the lay-on line at the end of winding", "h_0"),
     _t("entrained_air_m", "m", "air layer per layer wound in, beyond the roughness", "a_0"),
     _t("film_radius_m", "m", "roll radius at which each layer is laid on (per layer)"),

@@ -404,6 +404,8 @@ class AirResult:
             "roughness_m": s.roughness,
             "viscosity_Pa_s": s.viscosity,
             "ambient_pressure_Pa": s.pressure,
+            "nip_modulus_Pa": s.nip_modulus,
+            "nip_radius_m": s.nip_radius,
             "film_at_lay_on_m": self.film_at_lay_on,
             "entrained_air_m": self.air,
             "film_radius_m": self.film_radius.tolist(),
