@@ -468,6 +468,38 @@ def wound_length(n_layers: int, core_radius: float, pitch: float) -> float:
     return float(np.sum(2.0 * math.pi * (core_radius + (i + 0.5) * pitch)))
 
 
+def _lay_on_films(
+    rc: float, h: float, length: float, tension: TensionSchedule, air: AirSettings
+) -> tuple[FloatArray, FloatArray, float, int]:
+    """The lay-on radius and film of each layer of the roll wound with air, the roll's
+    entrained layer a0 (length-weighted mean beyond the summits) and its number of layers:
+    a fixed point, since the layers sit at the pitch ``h + a0`` and the film grows with the
+    radius (a few iterations: the film grows like R, R like sqrt(pitch))."""
+    a0, n1 = 0.0, max(int(round((math.sqrt(rc * rc + length * h / math.pi) - rc) / h)), 1)
+    s = rc + h * np.arange(n1)
+    film = np.zeros(n1)
+    if not air.active:
+        return s, film, 0.0, n1
+    for _ in range(100):
+        pitch = h + a0
+        n1 = max(int(round((math.sqrt(rc * rc + length * pitch / math.pi) - rc) / pitch)), 1)
+        s = rc + pitch * np.arange(n1)
+        T = tension.web_tension(s, rc, rc + n1 * pitch) * h  # N/m
+        if np.any(T <= 0):
+            raise InputError(
+                "the web is slack at the lay-on line (zero tension): no foil bearing to say "
+                "how much air it takes",
+                "winding.tension",
+            )
+        film = lay_on_film(s, T, tension.nip_load, air)
+        a_new = float(np.sum(entrained_air(film, air.roughness) * s) / np.sum(s))
+        done = abs(a_new - a0) <= 1e-9 * max(a_new, 1e-30)
+        a0 = a_new
+        if done:
+            break
+    return s, film, a0, n1
+
+
 def wind_with_air(
     web: Web,
     core: Core,
@@ -497,25 +529,16 @@ def wind_with_air(
         no_air = wind(web, core, outer_radius, tension, options=options)
     rc = core.outer_radius
     n0 = no_air.n_layers
-    R0 = rc + n0 * h
     floor = options.modulus_floor * web.E_theta
-    # the lay-on film of each layer (the roll without air: its radius and web tension)
-    s = rc + h * np.arange(n0)
-    T = tension.web_tension(s, rc, R0) * h  # N/m
-    film = lay_on_film(s, T, tension.nip_load, air) if air.active else np.zeros(n0)
-    layer_air = entrained_air(film, air.roughness)
-    a0 = float(np.sum(layer_air * s) / np.sum(s)) if n0 else 0.0
+    length = wound_length(n0, rc, h)
+    s, film, a0, n1 = _lay_on_films(rc, h, length, tension, air)
     r_no_air = outer_radius_compacted(no_air, web, core, 0.0, air.pressure, floor)
-    if a0 <= 0.0 or not math.isfinite(a0):
-        if not math.isfinite(a0):
-            raise InputError("the web is slack at the lay-on line: no foil bearing", "winding")
+    if a0 <= 0.0:
         return AirResult(
             air, s, film, 0.0, no_air, no_air, no_air, r_no_air, r_no_air, r_no_air,
             np.zeros(no_air.radius.size),
         )  # fmt: skip
     pitch = h + a0
-    length = wound_length(n0, rc, h)
-    n1 = max(int(round((math.sqrt(rc * rc + length * pitch / math.pi) - rc) / pitch)), 1)
     law = AirLayerLaw(web.radial_modulus, h, a0, air.pressure, floor)
     f = h / pitch
     cweb = replace(
