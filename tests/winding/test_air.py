@@ -379,3 +379,23 @@ def test_leaving_time_closed_form():
     assert float(leaving_time(a, 0.0, p, W, 0.9)) == pytest.approx(49.5 * tau0, rel=1e-12)
     t = [float(leaving_time(a, sig, p, W, q)) for q in (0.5, 0.9, 0.99)]
     assert t[0] < t[1] < t[2] < math.inf
+
+
+def test_loose_roll_is_flagged(tmp_path):
+    """A fast roll without nip whose air cannot be replaced by the stack comes apart once the
+    air has left: the flag air_loose, a warning, and the roll downstream without pressure."""
+    path = _case(tmp_path, winding="speed = 8\n")
+    res = run(path)
+    assert res.flags["air_loose"] is True
+    assert any("pulled apart" in w for w in res.warnings)
+    assert res.winding.air["core_pressure_at_winding_Pa"] > 0
+    assert res.winding.core_pressure == pytest.approx(0.0, abs=1e-9)
+    # a nip and a little roughness: 0.31 um of air per layer, which the stack makes up
+    path = _case(tmp_path, winding='speed = 8\nnip_load = "300 N/m"\n')
+    text = path.read_text().replace(
+        'E_theta = "4.9 GPa"', 'E_theta = "4.9 GPa"\nroughness = "0.05 um"'
+    )
+    path.write_text(text)
+    tight = run(path)
+    assert tight.winding.air["entrained_air_m"] > 0
+    assert tight.flags["air_loose"] is False and tight.winding.core_pressure > 0

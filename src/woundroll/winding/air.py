@@ -622,13 +622,13 @@ def wind_with_air(
             f"air: the roll after the air has left did not settle in {MAX_ITERATIONS} "
             "iterations; its stresses are approximate"
         )
-    tens = after.sigma_r[:-1] > 0.0
+    tens = after.sigma_r[:-1] >= 0.0  # let go: sigma_r = 0 below the surface
     if np.any(tens):
         r = after.radius[:-1][tens]
         warnings.append(
             f"air: after the air has left, the layers between r = {r.min() * 100:.2f} and "
-            f"{r.max() * 100:.2f} cm are pulled apart (the roll is loose there: the layers "
-            "can slip or telescope), which the model does not follow"
+            f"{r.max() * 100:.2f} cm are pulled apart: no pressure between them, the roll is "
+            "loose there (its layers can slip or telescope; the air stays in the gaps)"
         )
     after = replace(after, inputs={**no_air.inputs, "outer_radius_m": float(after.radius[-1])})
     L0, rn = radius_along_length(no_air, web, core, 0.0, air.pressure, floor)
