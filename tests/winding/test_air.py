@@ -399,3 +399,29 @@ def test_loose_roll_is_flagged(tmp_path):
     tight = run(path)
     assert tight.winding.air["entrained_air_m"] > 0
     assert tight.flags["air_loose"] is False and tight.winding.core_pressure > 0
+
+
+def test_roll_some_time_after_winding():
+    """air.time: the roll keeps the air the leakage model leaves it; at time 0 it is the
+    roll at winding (to the solver's tolerance), and with time it moves monotonically
+    toward the roll after all the air has left."""
+    nipt = replace(TENSION, nip_load=300.0)
+    base = AirSettings(speed=8.0, roughness=0.05e-6)
+    w = wind(WEB, CORE, R_OUT, nipt)
+    done = wind_with_air(WEB, CORE, R_OUT, nipt, base, no_air=w)
+    p = []
+    for t in (0.0, 60.0, 600.0, 3600.0):
+        res = wind_with_air(WEB, CORE, R_OUT, nipt, replace(base, time=t), no_air=w)
+        p.append(res.after.core_pressure)
+        if t == 0.0:
+            assert res.gone == 0.0
+            assert res.after.core_pressure == pytest.approx(res.at_winding.core_pressure, rel=1e-9)
+    assert p[0] > p[1] > p[2] > p[3] > done.after.core_pressure
+    assert done.gone == 1.0
+
+
+def test_bad_air_time_exits_2(tmp_path):
+    res = runner.invoke(
+        app, ["run", str(_case(tmp_path, '[air]\ntime = "-1 h"\n', "speed = 5")), "-q"]
+    )
+    assert res.exit_code == 2 and "air.time" in res.output, res.output

@@ -586,12 +586,14 @@ class AirSpec(_Section):
     ``winding.speed`` > 0): ``viscosity`` [Pa s] (bare number, default 1.8e-5, air at
     20 C), ``pressure`` (ambient, default 101.325 kPa), ``nip_modulus`` (contact modulus E*
     of the lay-on roller's cover against the roll, default 10 MPa) and ``nip_radius``
-    (default ``winding.nip_roller.outer_radius``, else 5 cm)."""
+    (default ``winding.nip_roller.outer_radius``, else 5 cm); ``time`` after winding of the
+    roll downstream (default: all the air that can leave has left)."""
 
     viscosity: float = Field(default_factory=lambda: _air_default("VISCOSITY"))
     pressure: Q("pressure") = Field(default_factory=lambda: _air_default("PRESSURE"))
     nip_modulus: Q("pressure") = Field(default_factory=lambda: _air_default("NIP_MODULUS"))
     nip_radius: Q("length") | None = None
+    time: Q("time", "nonnegative") | None = None
 
     def build(self, speed: float, roughness: float | None, nip_radius: float | None) -> Any:
         """The :class:`~woundroll.winding.air.AirSettings` of the case."""
@@ -604,6 +606,7 @@ class AirSpec(_Section):
             pressure=self.pressure,
             nip_modulus=self.nip_modulus,
             nip_radius=self.nip_radius or nip_radius or NIP_RADIUS,
+            time=math.inf if self.time is None else self.time,
         )
 
 

@@ -195,10 +195,15 @@ def _after_air(
         case.winding.speed, case.web.roughness, roller.outer_radius if roller else None
     )
     res = wind_with_air(web, core, r_out, schedule, settings, options=options, no_air=winding)
+    when = (
+        "after the air has left"
+        if math.isinf(settings.time)
+        else f"{settings.time:g} s after winding (air.time)"
+    )
     notes = (
         res.summary(),
-        "air: the roll downstream (storage, contact, reading) is the roll after the air has "
-        "left; 'air' in result.json holds the roll at winding and the diameters",
+        f"air: the roll downstream (storage, contact, reading) is the roll {when}; 'air' in "
+        "result.json holds the roll at winding and the diameters",
     )
     return replace(res.after, air=res.to_dict()), notes, res.warnings, res.loose
 

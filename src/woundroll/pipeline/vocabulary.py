@@ -354,6 +354,8 @@ _TERMS: tuple[Term, ...] = (
     _t("diameter_no_air_m", "m", "diameter where that length sits, roll wound without air"),
     _t("diameter_with_air_m", "m", "diameter where that length sits, roll wound with air"),
     _t("air_leakage_time_s", "s", "initial time constant of the air leaving at the roll's edges (slowest layer)", "τ"),  # noqa: E501
+    _t("time_after_winding_s", "s", "time after winding of the roll 'after' (null: all the air that can leave has left)"),  # noqa: E501
+    _t("air_gone_fraction", "", "share of the wound-in air gone in the roll 'after'"),
     _t("air_leaves_90_s", "s", "time for 90 % of the air to leave the slowest layer (the gap narrowing)", "t_90"),  # noqa: E501
     # ------------------------------------------------------------------ storage
     _o("storage", "the roll's change after winding: temperature and moisture"),

@@ -155,6 +155,9 @@ class AirSettings:
         Contact modulus E* of the nip (lay-on roller cover against the roll).
     nip_radius : float [m]
         Lay-on roller radius.
+    time : float [s]
+        Time after winding of the roll "after": ``inf`` (default) when all the air that can
+        leave has left; a finite time leaves each layer the air the leakage model keeps.
     """
 
     speed: float = 0.0
@@ -163,8 +166,11 @@ class AirSettings:
     pressure: float = PRESSURE
     nip_modulus: float = NIP_MODULUS
     nip_radius: float = NIP_RADIUS
+    time: float = math.inf
 
     def __post_init__(self) -> None:
+        if not (isinstance(self.time, int | float) and self.time >= 0):
+            raise InputError(f"must be zero or positive, got {self.time!r}", "air.time")
         _check(self.speed, "winding.speed")
         _check(self.roughness, "web.roughness")
         for name in ("viscosity", "pressure", "nip_modulus", "nip_radius"):
@@ -251,7 +257,7 @@ def leaving_time(
     roughness: float,
     pressure: ArrayLike,
     width: float,
-    fraction: float,
+    fraction: ArrayLike,
     viscosity: float = VISCOSITY,
 ) -> FloatArray:
     """Time [s] for ``fraction`` of an air layer ``air`` [m] at absolute pressure
@@ -259,17 +265,52 @@ def leaving_time(
     item 6): ``C int dh / (h (h + sigma)^2)`` from ``(1 - fraction) air`` to ``air``."""
     a = np.asarray(air, dtype=float)
     C = 12.0 * viscosity * width**2 / (math.pi**2 * np.asarray(pressure, dtype=float))
-    lo = (1.0 - fraction) * a
-    sig = roughness
+    lo = (1.0 - np.asarray(fraction, dtype=float)) * a
 
     def prim(h: FloatArray) -> FloatArray:
-        if sig == 0.0:
-            return -0.5 / h**2
-        return (np.log(h / (h + sig)) + sig / (h + sig)) / sig**2
+        # int dh / (h (h + sigma)^2) = g(sigma / h) / h^2, g(x) = (x/(1+x) - ln(1+x)) / x^2
+        # (-1/2 at x = 0: the smooth web), its series below x = 0.01 (no cancellation)
+        x = roughness / h
+        xs = np.where(x < 1e-2, 1.0, x)
+        g = np.where(
+            x < 1e-2,
+            -0.5 + x * (2.0 / 3.0 + x * (-0.75 + x * 0.8)),
+            (xs / (1.0 + xs) - np.log1p(xs)) / xs**2,
+        )
+        return g / h**2
 
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         t = C * (prim(a) - prim(lo))
     return np.where(a > 0, t, 0.0)
+
+
+def remaining_air(
+    air: ArrayLike,
+    roughness: float,
+    pressure: ArrayLike,
+    width: float,
+    time: float,
+    viscosity: float = VISCOSITY,
+) -> FloatArray:
+    """The air layer [m] left after ``time`` [s] of an initial ``air`` [m] (the inverse of
+    :func:`leaving_time`: ``C [F(a) - F(h)] = t``, F its antiderivative; bisection in
+    log h, 80 halvings: 1e-12 of the layer)."""
+    a = np.asarray(air, dtype=float)
+    if math.isinf(time):
+        return np.zeros_like(a)
+    if time <= 0:
+        return a.copy()
+    lo = np.full_like(a, -40.0)  # log of the fraction left
+    hi = np.zeros_like(a)
+    p = np.broadcast_to(np.asarray(pressure, dtype=float), a.shape)
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        frac_gone = 1.0 - np.exp(mid)
+        t = leaving_time(a, roughness, p, width, frac_gone, viscosity)
+        # more time than given to reach this fraction left: the fraction left is larger
+        lo = np.where(t > time, mid, lo)
+        hi = np.where(t > time, hi, mid)
+    return np.where(a > 0, a * np.exp(0.5 * (lo + hi)), 0.0)
 
 
 @dataclass(frozen=True)
@@ -416,6 +457,8 @@ class AirResult:
     warnings: tuple[str, ...] = ()
     #: per node: the time [s] for 90 % of the layer's air to leave (the gap narrowing)
     leaving_time_90: FloatArray | None = None
+    #: the share of the roll's air gone in the roll ``after`` (1: all, ``settings.time`` inf)
+    gone: float = 1.0
     #: the diameter against the wound length [m]: ``(L, D without air, D with air)``
     #: where metre L sits in the finished roll (radius_along_length)
     curve: tuple[FloatArray, FloatArray, FloatArray] | None = None
@@ -425,6 +468,12 @@ class AirResult:
         """True when, after the air has left, layers are apart (sigma_r = 0 below the
         surface): a loose roll."""
         return self.air > 0 and bool(np.any(self.after.sigma_r[:-1] >= 0.0))
+
+    def _after_text(self) -> str:
+        t = self.settings.time
+        if math.isinf(t):
+            return "after it left"
+        return f"{_duration(t)} after winding ({100 * self.gone:.0f} % of it gone)"
 
     @property
     def leaves_90(self) -> float:
@@ -465,6 +514,8 @@ class AirResult:
             "sigma_theta_after_Pa": a.sigma_theta.tolist(),
             "air_leakage_time_s": float(np.max(self.leakage_time, initial=0.0)),
             "air_leaves_90_s": self.leaves_90,
+            "time_after_winding_s": None if math.isinf(s.time) else s.time,
+            "air_gone_fraction": self.gone,
             **(
                 {}
                 if self.curve is None
@@ -487,9 +538,10 @@ class AirResult:
         return (
             f"air at {self.settings.speed:g} m/s: film at lay-on {film:.3g} um "
             f"(entrained {self.air * 1e6:.3g} um/layer); outer diameter {d1:.1f} mm with air, "
-            f"{d2:.1f} mm after it left, {d0:.1f} mm without air; core pressure "
+            f"{d2:.1f} mm {self._after_text()}, {d0:.1f} mm without air; core pressure "
             f"{self.at_winding.core_pressure / 1e3 + 0.0:.4g} kPa at winding, "
-            f"{self.after.core_pressure / 1e3 + 0.0:.4g} kPa after "
+            f"{self.after.core_pressure / 1e3 + 0.0:.4g} kPa "
+            f"{'after' if math.isinf(self.settings.time) else 'then'} "
             f"({self.no_air.core_pressure / 1e3:.4g} without air); 90 % of the air leaves in "
             f"~{_duration(self.leaves_90)}"
         )
@@ -595,7 +647,16 @@ def wind_with_air(
     copts = replace(options, modulus_floor=options.modulus_floor / f)  # same floor in Pa
     wc = wind(cweb, core, rc + n1 * pitch, ctension, options=copts)
     at_winding = replace(wc, sigma_theta=wc.sigma_theta / f, wot=wc.wot / f)
-    after, _iters, converged = _air_leaves(wc, web, core, a0, air.pressure, floor, f)
+    P0n = np.maximum(-wc.sigma_r, 0.0)
+    kept = remaining_air(
+        air_thickness(P0n, a0, air.pressure), air.roughness, air.pressure + P0n, web.width,
+        air.time, air.viscosity,
+    )  # fmt: skip
+    after, _iters, converged = _air_leaves(
+        wc, web, core, a0, air.pressure, floor, f, None if math.isinf(air.time) else kept
+    )
+    h_air = air_thickness(P0n, a0, air.pressure)
+    gone = 1.0 if math.isinf(air.time) else float(1.0 - np.sum(kept) / np.sum(h_air))
     r_wind = outer_radius_compacted(wc, web, core, a0, air.pressure, floor)
     # after: the outer layer moves by its hoop strain (the layers let go keep their gap:
     # the air left there at ambient pressure)
@@ -637,7 +698,7 @@ def wind_with_air(
     curve = (Lg, 2.0 * np.interp(Lg, L0, rn), 2.0 * np.interp(Lg, L1, ra))
     return AirResult(
         air, s, film, a0, at_winding, after, no_air, r_no_air, r_wind, r_after, tau,
-        tuple(warnings), t90, curve,
+        tuple(warnings), leaving_time_90=t90, gone=gone, curve=curve,
     )  # fmt: skip
 
 
@@ -692,10 +753,19 @@ def _banded_increment(
 
 
 def _air_leaves(
-    wc: WindingResult, web: Web, core: Core, a0: float, p_atm: float, floor: float, f: float
+    wc: WindingResult,
+    web: Web,
+    core: Core,
+    a0: float,
+    p_atm: float,
+    floor: float,
+    f: float,
+    remaining: FloatArray | None = None,
 ) -> tuple[WindingResult, int, bool]:
     """The composite roll ``wc`` after its air has left (module docstring, item 6): the
-    web's hoop stress and the stack-only E_r in the result.
+    web's hoop stress and the stack-only E_r in the result. ``remaining``: the air layer
+    [m] each node keeps (at its pressure at winding; None: none), a gas spring in series
+    with the stack in the increment (its chord compliance between the two pressures).
 
     Layers that the loss of air would pull apart (sigma_r > 0) are let go: sigma_r = 0
     there (an active set, grown until no layer is in radial tension; a stack cannot carry
@@ -706,11 +776,21 @@ def _air_leaves(
     n = r.size
     P0 = np.maximum(-wc.sigma_r, 0.0)
     pitch = web.thickness + a0
-    eps = -air_thickness(P0, a0, p_atm) / pitch  # free strain of the composite
+    rem = np.zeros(n) if remaining is None else np.asarray(remaining, dtype=float)
+    eps = -(air_thickness(P0, a0, p_atm) - rem) / pitch  # free strain of the composite
+    a_rem = rem * (p_atm + P0) / p_atm  # the air kept, at ambient pressure
     Et = web.E_theta * f
     law = web.radial_modulus
+    h = web.thickness
+
+    def chord(p_mid: FloatArray, p_end: FloatArray) -> FloatArray:
+        """The composite's chord modulus per pitch: stack at the midpoint, gas spring's
+        chord between P0 and the end pressure."""
+        Es = np.maximum(law.modulus_at_pressure(p_mid), floor)
+        return pitch / (h / Es + p_atm * a_rem / ((p_atm + P0) * (p_atm + p_end)))
+
     s = np.zeros_like(r)
-    E = np.maximum(law.modulus_at_pressure(P0), floor) / f  # stack-only, per pitch
+    E = chord(P0, P0)
     apart = np.zeros(n, dtype=bool)
     converged, it = False, 0
     if n < 3:
@@ -725,8 +805,7 @@ def _air_leaves(
         converged = settled and bool(np.all(new_apart == apart))
         apart = new_apart
         s = s_new
-        p_mid = np.maximum(P0 - 0.5 * s, 0.0)
-        E = np.maximum(law.modulus_at_pressure(p_mid), floor) / f
+        E = chord(np.maximum(P0 - 0.5 * s, 0.0), np.maximum(P0 - s, 0.0))
     sigma_r = np.minimum(wc.sigma_r + s, 0.0)
     sigma_r[-1] = 0.0
     s = sigma_r - wc.sigma_r
