@@ -545,6 +545,34 @@ class StorageSpec(_Section):
 
     temperature_change: Annotated[float, BeforeValidator(_kelvin)] = 0.0
     moisture_change: Q("dimensionless", "any") = 0.0
+    # --- storage time (creep; woundroll.winding.creep, docs/winding.md "Storage time") ---
+    #: time in storage (``"30 d"``); > 0 needs ``radial_creep``
+    time: Q("time", "nonnegative") = 0.0
+    #: the stack's creep law, e.g. ``{ law = "power", n = 0.2, tau = "40 d" }``
+    #: (:func:`woundroll.materials.creep.creep_from_spec`; ``woundroll fit-stack --creep``)
+    radial_creep: dict[str, Any] | None = None
+    #: time steps through the storage time (graded, :data:`woundroll.winding.creep.TIME_STEPS`)
+    time_steps: int = Field(default=40, ge=1, le=10_000)
+
+    @model_validator(mode="after")
+    def _creep_law(self) -> StorageSpec:
+        if self.radial_creep is not None:
+            self.creep_law()  # its errors name storage.radial_creep.<key>
+        elif self.time > 0.0:
+            raise InputError(
+                "a storage time needs the stack's creep law, e.g. radial_creep = "
+                '{ law = "power", n = 0.2, tau = "40 d" } (woundroll fit-stack CSV --creep)',
+                "storage.radial_creep",
+            )
+        return self
+
+    def creep_law(self) -> Any:
+        """The creep law (:mod:`woundroll.materials.creep`), or None."""
+        if self.radial_creep is None:
+            return None
+        from woundroll.materials.creep import creep_from_spec
+
+        return creep_from_spec(self.radial_creep, "storage.radial_creep")
 
     def build(self) -> Any:
         """The :class:`~woundroll.winding.storage.StorageChange` of this section."""

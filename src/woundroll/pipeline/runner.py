@@ -151,8 +151,10 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     st = winding.storage
     note = (
         f"storage: temperature change {st['temperature_change_K']:g} K, moisture change "
-        f"{st['moisture_change']:g}: core pressure {st['core_pressure_before_Pa'] / 1e3:.4g} -> "
-        f"{st['core_pressure_Pa'] / 1e3:.4g} kPa; stresses and reading are after the change"
+        f"{st['moisture_change']:g}"
+        + (f", {st['storage_time_s'] / 86400:.4g} d of radial creep" if "storage_time_s" in st else "")
+        + f": core pressure {st['core_pressure_before_Pa'] / 1e3:.4g} -> "
+        f"{st['core_pressure_Pa'] / 1e3:.4g} kPa; stresses and reading are after storage"
     )
     return replace(
         result,
@@ -170,8 +172,27 @@ def _after_storage(case: Case, winding: Any, web: Web, core: Any) -> tuple[Any, 
         return winding, ()
     from woundroll.winding.storage import apply_storage
 
-    res = apply_storage(winding, web, core, case.storage.build())
-    return replace(res.winding, storage=res.to_dict()), res.warnings
+    spec = case.storage
+    res = apply_storage(winding, web, core, spec.build())
+    record = res.to_dict()
+    after = res.winding
+    law = spec.creep_law()
+    if law is not None and spec.time > 0.0:
+        # storage time: the stack creeps under the pressure after the temperature change
+        from woundroll.winding.creep import apply_creep
+
+        crept = apply_creep(after, web, core, law, spec.time, steps=spec.time_steps)
+        after = crept.winding
+        record = {
+            **record,
+            **crept.to_dict(),
+            "core_pressure_Pa": float(after.core_pressure),
+            "max_pressure_Pa": float(np.max(-after.sigma_r)),
+            "max_sigma_theta_Pa": float(np.max(after.sigma_theta)),
+            "min_sigma_theta_Pa": float(np.min(after.sigma_theta)),
+            "pressure_wound_in_Pa": (-winding.sigma_r).tolist(),
+        }
+    return replace(after, storage=record), res.warnings
 
 
 def _run_given_spring(
