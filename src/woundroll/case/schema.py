@@ -259,12 +259,63 @@ class WindingSpec(_Section):
     thickness_profile: str | None = None
     nip_roller: NipRollerSpec | None = None
     options: dict[str, Any] = Field(default_factory=dict)
+    # --- winder type (woundroll.winding.tension; docs/winding.md "Surface and centre-surface
+    # winding"). ``friction`` above is the kinetic friction between web layers. ---
+    mode: Literal["center", "surface", "center-surface"] = "center"
+    drum_friction: Q("dimensionless", "nonnegative") | None = None
+    nip_saturation: Q("force_per_length") | None = None
+    drum_wrap: Q("dimensionless", "nonnegative") = math.pi / 2
+    tension_differential: Annotated[tuple[str, float], BeforeValidator(_tension)] | None = None
+    drum_torque: Q("energy", "any") | None = None
+    drum_radius: Q("length") | None = None
 
     @model_validator(mode="after")
     def _size(self) -> WindingSpec:
         if (self.outer_radius is None) == (self.length is None):
             raise InputError("give exactly one of outer_radius or length", "winding.outer_radius")
         return self
+
+    @model_validator(mode="after")
+    def _mode(self) -> WindingSpec:
+        surface_keys = ("drum_friction", "nip_saturation", "tension_differential", "drum_torque")
+        if self.mode == "center":
+            for name in surface_keys:
+                if getattr(self, name) is not None:
+                    raise InputError(
+                        "only with winding.mode = 'surface' or 'center-surface'", f"winding.{name}"
+                    )
+            return self
+        if self.thickness_profile is not None:
+            raise InputError(
+                "surface winding is not modelled with winding.thickness_profile yet", "winding.mode"
+            )
+        if self.nip_saturation is None:
+            raise InputError(
+                "needed for surface winding: the nip load where the nip-induced tension levels "
+                "off, from wound-in-tension measurements (docs/winding.md)",
+                "winding.nip_saturation",
+            )
+        given = [n for n in ("tension_differential", "drum_torque") if getattr(self, n) is not None]
+        if self.mode == "surface" and given:
+            raise InputError("only with winding.mode = 'center-surface'", f"winding.{given[0]}")
+        if self.mode == "center-surface":
+            if len(given) != 1:
+                raise InputError(
+                    "give exactly one of tension_differential or drum_torque (with drum_radius)",
+                    "winding.tension_differential",
+                )
+            if self.drum_torque is not None and self.drum_radius is None:
+                raise InputError("needed with winding.drum_torque", "winding.drum_radius")
+        return self
+
+    def _differential(self, web: Web) -> float:
+        """The centre-surface tension differential as a force per width [N/m]."""
+        if self.drum_torque is not None and self.drum_radius is not None:
+            return self.drum_torque / (web.width * self.drum_radius)
+        if self.tension_differential is None:
+            return 0.0
+        kind, v = self.tension_differential
+        return {"force": v / web.width, "force_per_length": v, "pressure": v * web.thickness}[kind]
 
     def final_radius(self, web: Web, core: Core) -> float:
         """Outer radius [m]: as given, or from the wound length (no compaction assumed)."""
@@ -289,11 +340,23 @@ class WindingSpec(_Section):
             "force_per_length": v / web.thickness,
             "pressure": v,
         }[kind]
+        if self.mode == "center":
+            return TensionSchedule(
+                web_stress=stress,
+                taper=self.taper.build(),
+                nip_load=self.nip_load,
+                friction=self.friction,
+            )
         return TensionSchedule(
             web_stress=stress,
             taper=self.taper.build(),
             nip_load=self.nip_load,
             friction=self.friction,
+            mode=self.mode,
+            drum_friction=self.drum_friction,
+            nip_saturation=self.nip_saturation,
+            tension_differential=self._differential(web),
+            drum_wrap=self.drum_wrap,
         )
 
 

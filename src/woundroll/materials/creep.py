@@ -81,7 +81,7 @@ class PowerCreep:
         return self.tau * x ** (self.n + 1.0) / (self.n + 1.0)
 
     def to_dict(self) -> dict[str, Any]:
-        return {"law": "power", "n": self.n, "tau_s": self.tau}
+        return {"law": "power", "exponent": self.n, "tau_s": self.tau}
 
     def toml(self) -> str:
         """The case-file inline table (``storage.radial_creep``)."""
@@ -134,7 +134,7 @@ class PronyCreep:
         return out
 
     def to_dict(self) -> dict[str, Any]:
-        return {"law": "prony", "c": list(self.c), "tau_s": list(self.tau)}
+        return {"law": "prony", "weights": list(self.c), "tau_s": list(self.tau)}
 
     def toml(self) -> str:
         cs = ", ".join(f"{c:.6g}" for c in self.c)

@@ -335,6 +335,18 @@ _TERMS: tuple[Term, ...] = (
     _t("delta_sigma_r_Pa", "Pa", "change of the radial stress by the storage change (per node)"),
     _t("delta_sigma_theta_Pa", "Pa", "change of the hoop stress by the storage change (per node)"),
     _i("iterations", "iterations used"),
+    _t("storage_time_s", "s", "time in storage (radial creep)", "t_s"),
+    _o("radial_creep", "the stack's creep law: phi(t), J(t) = (1 + phi(t)) / E_r"),
+    _t("exponent", "", "exponent n of a power creep law phi = (t/tau)^n", "n"),
+    _t("tau_s", "s", "time constant(s) of a creep law: power tau, Prony retardation times", "τ"),  # noqa: E501
+    _t("weights", "", "Prony weights c_i of a creep law", "c_i"),
+    _t("core_pressure_before_creep_Pa", "Pa", "core pressure when the storage time begins"),
+    _t("core_pressure_after_creep_Pa", "Pa", "core pressure after the storage time"),
+    _t("pressure_wound_in_Pa", "Pa", "interlayer pressure as wound, before storage (per node)"),
+    _t("pressure_before_creep_Pa", "Pa", "interlayer pressure when the storage time begins (per node)"),  # noqa: E501
+    _t("pressure_after_creep_Pa", "Pa", "interlayer pressure after the storage time (per node)"),
+    _t("creep_time_s", "s", "time steps through the storage time"),
+    _t("creep_core_pressure_Pa", "Pa", "core pressure at each creep time step"),
     # ------------------------------------------------------------------ profile
     _t("z_m", "m", "CMD position of a sector's centre", "z"),
     _r("reading_energy", "readout", "the energy model's reading"),
