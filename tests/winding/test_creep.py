@@ -104,7 +104,9 @@ def test_time_steps_converge_at_second_order():
     # measured orders 1.94, 1.95, 2.02 (product integration of a stress linear in each step)
     w = loaded_annulus(201)
     law, T = PowerCreep(0.2, 30 * 86400.0), 30 * 86400.0
-    sols = {k: apply_creep(w, WEB, CORE, law, T, steps=k).winding.sigma_r for k in (10, 20, 40, 80, 320)}
+    sols = {
+        k: apply_creep(w, WEB, CORE, law, T, steps=k).winding.sigma_r for k in (10, 20, 40, 80, 320)
+    }
     change = np.max(np.abs(sols[320] - w.sigma_r))
     errs = [np.max(np.abs(sols[k] - sols[320])) / change for k in (10, 20, 40, 80)]
     orders = [math.log2(e0 / e1) for e0, e1 in zip(errs, errs[1:], strict=False)]
@@ -159,7 +161,10 @@ def test_zero_storage_time_run_equals_the_plain_run(plain_run):
     [
         (["storage.time=30 d"], "storage.radial_creep"),
         (["storage.time=-1 d"], "storage.time"),
-        (['storage.radial_creep={ law = "power", n = 1.5, tau = "1 d" }'], "storage.radial_creep.n"),
+        (
+            ['storage.radial_creep={ law = "power", n = 1.5, tau = "1 d" }'],
+            "storage.radial_creep.n",
+        ),
         (['storage.radial_creep={ law = "log", n = 0.5 }'], "storage.radial_creep.law"),
         (['storage.radial_creep={ law = "power", n = 0.5 }'], "storage.radial_creep.tau"),
     ],
@@ -181,7 +186,9 @@ def test_creep_from_spec_reads_units():
 
 
 def _write(path, header, t, y):
-    path.write_text(header + "\n" + "\n".join(f"{float(a)!r},{float(b)!r}" for a, b in zip(t, y, strict=True)))
+    path.write_text(
+        header + "\n" + "\n".join(f"{float(a)!r},{float(b)!r}" for a, b in zip(t, y, strict=True))
+    )
 
 
 T_TEST = np.array([60, 300, 600, 1800, 3600, 7200, 14400, 28800, 86400, 172800, 345600, 604800.0])

@@ -28,7 +28,10 @@ def wot(**kw) -> np.ndarray:
 
 
 def surface(**kw) -> dict:
-    return dict(mode="surface", nip_load=500.0, friction=0.2, drum_friction=0.3, nip_saturation=1000.0) | kw
+    return (
+        dict(mode="surface", nip_load=500.0, friction=0.2, drum_friction=0.3, nip_saturation=1000.0)
+        | kw
+    )
 
 
 def test_center_mode_is_todays_formula_bit_for_bit():

@@ -165,10 +165,14 @@ def creep_from_spec(spec: Any, field: str = "storage.radial_creep") -> CreepLaw:
     spec = dict(spec)
     law = spec.pop("law", None)
     if law not in CREEP_LAWS:
-        raise InputError(f"unknown law {law!r}; choose one of {', '.join(CREEP_LAWS)}", f"{field}.law")
+        raise InputError(
+            f"unknown law {law!r}; choose one of {', '.join(CREEP_LAWS)}", f"{field}.law"
+        )
     for key in ("n", "tau", "c"):
-        if key not in spec and not (law == "power" and key == "c") and not (
-            law == "prony" and key == "n"
+        if (
+            key not in spec
+            and not (law == "power" and key == "c")
+            and not (law == "prony" and key == "n")
         ):
             raise InputError(f"missing for law {law!r}", f"{field}.{key}")
     try:
@@ -186,7 +190,9 @@ def creep_from_spec(spec: Any, field: str = "storage.radial_creep") -> CreepLaw:
             )
     except InputError as exc:
         f = exc.field or field
-        raise InputError(exc.message, f if f.startswith(field) else f"{field}.{f.split('.')[-1]}") from None
+        raise InputError(
+            exc.message, f if f.startswith(field) else f"{field}.{f.split('.')[-1]}"
+        ) from None
     if spec:
         raise InputError(f"unknown key(s) {', '.join(sorted(spec))} for law {law!r}", field)
     return out
@@ -211,9 +217,9 @@ def relaxation(law: CreepLaw, times: ArrayLike, steps_per_decade: int = 40) -> F
     for k in range(1, grid.size):
         tk = grid[k]
         a, b = grid[:k], grid[1 : k + 1]
-        m = step_mean_phi(law, tk, a, b) if k else np.zeros(0)
-        known = float(law.phi(tk)) * 1.0 + float(np.dot(dg, m[:-1]))
-        # 1 = (1 + dg_k) ... : g_k = 1 + sum dg, so 1 = 1 + sum_{j<k} dg_j + dg_k + known + dg_k m_kk
+        m = step_mean_phi(law, tk, a, b)
+        known = float(law.phi(tk)) + float(np.dot(dg, m[:-1]))
+        # g_k = 1 + sum_j dg_j, so 1 = 1 + sum_{j<k} dg_j + dg_k + known + dg_k M_kk
         dk = -(float(np.sum(dg)) + known) / (1.0 + float(m[-1]))
         dg.append(dk)
         g[k] = g[k - 1] + dk

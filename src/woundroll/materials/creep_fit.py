@@ -53,7 +53,7 @@ class CreepFit:
 
     def case_lines(self) -> str:
         """The case-file lines (``[storage]``) of the fit."""
-        return f"[storage]\ntime = \"30 d\"  # the storage time\nradial_creep = {self.law.toml()}"
+        return f'[storage]\ntime = "30 d"  # the storage time\nradial_creep = {self.law.toml()}'
 
 
 def _check(t: ArrayLike, y: ArrayLike, name: str) -> tuple[np.ndarray, np.ndarray]:
@@ -112,7 +112,9 @@ def fit_creep(time: ArrayLike, strain: ArrayLike, law: str = "power") -> CreepFi
         keep = coef[1:] > 0
         if not np.any(keep):
             keep[-1] = True
-        fitted = PronyCreep(tuple(float(c / e0) for c in coef[1:][keep]), tuple(float(v) for v in taus[keep]))
+        fitted = PronyCreep(
+            tuple(float(c / e0) for c in coef[1:][keep]), tuple(float(v) for v in taus[keep])
+        )
     else:
         raise InputError(f"cannot fit law {law!r}; choose power or prony", "law")
     rms, mx = _quality(e0 * (1.0 + fitted.phi(t)), e)

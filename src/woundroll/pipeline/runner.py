@@ -152,7 +152,11 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     note = (
         f"storage: temperature change {st['temperature_change_K']:g} K, moisture change "
         f"{st['moisture_change']:g}"
-        + (f", {st['storage_time_s'] / 86400:.4g} d of radial creep" if "storage_time_s" in st else "")
+        + (
+            f", {st['storage_time_s'] / 86400:.4g} d of radial creep"
+            if "storage_time_s" in st
+            else ""
+        )
         + f": core pressure {st['core_pressure_before_Pa'] / 1e3:.4g} -> "
         f"{st['core_pressure_Pa'] / 1e3:.4g} kPa; stresses and reading are after storage"
     )

@@ -209,7 +209,7 @@ _TERMS: tuple[Term, ...] = (
     _t("width_m", "m", "web width, or a band's width", "W"),
     _t("E_theta_Pa", "Pa", "in-plane (MD) Young's modulus of the web", "E_θ"),
     _t("nu_theta_r", "", "Poisson ratio theta-r", "ν_θr"),
-    _s("law", "name of a radial-modulus law"),
+    _s("law", "name of a law: radial modulus, unloading or creep"),
     _t("K1_Pa", "Pa", "Pfeiffer's K1", "K1"),
     _t("K2", "", "Pfeiffer's K2", "K2"),
     _t("stiffness_Pa", "Pa", "radial stiffness of the core", "E_c"),

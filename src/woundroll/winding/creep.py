@@ -151,5 +151,7 @@ def apply_creep(
         m_prev = m
     sigma_r = sigma0 + total
     sigma_theta = winding.sigma_theta + hoop_increment(r, total)
-    after = replace(winding, sigma_r=sigma_r, sigma_theta=sigma_theta, core_pressure=float(-sigma_r[0]))
+    after = replace(
+        winding, sigma_r=sigma_r, sigma_theta=sigma_theta, core_pressure=float(-sigma_r[0])
+    )
     return CreepResult(after, float(time), law, cp0, p0.copy(), t, core_hist)

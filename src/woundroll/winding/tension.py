@@ -165,7 +165,9 @@ class TensionSchedule:
             )
         ns = self.nip_saturation
         if ns is None or not (math.isfinite(ns) and ns > 0):
-            raise InputError(f"must be a positive force per width, got {ns!r}", "winding.nip_saturation")
+            raise InputError(
+                f"must be a positive force per width, got {ns!r}", "winding.nip_saturation"
+            )
         if not math.isfinite(self.tension_differential):
             raise InputError("must be a finite number", "winding.tension_differential")
         if self.mode == "surface" and self.tension_differential != 0.0:
@@ -192,7 +194,9 @@ class TensionSchedule:
         """Largest tension differential [N/m] the drum holds at web line tension ``web_line``
         [N/m]: ``T_w h (exp(mu_d beta) - 1) + mu_d N`` (capstan plus nip friction)."""
         mu = float(self.drum_friction or 0.0)
-        return np.asarray(web_line, dtype=float) * math.expm1(mu * self.drum_wrap) + mu * self.nip_load
+        return (
+            np.asarray(web_line, dtype=float) * math.expm1(mu * self.drum_wrap) + mu * self.nip_load
+        )
 
     def web_tension(self, r: ArrayLike, r_core: float, r_outer: float) -> NDArray[np.float64]:
         """Tapered web tension T_w(r) [Pa]."""
