@@ -166,3 +166,28 @@ def test_surface_without_nip_is_an_error():
     with pytest.raises(InputError) as e:
         TensionSchedule(web_stress=TW, **surface(nip_load=0.0))
     assert e.value.field == "winding.nip_load"
+
+
+def test_drum_slip_is_flagged_with_a_warning():
+    sets = [
+        "winding.friction=0.2",
+        "winding.nip_load=500 N/m",
+        "winding.mode=center-surface",
+        "winding.drum_friction=0.3",
+        "winding.nip_saturation=1000 N/m",
+        "winding.tension_differential=1000 N/m",
+    ]
+    args = ["run", "pet1-26.7N", "--json"]
+    for s in sets:
+        args += ["--set", s]
+    res = runner.invoke(app, args)
+    assert res.exit_code == 0, res.output
+    d = json.loads(res.stdout)
+    assert d["flags"]["drum_slip"] is True
+    assert any("slips on the drum" in w for w in d["warnings"])
+    # the cap: T_w h (exp(mu_d beta) - 1) + mu_d N over h on top of surface winding
+    tw = d["winding"]["inputs"]["tension"]["web_stress_Pa"]
+    h = 1e-4
+    limit = tw * h * math.expm1(0.3 * math.pi / 2) + 0.3 * 500
+    nit = 0.2 * 1000 * math.tanh(0.5)
+    assert d["winding"]["wound_on_tension_Pa"][0] == pytest.approx(tw + (nit + limit) / h, rel=1e-9)

@@ -146,6 +146,7 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         result = _run_given_spring(case, winding, setup, web, core, r_out, max_p, report)
     else:
         result = _run_contact(case, winding, setup, web, core, r_out, max_p, report)
+    result = _with_mode_notes(result, schedule, web, core, r_out)
     if case.storage is None:
         return result
     st = winding.storage
@@ -165,6 +166,37 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         notes=(*result.notes, note),
         warnings=result.warnings + storage_warnings,
         flags={**result.flags, "storage_overstress": bool(storage_warnings)},
+    )
+
+
+def _with_mode_notes(
+    result: RunResult, schedule: Any, web: Web, core: Any, r_out: float
+) -> RunResult:
+    """Surface and centre-surface winding (``winding.mode``): a note with the nip-induced
+    tension against centre winding's ``mu N``, a warning where the web slips on the drum
+    (:mod:`woundroll.winding.tension`). Centre winding: the result as is."""
+    if schedule.mode == "center":
+        return result
+    nit = schedule.nip_induced_line()
+    notes = [
+        f"winding.mode = {schedule.mode}: nip-induced tension {nit:.4g} N/m (centre winding's "
+        f"mu N would be {schedule.friction * schedule.nip_load:.4g} N/m; it levels off at "
+        f"{min(schedule.friction, schedule.drum_friction) * schedule.nip_saturation:.4g} N/m)"
+    ]
+    warnings: tuple[str, ...] = ()
+    r = result.winding.radius
+    if schedule.drum_slips(r, core.outer_radius, r_out, web.thickness):
+        hold = float(schedule.drum_limit(schedule.web_stress * web.thickness))
+        warnings = (
+            f"winding: the tension differential {schedule.tension_differential:.4g} N/m exceeds "
+            f"what the drum holds ({hold:.4g} N/m at the core's web tension): the web slips on "
+            "the drum and the wound-on tension takes the drum's limit",
+        )
+    return replace(
+        result,
+        notes=(*result.notes, *notes),
+        warnings=result.warnings + warnings,
+        flags={**result.flags, "drum_slip": bool(warnings)},
     )
 
 

@@ -325,6 +325,7 @@ _TERMS: tuple[Term, ...] = (
     _b("implausible_input", "a case value outside its plausible range"),
     _b("pressure_implausible", "the largest pressure beyond its plausible range"),
     _b("storage_overstress", "after the storage change layers separate or exceed strength"),
+    _b("drum_slip", "centre-surface winding: the tension differential exceeds the drum's hold"),
     # ------------------------------------------------------------------ storage
     _o("storage", "the roll's change after winding: temperature and moisture"),
     _t("temperature_change_K", "K", "temperature in storage minus at winding", "ΔT"),
