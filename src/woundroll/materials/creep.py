@@ -16,12 +16,12 @@ Laws (``phi(0) = 0``):
     equals the instantaneous strain. Power laws describe the compressive creep of paper and
     polymer stacks over decades of time (Coffin, "The creep response of paper", Trans. XIIIth
     Fund. Res. Symp., Cambridge 2005, pp. 651-747; Lin and Westmann, "Viscoelastic winding
-    mechanics", J. Appl. Mech. 56 (1989) 821-827, use a viscoelastic tape of this kind).
+    mechanics", J. Appl. Mech. 56 (1989) 821, use a viscoelastic tape of this kind).
 ``prony``
     ``phi(t) = sum_i c_i (1 - exp(-t / tau_i))``, ``c_i >= 0``: a chain of Kelvin-Voigt
-    elements (one term: the standard linear solid), the form Qualls and Good fitted to
-    stack creep tests ("An orthotropic viscoelastic winding model including a nonlinear
-    radial stiffness", J. Appl. Mech. 64 (1997) 201-208). It creeps to ``1 + sum c_i`` times
+    elements (one term: the standard linear solid); a linear viscoelastic radial law of the
+    kind in Qualls and Good's winding model ("An orthotropic viscoelastic winding model
+    including a nonlinear radial stiffness", J. Appl. Mech. 64 (1997) 201-208). It creeps to ``1 + sum c_i`` times
     the instantaneous strain.
 
 No law has a default: its parameters come from a creep test of the web

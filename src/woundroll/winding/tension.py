@@ -19,7 +19,7 @@ Winding modes (``mode``; docs/winding.md "Surface and centre-surface winding"):
     ``mu_eff N`` at low nip load and levels off at high nip load (Pfeiffer, "Nip forces and
     their effect on wound-in tension", Tappi J. 60(2) (1977) 115-117; Good, Hartwig and
     Markum, "A comparison of center and surface winding using the wound-in-tension method",
-    Proc. IWEB 5 (1999) 87-104; Balaji and Good: the slope approaches the kinetic friction
+    Proc. 5th Int. Conf. on Web Handling, Oklahoma State University (1999), p. 87 ff.; Balaji and Good: the slope approaches the kinetic friction
     between web layers, and the wound-in tension becomes independent of the nip load at high
     loads). Model (the saturating form is a choice; its scale is an input):
     ``NIT = mu_eff N_s tanh(N / N_s)``, ``mu_eff = min(mu, mu_d)`` (the outer layer slips on
