@@ -21,8 +21,8 @@ Laws (``phi(0) = 0``):
     ``phi(t) = sum_i c_i (1 - exp(-t / tau_i))``, ``c_i >= 0``: a chain of Kelvin-Voigt
     elements (one term: the standard linear solid); a linear viscoelastic radial law of the
     kind in Qualls and Good's winding model ("An orthotropic viscoelastic winding model
-    including a nonlinear radial stiffness", J. Appl. Mech. 64 (1997) 201-208). It creeps to ``1 + sum c_i`` times
-    the instantaneous strain.
+    including a nonlinear radial stiffness", J. Appl. Mech. 64 (1997) 201-208). It creeps to
+    ``1 + sum c_i`` times the instantaneous strain.
 
 No law has a default: its parameters come from a creep test of the web
 (``woundroll fit-stack CSV --creep``). The numbers in docs/winding.md are typical,
