@@ -21,7 +21,8 @@ Winding modes (``mode``; docs/winding.md "Surface and centre-surface winding"):
     Markum, "A comparison of center and surface winding using the wound-in-tension method",
     Proc. 5th Int. Conf. on Web Handling, Oklahoma State University (1999); Balaji and
     Good: the slope approaches the kinetic friction between web layers, and the wound-in
-    tension becomes independent of the nip load at high loads). Model (the saturating form is a choice; its scale is an input):
+    tension becomes independent of the nip load at high loads). Model (the saturating form
+    is a choice; its scale is an input):
     ``NIT = mu_eff N_s tanh(N / N_s)``, ``mu_eff = min(mu, mu_d)`` (the outer layer slips on
     the layer below only while the drum grips the web harder, ``mu_d`` the web-drum
     friction, ``winding.drum_friction``), ``N_s`` the nip load where it levels off
