@@ -229,3 +229,14 @@ def test_fit_stack_creep_bad_file_exits_2(tmp_path):
     csv.write_text("when,strain\n1,2\n")
     res = runner.invoke(app, ["fit-stack", str(csv), "--creep"])
     assert res.exit_code == 2 and "CSV_FILE" in res.output
+
+
+def test_report_shows_the_roll_before_and_after_storage(tmp_path):
+    res = runner.invoke(
+        app, ["run", "pet1-26.7N", "-q", "--out", str(tmp_path), "--report", *CREEP_SET]
+    )
+    assert res.exit_code == 0, res.output
+    html = (tmp_path / "report.html").read_text(encoding="utf-8")
+    assert "before and after storage" in html
+    st = json.loads((tmp_path / "result.json").read_text())["winding"]["storage"]
+    assert st["pressure_after_creep_Pa"][0] == pytest.approx(st["core_pressure_after_creep_Pa"])

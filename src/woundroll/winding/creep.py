@@ -151,7 +151,15 @@ def apply_creep(
         m_prev = m
     sigma_r = sigma0 + total
     sigma_theta = winding.sigma_theta + hoop_increment(r, total)
+    # E_r as the winding reports it: the loading law's tangent at the pressure now (floored
+    # as the winding's); the creep itself used the tangent at the start (module docstring)
+    floor = float(np.min(E))
+    E_after = np.maximum(web.radial_modulus.modulus_at_pressure(np.maximum(-sigma_r, 0.0)), floor)
     after = replace(
-        winding, sigma_r=sigma_r, sigma_theta=sigma_theta, core_pressure=float(-sigma_r[0])
+        winding,
+        sigma_r=sigma_r,
+        sigma_theta=sigma_theta,
+        E_r=E_after,
+        core_pressure=float(-sigma_r[0]),
     )
     return CreepResult(after, float(time), law, cp0, p0.copy(), t, core_hist)
