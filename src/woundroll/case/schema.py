@@ -264,7 +264,8 @@ class WindingSpec(_Section):
     mode: Literal["center", "surface", "center-surface"] = "center"
     drum_friction: Q("dimensionless", "nonnegative") | None = None
     nip_saturation: Q("force_per_length") | None = None
-    drum_wrap: Q("dimensionless", "nonnegative") = math.pi / 2
+    #: wrap of the web on the drum; None: the schedule's default (TensionSchedule.drum_wrap)
+    drum_wrap: Q("dimensionless", "nonnegative") | None = None
     tension_differential: Annotated[tuple[str, float], BeforeValidator(_tension)] | None = None
     drum_torque: Q("energy", "any") | None = None
     drum_radius: Q("length") | None = None
@@ -277,7 +278,14 @@ class WindingSpec(_Section):
 
     @model_validator(mode="after")
     def _mode(self) -> WindingSpec:
-        surface_keys = ("drum_friction", "nip_saturation", "tension_differential", "drum_torque")
+        surface_keys = (
+            "drum_friction",
+            "nip_saturation",
+            "tension_differential",
+            "drum_torque",
+            "drum_radius",
+            "drum_wrap",
+        )
         if self.mode == "center":
             for name in surface_keys:
                 if getattr(self, name) is not None:
@@ -356,7 +364,7 @@ class WindingSpec(_Section):
             drum_friction=self.drum_friction,
             nip_saturation=self.nip_saturation,
             tension_differential=self._differential(web),
-            drum_wrap=self.drum_wrap,
+            **({} if self.drum_wrap is None else {"drum_wrap": self.drum_wrap}),
         )
 
 
