@@ -430,8 +430,8 @@ class ContactSpec(_Section):
         return {**table, "slip": self.slip, "slip_shear_fraction": self.slip_shear_fraction}
 
     def contact3d_options(self) -> Any:
-        """The :class:`~woundroll.contact.solid3d.solver.Contact3DOptions` of ``options3d``."""
-        from woundroll.contact.solid3d.solver import Contact3DOptions
+        """The :class:`~woundroll.contact.solid3d.options.Contact3DOptions` of ``options3d``."""
+        from woundroll.contact.solid3d.options import Contact3DOptions
 
         known = set(Contact3DOptions.__dataclass_fields__)
         unknown = sorted(set(self.options3d) - known)
