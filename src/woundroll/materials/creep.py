@@ -203,13 +203,17 @@ def relaxation(law: CreepLaw, times: ArrayLike, steps_per_decade: int = 40) -> F
     (the single compressed layer): the Volterra equation
     ``P(t) + integral_0^t phi(t - t') dP(t') = P_0`` solved by the product-integration steps
     of :mod:`woundroll.winding.creep` on a graded grid (``steps_per_decade`` per decade from
-    1e-6 of the last time), interpolated at ``times`` [s] (>= 0)."""
+    1e-6 of the last time or a hundredth of the first, whichever is earlier), interpolated at
+    ``times`` [s] (>= 0)."""
     t_out = np.asarray(times, dtype=float)
     t_end = float(np.max(t_out)) if t_out.size else 0.0
     if t_end <= 0.0:
         return np.ones_like(t_out)
-    n = max(int(6 * steps_per_decade), 8)
-    grid = np.concatenate([[0.0], t_end * np.logspace(-6, 0, n)])
+    # from 1e-6 of the last time, or a hundredth of the first positive time if earlier
+    t_pos = t_out[t_out > 0.0]
+    lo = min(-6.0, float(np.log10(t_pos.min() / t_end)) - 2.0)
+    n = max(int(-lo * steps_per_decade), 8)
+    grid = np.concatenate([[0.0], t_end * np.logspace(lo, 0, n)])
     g = np.empty_like(grid)
     g[0] = 1.0
     # strain (times E) held at 1: 1 = g(t) + phi(t) g(0) + sum_j dg_j mean phi over step j
