@@ -259,3 +259,10 @@ def test_report_shows_the_roll_before_and_after_storage(tmp_path):
     assert "before and after storage" in html
     st = json.loads((tmp_path / "result.json").read_text())["winding"]["storage"]
     assert st["pressure_after_creep_Pa"][0] == pytest.approx(st["core_pressure_after_creep_Pa"])
+
+
+def test_fit_stack_creep_rejects_a_stack_law(tmp_path):
+    csv = tmp_path / "creep.csv"
+    _write(csv, "time [h],strain [%]", T_TEST / 3600, 4.0 * (1 + PowerCreep(0.2, 1e6).phi(T_TEST)))
+    res = runner.invoke(app, ["fit-stack", str(csv), "--creep", "--law", "pfeiffer"])
+    assert res.exit_code == 2 and "--law" in res.output and "Traceback" not in res.output

@@ -26,6 +26,8 @@ def fit_creep_cmd(
     from woundroll.util.tables import parse_header, read_columns, read_header_row
 
     try:
+        if law not in ("all", "power", "prony"):
+            raise InputError(f"with --creep choose power, prony or all, got {law!r}", "--law")
         names = {parse_header(h)[0] for h in read_header_row(csv_file, "CSV_FILE")}
         if "time" not in names:
             raise InputError(
