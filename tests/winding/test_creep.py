@@ -266,3 +266,17 @@ def test_fit_stack_creep_rejects_a_stack_law(tmp_path):
     _write(csv, "time [h],strain [%]", T_TEST / 3600, 4.0 * (1 + PowerCreep(0.2, 1e6).phi(T_TEST)))
     res = runner.invoke(app, ["fit-stack", str(csv), "--creep", "--law", "pfeiffer"])
     assert res.exit_code == 2 and "--law" in res.output and "Traceback" not in res.output
+
+
+def test_summary_shows_the_core_pressure_as_wound_and_after_storage():
+    from dataclasses import replace
+
+    from woundroll.pipeline.summary import _winding_rows
+
+    w = loaded_annulus(11)
+    rows = dict(_winding_rows(w))
+    assert "core pressure" in rows and not any("storage" in k for k in rows)
+    w2 = replace(w, storage={"storage_time_s": 30 * 86400.0, "core_pressure_before_Pa": 84.1e3})
+    rows = dict(_winding_rows(w2))
+    assert rows["core pressure as wound"] == "84.1 kPa"
+    assert "core pressure after 30 d storage" in rows

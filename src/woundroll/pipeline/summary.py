@@ -30,12 +30,11 @@ def _winding_rows(w: Any) -> Rows:
     ]
     st = w.storage or {}
     if "storage_time_s" in st:  # storage time (creep): the wound-in value beside it
+        days = f"{st['storage_time_s'] / 86400:.4g} d"
+        rows[2] = (f"core pressure after {days} storage", rows[2][1])
         rows.insert(
-            3,
-            (
-                f"core pressure as wound (before {st['storage_time_s'] / 86400:.4g} d storage)",
-                f"{_num(st['core_pressure_before_Pa'] / 1e3, '.1f')} kPa",
-            ),
+            2,
+            ("core pressure as wound", f"{_num(st['core_pressure_before_Pa'] / 1e3, '.1f')} kPa"),
         )
     return rows
 
