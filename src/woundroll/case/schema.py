@@ -622,8 +622,8 @@ class StorageSpec(_Section):
     #: the stack's creep law, e.g. ``{ law = "power", n = 0.2, tau = "40 d" }``
     #: (:func:`woundroll.materials.creep.creep_from_spec`; ``woundroll fit-stack --creep``)
     radial_creep: dict[str, Any] | None = None
-    #: time steps through the storage time (graded, :data:`woundroll.winding.creep.TIME_STEPS`)
-    time_steps: int = Field(default=40, ge=1, le=10_000)
+    #: time steps through the storage time; None: :data:`woundroll.winding.creep.TIME_STEPS`
+    time_steps: int | None = Field(default=None, ge=1, le=10_000)
 
     @model_validator(mode="after")
     def _creep_law(self) -> StorageSpec:

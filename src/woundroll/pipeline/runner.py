@@ -217,7 +217,8 @@ def _after_storage(case: Case, winding: Any, web: Web, core: Any) -> tuple[Any, 
         # storage time: the stack creeps under the pressure after the temperature change
         from woundroll.winding.creep import apply_creep
 
-        crept = apply_creep(after, web, core, law, spec.time, steps=spec.time_steps)
+        steps = {} if spec.time_steps is None else {"steps": spec.time_steps}
+        crept = apply_creep(after, web, core, law, spec.time, **steps)
         after = crept.winding
         record = {
             **record,
