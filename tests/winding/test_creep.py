@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -250,6 +251,29 @@ def test_fit_stack_creep_bad_file_exits_2(tmp_path):
     assert res.exit_code == 2 and "CSV_FILE" in res.output
 
 
+def test_storage_figure_only_when_asked_for():
+    from types import SimpleNamespace
+
+    from woundroll.app.report.figures import storage_and_mode_figures
+
+    w = loaded_annulus(51)
+    p = (-w.sigma_r).tolist()
+    st = {
+        "storage_time_s": 86400.0,
+        "pressure_wound_in_Pa": p,
+        "pressure_before_creep_Pa": p,
+        "pressure_after_creep_Pa": [0.8 * v for v in p],
+    }
+    centre = SimpleNamespace(winding=SimpleNamespace(mode="center"))
+    assert storage_and_mode_figures(SimpleNamespace(winding=w, case=centre)) == []
+    figs = storage_and_mode_figures(SimpleNamespace(winding=replace(w, storage=st), case=centre))
+    assert len(figs) == 1 and figs[0]["src"].startswith("data:image/png;base64,")
+    assert "before and after storage" in figs[0]["caption"]
+    surface = SimpleNamespace(winding=SimpleNamespace(mode="surface"))
+    assert len(storage_and_mode_figures(SimpleNamespace(winding=w, case=surface))) == 1
+
+
+@pytest.mark.slow
 def test_report_shows_the_roll_before_and_after_storage(tmp_path):
     res = runner.invoke(
         app, ["run", "pet1-26.7N", "-q", "--out", str(tmp_path), "--report", *CREEP_SET]
@@ -269,8 +293,6 @@ def test_fit_stack_creep_rejects_a_stack_law(tmp_path):
 
 
 def test_summary_shows_the_core_pressure_as_wound_and_after_storage():
-    from dataclasses import replace
-
     from woundroll.pipeline.summary import _winding_rows
 
     w = loaded_annulus(11)
