@@ -74,6 +74,20 @@ class WebSpec(_Section):
     beta_r: float = 0.0  # hygroscopic: strain per unit moisture content
     beta_theta: float = 0.0
     tensile_strength: Q("pressure") | None = None
+    # -- speed and entrained air (woundroll.winding.air) --
+    roughness: Q("length", "nonnegative") | None = None  # combined Rq of both faces [m]
+
+    @model_validator(mode="after")
+    def _roughness_below_thickness(self) -> WebSpec:
+        if self.roughness is not None and self.roughness >= self.thickness:
+            raise InputError(
+                f"must be smaller than the web thickness ({self.thickness * 1e6:.3g} um), "
+                f"got {self.roughness * 1e6:.3g} um",
+                "web.roughness",
+            )
+        return self
+
+    # -- end speed and entrained air --
 
     @model_validator(mode="before")
     @classmethod
@@ -99,7 +113,11 @@ class WebSpec(_Section):
     def build(self) -> Web:
         """The SI :class:`~woundroll.materials.web.Web` of this section."""
         return Web(
-            **{name: getattr(self, name) for name in type(self).model_fields if name != "preset"}
+            **{
+                name: getattr(self, name)
+                for name in type(self).model_fields
+                if name not in ("preset", "roughness")
+            }
         )
 
 
@@ -269,6 +287,9 @@ class WindingSpec(_Section):
     tension_differential: Annotated[tuple[str, float], BeforeValidator(_tension)] | None = None
     drum_torque: Q("energy", "any") | None = None
     drum_radius: Q("length") | None = None
+    # -- speed and entrained air (woundroll.winding.air): 0 = no air, today's model --
+    speed: Q("velocity", "nonnegative") = 0.0
+    # -- end speed and entrained air --
 
     @model_validator(mode="after")
     def _size(self) -> WindingSpec:
@@ -652,6 +673,45 @@ class StorageSpec(_Section):
         return StorageChange(self.temperature_change, self.moisture_change)
 
 
+# -- speed and entrained air (woundroll.winding.air) --
+def _air_default(name: str) -> float:
+    from woundroll.winding import air
+
+    return float(getattr(air, name))
+
+
+class AirSpec(_Section):
+    """``[air]``: the air a fast web entrains (:mod:`woundroll.winding.air`; used when
+    ``winding.speed`` > 0): ``viscosity`` [Pa s] (bare number, default 1.8e-5, air at
+    20 C), ``pressure`` (ambient, default 101.325 kPa), ``nip_modulus`` (contact modulus E*
+    of the lay-on roller's cover against the roll, default 10 MPa) and ``nip_radius``
+    (default ``winding.nip_roller.outer_radius``, else 5 cm); ``time`` after winding of the
+    roll downstream (default: all the air that can leave has left)."""
+
+    viscosity: float = Field(default_factory=lambda: _air_default("VISCOSITY"))
+    pressure: Q("pressure") = Field(default_factory=lambda: _air_default("PRESSURE"))
+    nip_modulus: Q("pressure") = Field(default_factory=lambda: _air_default("NIP_MODULUS"))
+    nip_radius: Q("length") | None = None
+    time: Q("time", "nonnegative") | None = None
+
+    def build(self, speed: float, roughness: float | None, nip_radius: float | None) -> Any:
+        """The :class:`~woundroll.winding.air.AirSettings` of the case."""
+        from woundroll.winding.air import NIP_RADIUS, AirSettings
+
+        return AirSettings(
+            speed=speed,
+            roughness=roughness or 0.0,
+            viscosity=self.viscosity,
+            pressure=self.pressure,
+            nip_modulus=self.nip_modulus,
+            nip_radius=self.nip_radius or nip_radius or NIP_RADIUS,
+            time=math.inf if self.time is None else self.time,
+        )
+
+
+# -- end speed and entrained air --
+
+
 class Case(_Section):
     """A whole case: ``title``, ``[web]``, ``[core]``, ``[winding]``, optional ``[tester]``,
     ``[contact]``, ``[profile]`` (their tables are passed to the models that own them)."""
@@ -667,6 +727,7 @@ class Case(_Section):
     uncertainty: UncertaintySpec | None = None
     defects: DefectsSpec | None = None
     storage: StorageSpec | None = None
+    air: AirSpec | None = None  # speed and entrained air
     _base_dir: Path | None = PrivateAttr(default=None)
     _warnings: tuple[str, ...] = PrivateAttr(default=())
     _given: dict[str, Any] = PrivateAttr(default_factory=dict)

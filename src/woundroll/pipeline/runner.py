@@ -132,10 +132,18 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
             raise InputError(
                 "a storage change is not modelled with winding.thickness_profile yet", "storage"
             )
+        if case.winding.speed > 0:
+            raise InputError(
+                "entrained air is not modelled with winding.thickness_profile yet",
+                "winding.speed",
+            )
         return _run_profile(case, web, core, r_out, schedule, options, setup, report)
     # winding: the stresses in the roll
     winding = wind(
         web, core, r_out, schedule, options=options, progress=lambda f: report("winding", f)
+    )
+    winding, air_notes, air_warnings, loose = _after_air(
+        case, winding, web, core, r_out, schedule, options
     )
     winding, storage_warnings = _after_storage(case, winding, web, core)
     max_p = float(-np.min(winding.sigma_r))
@@ -146,6 +154,13 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         result = _run_given_spring(case, winding, setup, web, core, r_out, max_p, report)
     else:
         result = _run_contact(case, winding, setup, web, core, r_out, max_p, report)
+    if winding.air is not None:
+        result = replace(
+            result,
+            notes=(*result.notes, *air_notes),
+            warnings=result.warnings + air_warnings,
+            flags={**result.flags, "air_loose": loose},
+        )
     result = _with_mode_notes(result, schedule, web, core, r_out)
     if case.storage is None:
         return result
@@ -198,6 +213,37 @@ def _with_mode_notes(
         warnings=result.warnings + warnings,
         flags={**result.flags, "drum_slip": bool(warnings)},
     )
+
+
+def _after_air(
+    case: Case, winding: Any, web: Web, core: Any, r_out: float, schedule: Any, options: Any
+) -> tuple[Any, tuple[str, ...], tuple[str, ...], bool]:
+    """``winding.speed`` > 0: the roll wound with entrained air
+    (:func:`woundroll.winding.air.wind_with_air`); everything downstream (storage, contact,
+    reading) sees the roll after the air has left (the contact model knows the stack's law,
+    not the air layer). Speed 0 (the default): the roll as wound, untouched."""
+    if not case.winding.speed > 0:
+        return winding, (), (), False
+    from woundroll.case.schema import AirSpec
+    from woundroll.winding.air import wind_with_air
+
+    spec = case.air if case.air is not None else AirSpec()
+    roller = case.winding.nip_roller
+    settings = spec.build(
+        case.winding.speed, case.web.roughness, roller.outer_radius if roller else None
+    )
+    res = wind_with_air(web, core, r_out, schedule, settings, options=options, no_air=winding)
+    when = (
+        "after the air has left"
+        if math.isinf(settings.time)
+        else f"{settings.time:g} s after winding (air.time)"
+    )
+    notes = (
+        res.summary(),
+        f"air: the roll downstream (storage, contact, reading) is the roll {when}; 'air' in "
+        "result.json holds the roll at winding and the diameters",
+    )
+    return replace(res.after, air=res.to_dict()), notes, res.warnings, res.loose
 
 
 def _after_storage(case: Case, winding: Any, web: Web, core: Any) -> tuple[Any, tuple[str, ...]]:

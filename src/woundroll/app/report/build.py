@@ -74,7 +74,11 @@ def build_report(
     case = result.case
     figures: list[dict[str, Any]] = []
     captions = {
-        "winding": ["Stresses wound into the roll: sigma_r, sigma_theta and E_r against radius."],
+        "winding": [
+            "Stresses wound into the roll: sigma_r, sigma_theta and E_r against radius.",
+            "Winding speed: diameter against wound length with and without entrained air; "
+            "pressure and wound-in stress at winding and after the air has left.",
+        ],
         "contact": [
             "Roll under the striker: force against depth with the fitted spring {3}, and the "
             "contact half-width.",
