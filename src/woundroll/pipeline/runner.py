@@ -161,19 +161,57 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
             warnings=result.warnings + air_warnings,
             flags={**result.flags, "air_loose": loose},
         )
+    result = _with_mode_notes(result, schedule, web, core, r_out)
     if case.storage is None:
         return result
     st = winding.storage
     note = (
         f"storage: temperature change {st['temperature_change_K']:g} K, moisture change "
-        f"{st['moisture_change']:g}: core pressure {st['core_pressure_before_Pa'] / 1e3:.4g} -> "
-        f"{st['core_pressure_Pa'] / 1e3:.4g} kPa; stresses and reading are after the change"
+        f"{st['moisture_change']:g}"
+        + (
+            f", {st['storage_time_s'] / 86400:.4g} d of radial creep"
+            if "storage_time_s" in st
+            else ""
+        )
+        + f": core pressure {st['core_pressure_before_Pa'] / 1e3:.4g} -> "
+        f"{st['core_pressure_Pa'] / 1e3:.4g} kPa; stresses and reading are after storage"
     )
     return replace(
         result,
         notes=(*result.notes, note),
         warnings=result.warnings + storage_warnings,
         flags={**result.flags, "storage_overstress": bool(storage_warnings)},
+    )
+
+
+def _with_mode_notes(
+    result: RunResult, schedule: Any, web: Web, core: Any, r_out: float
+) -> RunResult:
+    """Surface and centre-surface winding (``winding.mode``): a note with the nip-induced
+    tension against centre winding's ``mu N``, a warning where the web slips on the drum
+    (:mod:`woundroll.winding.tension`). Centre winding: the result as is."""
+    if schedule.mode == "center":
+        return result
+    nit = schedule.nip_induced_line()
+    notes = [
+        f"winding.mode = {schedule.mode}: nip-induced tension {nit:.4g} N/m (centre winding's "
+        f"mu N would be {schedule.friction * schedule.nip_load:.4g} N/m; it levels off at "
+        f"{min(schedule.friction, schedule.drum_friction) * schedule.nip_saturation:.4g} N/m)"
+    ]
+    warnings: tuple[str, ...] = ()
+    r = result.winding.radius
+    if schedule.drum_slips(r, core.outer_radius, r_out, web.thickness):
+        hold = float(schedule.drum_limit(schedule.web_stress * web.thickness))
+        warnings = (
+            f"winding: the tension differential {schedule.tension_differential:.4g} N/m exceeds "
+            f"what the drum holds ({hold:.4g} N/m at the core's web tension): the web slips on "
+            "the drum and the wound-on tension takes the drum's limit",
+        )
+    return replace(
+        result,
+        notes=(*result.notes, *notes),
+        warnings=result.warnings + warnings,
+        flags={**result.flags, "drum_slip": bool(warnings)},
     )
 
 
@@ -216,8 +254,28 @@ def _after_storage(case: Case, winding: Any, web: Web, core: Any) -> tuple[Any, 
         return winding, ()
     from woundroll.winding.storage import apply_storage
 
-    res = apply_storage(winding, web, core, case.storage.build())
-    return replace(res.winding, storage=res.to_dict()), res.warnings
+    spec = case.storage
+    res = apply_storage(winding, web, core, spec.build())
+    record = res.to_dict()
+    after = res.winding
+    law = spec.creep_law()
+    if law is not None and spec.time > 0.0:
+        # storage time: the stack creeps under the pressure after the temperature change
+        from woundroll.winding.creep import apply_creep
+
+        steps = {} if spec.time_steps is None else {"steps": spec.time_steps}
+        crept = apply_creep(after, web, core, law, spec.time, **steps)
+        after = crept.winding
+        record = {
+            **record,
+            **crept.to_dict(),
+            "core_pressure_Pa": float(after.core_pressure),
+            "max_pressure_Pa": float(np.max(-after.sigma_r)),
+            "max_sigma_theta_Pa": float(np.max(after.sigma_theta)),
+            "min_sigma_theta_Pa": float(np.min(after.sigma_theta)),
+            "pressure_wound_in_Pa": (-winding.sigma_r).tolist(),
+        }
+    return replace(after, storage=record), res.warnings
 
 
 def _run_given_spring(

@@ -210,7 +210,7 @@ _TERMS: tuple[Term, ...] = (
     _t("width_m", "m", "web width, or a band's width", "W"),
     _t("E_theta_Pa", "Pa", "in-plane (MD) Young's modulus of the web", "E_θ"),
     _t("nu_theta_r", "", "Poisson ratio theta-r", "ν_θr"),
-    _s("law", "name of a radial-modulus law"),
+    _s("law", "name of a law: radial modulus, unloading or creep"),
     _t("K1_Pa", "Pa", "Pfeiffer's K1", "K1"),
     _t("K2", "", "Pfeiffer's K2", "K2"),
     _t("stiffness_Pa", "Pa", "radial stiffness of the core", "E_c"),
@@ -326,6 +326,7 @@ _TERMS: tuple[Term, ...] = (
     _b("implausible_input", "a case value outside its plausible range"),
     _b("pressure_implausible", "the largest pressure beyond its plausible range"),
     _b("storage_overstress", "after the storage change layers separate or exceed strength"),
+    _b("drum_slip", "centre-surface winding: the tension differential exceeds the drum's hold"),
     _b("air_loose", "after the entrained air has left, layers are apart (a loose roll)"),
     # ------------------------------------------------------------------ air (winding speed)
     _o("air", "the roll wound at speed with entrained air, and after the air has left"),
@@ -367,6 +368,18 @@ _TERMS: tuple[Term, ...] = (
     _t("delta_sigma_r_Pa", "Pa", "change of the radial stress by the storage change (per node)"),
     _t("delta_sigma_theta_Pa", "Pa", "change of the hoop stress by the storage change (per node)"),
     _i("iterations", "iterations used"),
+    _t("storage_time_s", "s", "time in storage (radial creep)", "t_s"),
+    _o("radial_creep", "the stack's creep law: phi(t), J(t) = (1 + phi(t)) / E_r"),
+    _t("exponent", "", "exponent n of a power creep law phi = (t/tau)^n", "n"),
+    _t("tau_s", "s", "time constant(s) of a creep law: power tau, Prony retardation times", "τ"),  # noqa: E501
+    _t("weights", "", "Prony weights c_i of a creep law", "c_i"),
+    _t("core_pressure_before_creep_Pa", "Pa", "core pressure when the storage time begins"),
+    _t("core_pressure_after_creep_Pa", "Pa", "core pressure after the storage time"),
+    _t("pressure_wound_in_Pa", "Pa", "interlayer pressure as wound, before storage (per node)"),
+    _t("pressure_before_creep_Pa", "Pa", "interlayer pressure when the storage time begins (per node)"),  # noqa: E501
+    _t("pressure_after_creep_Pa", "Pa", "interlayer pressure after the storage time (per node)"),
+    _t("creep_time_s", "s", "time steps through the storage time"),
+    _t("creep_core_pressure_Pa", "Pa", "core pressure at each creep time step"),
     # ------------------------------------------------------------------ profile
     _t("z_m", "m", "CMD position of a sector's centre", "z"),
     _r("reading_energy", "readout", "the energy model's reading"),
