@@ -336,6 +336,22 @@ class ContactSpec(_Section):
     slip: Literal["none", "reduced-shear"] = "none"
     slip_shear_fraction: Q("dimensionless") = 0.01
 
+    # -- other explanations of the readings (issue 25; docs/contact.md "Other
+    # explanations"), in the plane-strain models "2d" and "layered" --
+    #: G_r_theta = shear_ratio x E_r (unset: the web's rule, G_r_theta or 2 E_r)
+    shear_ratio: Q("dimensionless") | None = None
+    #: G_r_theta kept at its pre-impact value while E_r stiffens under the head
+    shear_frozen: bool = False
+
+    def _shear_options(self, table: dict[str, Any]) -> dict[str, Any]:
+        """``table`` with the section's shear keys (set as contact.<key> only)."""
+        for key in ("shear_ratio", "shear_frozen"):
+            if key in table:
+                raise InputError(
+                    f"set contact.{key}, not contact.options.{key}", f"contact.options.{key}"
+                )
+        return {**table, "shear_ratio": self.shear_ratio, "shear_frozen": self.shear_frozen}
+
     def roll_model(self, head_shape: str = "cylinder") -> Any:
         """The registry entry of the roll model that reads this case's roll
         (:func:`woundroll.contact.models.resolve_model`: ``model``, or the default for the
@@ -416,7 +432,7 @@ class ContactSpec(_Section):
                 f"unknown option(s) {', '.join(unknown)}; known: {', '.join(sorted(known))}",
                 f"contact.options.{unknown[0]}",
             )
-        table = self._slip_options(self.options, "options")
+        table = self._shear_options(self._slip_options(self.options, "options"))
         try:
             return ContactOptions(**table)
         except InputError as exc:
