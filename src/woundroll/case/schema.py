@@ -342,6 +342,27 @@ class ContactSpec(_Section):
     shear_ratio: Q("dimensionless") | None = None
     #: G_r_theta kept at its pre-impact value while E_r stiffens under the head
     shear_frozen: bool = False
+    # -- the layered roll (contact.model = "layered"; docs/contact.md "The layered roll") --
+    #: depth of the layered zone under the surface (unset: 1.0 a_geo)
+    layered_depth: Q("length") | None = None
+    #: web layers per element shell in the layered zone
+    layers_per_shell: int = 1
+
+    def layered_options(self) -> Any:
+        """The :class:`~woundroll.contact.layered.solver.LayeredOptions` of this section:
+        the 2D options (without the modified Newton step, the layered model factorises
+        every increment) and the zone's keys."""
+        from dataclasses import replace
+
+        from woundroll.contact.layered.solver import LayeredOptions
+
+        base = replace(self.contact_options(layered=True), newton=False)
+        try:
+            return LayeredOptions(
+                base=base, layered_depth=self.layered_depth, layers_per_shell=self.layers_per_shell
+            )
+        except InputError as exc:
+            raise exc.at("contact") from None
 
     def _shear_options(self, table: dict[str, Any]) -> dict[str, Any]:
         """``table`` with the section's shear keys (set as contact.<key> only)."""
@@ -421,9 +442,15 @@ class ContactSpec(_Section):
             mesh = replace(mesh, tangential_growth=GROWTH)
         return DynamicOptions(mesh=mesh, **opts)
 
-    def contact_options(self) -> Any:
-        """The :class:`~woundroll.contact.ContactOptions` of this section (validated)."""
+    def contact_options(self, layered: bool = False) -> Any:
+        """The :class:`~woundroll.contact.ContactOptions` of this section (validated);
+        ``layered``: for the layered model (its zone keys are refused otherwise)."""
         from woundroll.contact import ContactOptions
+
+        if not layered and self.model != "layered":
+            for key, unset in (("layered_depth", None), ("layers_per_shell", 1)):
+                if getattr(self, key) != unset:
+                    raise InputError("is used by contact.model = 'layered' only", f"contact.{key}")
 
         known = set(ContactOptions.__dataclass_fields__)
         unknown = sorted(set(self.options) - known)

@@ -92,11 +92,10 @@ def _layered(web: Any, core: Any, r: Any, sigma_r: Any, instrument: Any, **kw: A
 
     kw.pop("options3d", None)
     base = kw.pop("options", None)
-    options = (
-        LayeredOptions()
-        if base is None
-        else LayeredOptions(base=dataclasses.replace(base, newton=False))
-    )
+    if base is None or isinstance(base, LayeredOptions):  # the case's [contact] keys
+        options = base if base is not None else LayeredOptions()
+    else:
+        options = LayeredOptions(base=dataclasses.replace(base, newton=False))
     res = indent_layered(
         web,
         core,
