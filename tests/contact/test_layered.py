@@ -147,7 +147,7 @@ def test_layered_study_json_is_described() -> None:
     # the study's JSON uses the vocabulary's keys only (a synthetic row: the study itself
     # runs minutes)
     from woundroll.pipeline import vocabulary as vocab
-    from woundroll.studies.layered import LayeredStudy
+    from woundroll.studies.layered import EXPLANATIONS, LayeredStudy
 
     row = {
         "case": "pet2-53.4N",
@@ -159,10 +159,14 @@ def test_layered_study_json_is_described() -> None:
     for m in (0.1, 0.3, 0.5):
         row[f"rho_layered_mu{m:g}"] = 25.0
         row[f"delta_max_layered_mu{m:g}_m"] = 2.2e-3
-    study = LayeredStudy(rows=(row,))
+    for e in EXPLANATIONS:
+        row[f"rho_{e}"] = 24.0
+        row[f"delta_max_{e}_m"] = 2.1e-3
+    study = LayeredStudy(rows=(row,), explanations=tuple(EXPLANATIONS))
     assert vocab.undescribed_keys(study.to_dict()) == []
     assert len(study.summary()) == 1
     assert "2d" in study.summary()[0][1][2]
+    assert len(study.summary()[0][1]) == 2 + 1 + 3 + len(EXPLANATIONS)
 
 
 @pytest.mark.slow
