@@ -348,6 +348,11 @@ class ContactSpec(_Section):
     #: web layers per element shell in the layered zone
     layers_per_shell: int = 1
 
+    def model_options(self) -> Any:
+        """The options of the roll model this section names: :meth:`layered_options` for
+        ``"layered"``, else :meth:`contact_options`."""
+        return self.layered_options() if self.model == "layered" else self.contact_options()
+
     def layered_options(self) -> Any:
         """The :class:`~woundroll.contact.layered.solver.LayeredOptions` of this section:
         the 2D options (without the modified Newton step, the layered model factorises
