@@ -329,6 +329,21 @@ def test_strict_json_has_no_nan_tokens():
 
     text = strict_json({"a": math.nan, "b": [1.0, math.inf], "c": np.float64("nan")})
     assert json.loads(text) == {"a": None, "b": [1.0, None], "c": None}
+    # arrays take the whole-array path: every kind, nested, non-finite in any position
+    arrays = {
+        "f": np.array([[1.5, np.nan], [-np.inf, 2.0]]),
+        "f32": np.array([np.inf, 0.5], dtype=np.float32),
+        "i": np.arange(3),
+        "b": np.array([True, False]),
+        "clean": np.linspace(0.0, 1.0, 3),
+    }
+    assert json.loads(strict_json(arrays)) == {
+        "f": [[1.5, None], [None, 2.0]],
+        "f32": [None, 0.5],
+        "i": [0, 1, 2],
+        "b": [True, False],
+        "clean": [0.0, 0.5, 1.0],
+    }
 
 
 def test_reading_outside_the_instrument_range_is_flagged():

@@ -7,7 +7,10 @@ A page marks each generated block::
     <!-- end generated -->
 
 and the block's text is what the generator ``studies.tension`` returns: the function
-``tension`` in ``BLOCKS`` of ``docs/scripts/studies.py``. Run::
+``tension`` in ``BLOCKS`` of ``docs/scripts/studies.py``. A number inside a sentence is
+marked the same way on one line, ``<!-- generated: instruments.collision -->(...)<!-- end
+generated -->``: a marker followed by text on its own line is inline (a marker quoted in
+backticks, as here in prose, is not one). Run::
 
     .venv/bin/python docs/scripts/regenerate.py            # rewrite every block
     .venv/bin/python docs/scripts/regenerate.py studies    # only the blocks of studies.py
@@ -29,7 +32,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 DOCS = HERE.parent
 MARKER = re.compile(
-    r"(?P<open><!-- generated: (?P<name>[\w.-]+) -->\n)(?P<body>.*?)"
+    r"(?<!`)(?P<open><!-- generated: (?P<name>[\w.-]+) -->\n?)(?P<body>.*?)"
     r"(?P<close><!-- end generated -->)",
     re.S,
 )
@@ -50,10 +53,14 @@ def generators() -> dict[str, Callable[[], str]]:
     return found
 
 
+def pages() -> list[Path]:
+    """The pages that may hold generated blocks: docs/*.md and the README."""
+    return [*sorted(DOCS.glob("*.md")), DOCS.parent / "README.md"]
+
+
 def blocks() -> list[tuple[Path, str]]:
     """(page, generator name) of every marked block in docs/*.md."""
-    pages = sorted(DOCS.glob("*.md"))
-    return [(p, m["name"]) for p in pages for m in MARKER.finditer(p.read_text())]
+    return [(p, m["name"]) for p in pages() for m in MARKER.finditer(p.read_text())]
 
 
 def regenerate(only: set[str], check: bool) -> list[str]:
@@ -62,7 +69,7 @@ def regenerate(only: set[str], check: bool) -> list[str]:
     gens = generators()
     stale: list[str] = []
     cache: dict[str, str] = {}
-    for page in sorted(DOCS.glob("*.md")):
+    for page in pages():
         text = page.read_text()
 
         def fill(m: re.Match[str], page: Path = page) -> str:
@@ -73,10 +80,12 @@ def regenerate(only: set[str], check: bool) -> list[str]:
                 raise SystemExit(f"{page.name}: no generator {name!r} in docs/scripts")
             if name not in cache:
                 print(f"generating {name} ...", file=sys.stderr, flush=True)
-                cache[name] = gens[name]().rstrip("\n") + "\n"
-            if cache[name] != m["body"]:
+                cache[name] = gens[name]().strip("\n")
+            # a block (its marker ends the line) ends in a newline; an inline value does not
+            body = cache[name] + ("\n" if m["open"].endswith("\n") else "")
+            if body != m["body"]:
                 stale.append(f"{page.name}: {name}")
-            return m["open"] + cache[name] + m["close"]
+            return m["open"] + body + m["close"]
 
         new = MARKER.sub(fill, text)
         if new != text and not check:

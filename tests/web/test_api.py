@@ -335,6 +335,7 @@ def test_inputs_used_and_their_sources(client):
         "winding.outer_radius",
         "winding.nip_load",
         "winding.friction",
+        "winding.speed",
         "web.thickness",
         "web.width",
         "web.E_theta",

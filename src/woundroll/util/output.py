@@ -39,6 +39,15 @@ def finite_or_none(obj: Any) -> Any:
     if isinstance(obj, list | tuple):
         return [finite_or_none(v) for v in obj]
     if isinstance(obj, np.ndarray):
+        if obj.dtype.kind in "iub":  # integers and booleans: finite already
+            return obj.tolist()
+        if obj.dtype.kind == "f":  # whole-array test: no per-element recursion
+            ok = np.isfinite(obj)
+            if ok.all():
+                return obj.tolist()
+            out = obj.astype(object)
+            out[~ok] = None
+            return out.tolist()
         return finite_or_none(obj.tolist())
     if isinstance(obj, np.bool_):
         return bool(obj)

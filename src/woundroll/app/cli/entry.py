@@ -9,6 +9,7 @@ status 2; a solver that does not converge exits with status 1 (:mod:`~woundroll.
 
 from __future__ import annotations
 
+import os
 import sys
 from typing import Annotated, Any
 
@@ -107,7 +108,14 @@ for _group in (run, study, materials, diagnose, report, sweep, serve, calibrate,
 
 
 def main() -> None:
-    """Entry point of the ``woundroll`` script."""
+    """Entry point of the ``woundroll`` script.
+
+    The command's own process does not look for pydantic plugins: woundroll uses none, and
+    the search reads the metadata of every installed distribution, 0.1-0.15 s of each run
+    (``benchmarks/bench_startup.py``). Set ``PYDANTIC_DISABLE_PLUGINS`` to any other value
+    (e.g. an empty string) to have them loaded; the library (``import woundroll``) leaves
+    the variable alone."""
+    os.environ.setdefault("PYDANTIC_DISABLE_PLUGINS", "__all__")
     app()
 
 

@@ -23,10 +23,10 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
+from woundroll.contact.solid3d.options import SOLVERS
 from woundroll.errors import ConvergenceError, InputError
 
 FloatArray = NDArray[np.float64]
-SOLVERS = ("auto", "pardiso", "splu", "amg")
 
 
 def _full(upper: sp.csr_matrix) -> sp.csr_matrix:

@@ -35,8 +35,9 @@ from numpy.typing import NDArray
 from woundroll.contact.heads import Head
 from woundroll.contact.result import ContactResult
 from woundroll.contact.solid3d.fem import Assembler3D, orthotropic_moduli, stresses
-from woundroll.contact.solid3d.linsolve import SOLVERS, make_solver
+from woundroll.contact.solid3d.linsolve import make_solver
 from woundroll.contact.solid3d.mesh import RollMesh3D, build_mesh3d
+from woundroll.contact.solid3d.options import Contact3DOptions
 from woundroll.contact.stepping import LoadHistory, depth_schedule, result_fields
 from woundroll.contact.stepping import check_profile as _check_profile
 from woundroll.contact.stepping import check_scalar as _check_scalar
@@ -47,142 +48,6 @@ from woundroll.materials.web import Core, Web
 from woundroll.units import to_si
 
 FloatArray = NDArray[np.float64]
-
-
-@dataclass(frozen=True)
-class Contact3DOptions:
-    """Numerical settings of :func:`indent3d` (defaults: docs/contact.md, 3D mesh study).
-
-    Sizes left at None are set from the head's geometric footprint at ``depth_max``
-    (:meth:`Head.footprint`: half extents a_y along the hoop, a_z along the CMD).
-
-    Attributes
-    ----------
-    n_steps : int
-        Depth increments; ``d_k = depth_max (k / n)^step_exponent``.
-    step_exponent : float
-    surface_size : float or None [m]
-        Radial size of the outer element ring; None -> max(web thickness, a_y / 10).
-    radial_growth : float
-    tangential_size : float or None [m]
-        Arc length of the elements in the fine zone; None -> a_y / ``n_fine``.
-    fine_halfwidth : float or None [m]
-        Arc half-width of the uniform fine zone; None -> a_y.
-    tangential_growth : float
-    axial_size : float or None [m]
-        CMD size of the elements in the fine zone; None -> a_z / ``n_fine`` (sphere, punch)
-        or the smaller of L / 24 and a_y / 2 for a cylinder, refined to a quarter of that
-        at rounded ends.
-    fine_halflength : float or None [m]
-        CMD half-length of the fine zone; None -> a_z (+ a_y for a cylinder).
-    axial_growth : float
-    n_fine : int
-        Elements across the footprint's half extent by default.
-    locality_cut : bool
-        The paper's cut: only 0 <= theta <= pi/2, u_theta = 0 on theta = pi/2.
-    cmd_edges : {"free", "fixed"}
-        The roll's CMD edge faces: free (the real roll), or held at u_z = 0 (a slab in plane
-        strain: with a head as long as the roll this is the 2D model, used to verify it).
-    min_modulus_ratio, max_modulus_ratio : float
-        Floor (and optional cap) of E_r as a fraction of E_theta, as in 2D.
-    midpoint : bool
-        Mid-step modulus (midpoint rule) or forward Euler (start-of-step modulus).
-    predictor : {"rate", "trial"}
-        How the mid-step stress is predicted: from the last increment's stress rate (one
-        factorisation per increment; default) or by a trial solve at the start-of-step
-        modulus (two, as the 2D model does).
-    slip : {"none", "reduced-shear"}
-        Slip emulation (the paper's Figure 19): an element whose interlayer shear
-        sqrt(tau_rt^2 + tau_rz^2) reaches mu P ({23} with the resultant shear) keeps
-        ``slip_shear_fraction`` of its G_r_theta and G_r_z for the rest of the loading
-        (from the next increment on; the increments resolve the spread of the slip zone).
-    slip_shear_fraction : float
-        Fraction of the transverse shear moduli left in a slipped element.
-    solver : {"auto", "pardiso", "splu", "amg"}
-        Linear solver (:mod:`woundroll.contact.solid3d.linsolve`); auto: PARDISO if installed.
-    """
-
-    n_steps: int = 24
-    step_exponent: float = 1.5
-    surface_size: float | None = None
-    radial_growth: float = 1.3
-    tangential_size: float | None = None
-    fine_halfwidth: float | None = None
-    tangential_growth: float = 1.3
-    axial_size: float | None = None
-    fine_halflength: float | None = None
-    axial_growth: float = 1.3
-    n_fine: int = 10
-    locality_cut: bool = False
-    cmd_edges: str = "free"
-    min_modulus_ratio: float = 1e-6
-    max_modulus_ratio: float | None = None
-    midpoint: bool = True
-    predictor: str = "rate"
-    slip: str = "none"
-    slip_shear_fraction: float = 0.01
-    solver: str = "auto"
-
-    def __post_init__(self) -> None:
-        if self.predictor not in ("rate", "trial"):
-            raise InputError(
-                f"must be 'rate' or 'trial', got {self.predictor!r}", "options.predictor"
-            )
-        if self.slip not in ("none", "reduced-shear"):
-            raise InputError(
-                f"must be 'none' or 'reduced-shear', got {self.slip!r}", "options.slip"
-            )
-        if not (math.isfinite(self.slip_shear_fraction) and 0 < self.slip_shear_fraction <= 1):
-            raise InputError(
-                f"must lie in (0, 1], got {self.slip_shear_fraction!r}",
-                "options.slip_shear_fraction",
-            )
-        if self.cmd_edges not in ("free", "fixed"):
-            raise InputError(
-                f"must be 'free' or 'fixed', got {self.cmd_edges!r}", "options.cmd_edges"
-            )
-        if self.solver not in SOLVERS:
-            raise InputError(
-                f"must be one of {', '.join(SOLVERS)}, got {self.solver!r}", "options.solver"
-            )
-        for name in ("n_steps", "n_fine"):
-            v = getattr(self, name)
-            if not isinstance(v, int | np.integer) or isinstance(v, bool) or v < 1:
-                raise InputError(f"must be a positive integer, got {v!r}", f"options.{name}")
-        if self.n_fine < 3:
-            raise InputError(
-                "must be at least 3 (the contact zone would not be resolved)", "options.n_fine"
-            )
-        for name in (
-            "surface_size",
-            "tangential_size",
-            "fine_halfwidth",
-            "axial_size",
-            "fine_halflength",
-        ):
-            v = getattr(self, name)
-            if v is not None and not (math.isfinite(v) and v > 0):
-                raise InputError(f"must be a positive length, got {v!r}", f"options.{name}")
-        for name in ("radial_growth", "tangential_growth", "axial_growth"):
-            v = getattr(self, name)
-            if not (math.isfinite(v) and 1.0 <= v <= 3.0):
-                raise InputError(f"must lie in [1, 3], got {v!r}", f"options.{name}")
-        if not (math.isfinite(self.step_exponent) and 1.0 <= self.step_exponent <= 3.0):
-            raise InputError(
-                f"must lie in [1, 3], got {self.step_exponent!r}", "options.step_exponent"
-            )
-        if not (math.isfinite(self.min_modulus_ratio) and 0 < self.min_modulus_ratio < 1):
-            raise InputError(
-                f"must lie in (0, 1), got {self.min_modulus_ratio!r}", "options.min_modulus_ratio"
-            )
-        if self.max_modulus_ratio is not None and not (
-            math.isfinite(self.max_modulus_ratio)
-            and self.min_modulus_ratio < self.max_modulus_ratio <= 10.0
-        ):
-            raise InputError(
-                f"must lie in (min_modulus_ratio, 10], got {self.max_modulus_ratio!r}",
-                "options.max_modulus_ratio",
-            )
 
 
 # kw_only: the base class ends in defaulted fields (ContactResult.factorisations)
