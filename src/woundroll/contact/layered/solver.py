@@ -144,9 +144,10 @@ class _UpdatedFactor:
         self.cols: dict[int, FloatArray] = {}
 
     def at(
-        self, stick: NDArray[np.bool_], fa: IntArray, fb: IntArray
+        self, stick: NDArray[np.bool_], fa: IntArray, fb: IntArray, n: int
     ) -> _Factor | _Woodbury | None:
-        """The factor at ``stick``; None where more than WOODBURY_MAX pairs differ."""
+        """The factor at ``stick`` (``fa``, ``fb``: the pairs' free indices below and
+        above, ``n`` the free DOFs); None where more than WOODBURY_MAX pairs differ."""
         diff = np.flatnonzero(stick != self.stick)
         if diff.size == 0:
             return self.lu
@@ -154,7 +155,6 @@ class _UpdatedFactor:
             return None
         new = [int(i) for i in diff if int(i) not in self.cols]
         if new:
-            n = self.lu._cb.shape[1] if self.lu._cb is not None else fa.max() + 1
             U = np.zeros((n, len(new)))
             U[fb[new], np.arange(len(new))] = 1.0
             U[fa[new], np.arange(len(new))] = -1.0
@@ -478,7 +478,7 @@ class _LayeredLoading(_Loading):
             stick = (stick & ~over) | back
             T = np.where(stick, T, sign * g)
             asm.stick = stick
-            near = updated.at(stick, fa, fb) if WOODBURY_MAX > 0 else None
+            near = updated.at(stick, fa, fb, asm.n_free) if WOODBURY_MAX > 0 else None
             if near is not None:
                 lu = near  # type: ignore[assignment]
                 self.updates += 1
