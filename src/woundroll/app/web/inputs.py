@@ -26,7 +26,7 @@ FORM_FIELDS: dict[str, tuple[str, str]] = {
     "winding.tension": ("web tension", "26.7 N, 2 pli, 1.75 MPa"),
     "winding.outer_radius": ("final outer radius", "13.34 cm, 5.25 in"),
     "winding.nip_load": ("nip load", "0 N/m, 1 pli"),
-    "winding.friction": ("friction (nip)", "0.3"),
+    "winding.friction": ("friction, web on web (nip-induced tension)", "0.3"),
     "winding.speed": ("winding speed (entrained air)", "0 m/s, 1000 ft/min"),
     "web.thickness": ("web thickness", "100 um, 4 mil"),
     "web.width": ("web width", "15.24 cm, 6 in"),
