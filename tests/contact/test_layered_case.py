@@ -40,6 +40,7 @@ def test_shear_keys_reach_the_contact_options() -> None:
         (["contact.model=layered", "contact.layered_depth=30 cm"], "contact.layered_depth"),
         (["contact.shear_ratio=0"], "contact.shear_ratio"),
         (["contact.options.shear_frozen=true"], "contact.options.shear_frozen"),
+        (["contact.dynamic=true", "contact.shear_frozen=true"], "contact.shear_frozen"),
     ],
 )
 def test_bad_keys_name_the_field(overrides: list[str], field: str) -> None:

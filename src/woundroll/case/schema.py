@@ -518,6 +518,14 @@ class ContactSpec(_Section):
         """The :class:`~woundroll.contact.dynamic.plane_strain.DynamicOptions` of this section."""
         from woundroll.contact.dynamic.plane_strain import DynamicOptions
 
+        if self.dynamic:  # the FE impact builds its own moduli: not taken silently
+            for key, unset in (("shear_ratio", None), ("shear_frozen", False)):
+                if getattr(self, key) != unset:
+                    raise InputError(
+                        "is taken by the quasi-static '2d' and 'layered' models only, not by "
+                        "the FE impact (contact.dynamic)",
+                        f"contact.{key}",
+                    )
         known = set(DynamicOptions.__dataclass_fields__) - {"mesh"}
         unknown = sorted(set(self.dynamic_options) - known)
         if unknown:
