@@ -153,7 +153,7 @@ class RollModel:
             setup=setup,
             scale=scale,
             friction=case.contact.friction,
-            contact_options=case.contact.contact_options(),
+            contact_options=case.contact.model_options(),
             depth=inst.head_radius,
             semi_contact_width_given="semi_contact_width" in (case.tester or {}),
             winding_options=WindingOptions.from_dict(case.winding.options, "winding.options"),

@@ -354,7 +354,7 @@ def _contact_args(case: Case, setup: TesterSetup) -> tuple[dict[str, Any], bool]
     args = {
         "depth_max": spec.depth_max,
         "friction": spec.friction,
-        "options": spec.contact_options(),
+        "options": spec.model_options(),
         "model": "2d" if plane else model,
         "options3d": spec.contact3d_options(),
     }
