@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 import sys
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 from rich.markup import escape
@@ -251,6 +251,40 @@ def _write_readings(out_dir: Path, r, check, unit) -> None:  # type: ignore[no-u
         raise InputError(f"cannot write to {out_dir}: {exc.strerror or exc}", "--out") from None
 
 
+def _trend_table(tr: Any, checks: list[Any]) -> Table:
+    """The roll-to-roll trend as a table: one row per roll with its profile statistics and
+    whether its mean or CoV falls outside the X-mR chart limits."""
+    s = tr.scale
+    lots = any("lot" in c.ids for c in checks)
+    t = Table(title=f"roll-to-roll trend: {len(checks)} rolls, scale {s}")
+    t.add_column("#", justify="right")
+    t.add_column("roll", no_wrap=True)
+    if lots:
+        t.add_column("lot", no_wrap=True)
+    for name in (f"mean [{s}]", "CoV [%]", f"p2p [{s}]"):
+        t.add_column(escape(name), justify="right")
+    t.add_column("band", no_wrap=True)
+    t.add_column("hard/soft", justify="right")
+    t.add_column("limits", no_wrap=True)
+    mc, cc = tr.mean_chart, tr.cov_chart
+    for i, c in enumerate(checks):
+        flag = [n for n, ch in (("mean", mc), ("CoV", cc)) if i in ch.out_of_control]
+        nh = sum(b.kind == "hard" for b in c.faults)
+        cells = [f"{i + 1}", escape(c.label)]
+        if lots:
+            cells.append(escape(c.ids.get("lot", "")))
+        cells += [
+            f"{c.mean:.2f}",
+            f"{100 * c.cov:.2f}",
+            f"{c.peak_to_peak:.3g}",
+            c.band,
+            f"{nh}/{len(c.faults) - nh}",
+            "out: " + ", ".join(flag) if flag else "in",
+        ]
+        t.add_row(*cells)
+    return t
+
+
 def _readings_trend(  # type: ignore[no-untyped-def]
     files: list[str], fmt, width, lane_width, frac, unit, out_dir, as_json
 ) -> None:
@@ -290,34 +324,8 @@ def _readings_trend(  # type: ignore[no-untyped-def]
         sys.stdout.write(strict_json(versioned(tr.to_dict())) + "\n")
         return
     s = tr.scale
-    lots = any("lot" in c.ids for c in checks)
-    t = Table(title=f"roll-to-roll trend: {len(checks)} rolls, scale {s}")
-    t.add_column("#", justify="right")
-    t.add_column("roll", no_wrap=True)
-    if lots:
-        t.add_column("lot", no_wrap=True)
-    for name in (f"mean [{s}]", "CoV [%]", f"p2p [{s}]"):
-        t.add_column(escape(name), justify="right")
-    t.add_column("band", no_wrap=True)
-    t.add_column("hard/soft", justify="right")
-    t.add_column("limits", no_wrap=True)
     mc, cc = tr.mean_chart, tr.cov_chart
-    for i, c in enumerate(checks):
-        flag = [n for n, ch in (("mean", mc), ("CoV", cc)) if i in ch.out_of_control]
-        nh = sum(b.kind == "hard" for b in c.faults)
-        cells = [f"{i + 1}", escape(c.label)]
-        if lots:
-            cells.append(escape(c.ids.get("lot", "")))
-        cells += [
-            f"{c.mean:.2f}",
-            f"{100 * c.cov:.2f}",
-            f"{c.peak_to_peak:.3g}",
-            c.band,
-            f"{nh}/{len(c.faults) - nh}",
-            "out: " + ", ".join(flag) if flag else "in",
-        ]
-        t.add_row(*cells)
-    out.print(t)
+    out.print(_trend_table(tr, checks))
     out.print(
         f"X-mR charts (limits = centre +- 2.66 mR-bar): mean centre {mc.center:.2f} {s}, "
         f"limits {mc.lcl:.2f} to {mc.ucl:.2f}; CoV centre {100 * cc.center:.2f} %, limits "

@@ -286,6 +286,22 @@ class _CutAssembler(Assembler):
         return ab
 
 
+def _pair_geometry(mesh: RollMesh, jj: IntArray, kk: IntArray) -> tuple[FloatArray, IntArray]:
+    """The tributary interface arc [m] of each pair (tangential node ``jj`` on cut ring
+    ``kk`` of the uncut ``mesh``) and the four elements around it (their mean stress is the
+    pair's pressure)."""
+    nr, nt = mesh.n_r, mesh.n_theta
+    dth = np.diff(mesh.theta)
+    trib_t = 0.5 * (np.concatenate([[0.0], dth]) + np.concatenate([dth, [0.0]]))
+
+    def el(jq: IntArray, iq: IntArray) -> IntArray:
+        return jq * (nr - 1) + iq
+
+    elements = np.stack([el(jj - 1, kk - 1), el(jj, kk - 1), el(jj - 1, kk), el(jj, kk)], axis=1)
+    assert np.all(elements < (nt - 1) * (nr - 1))
+    return mesh.r[kk] * trib_t[jj], elements
+
+
 class _LayeredRoll(_Roll):
     """The roll of the 2D model on the layered mesh (module docstring)."""
 
@@ -358,20 +374,7 @@ class _LayeredRoll(_Roll):
         self.xy = lmesh.node_xy()
         self.angle = lmesh.node_angle()
         self.surface = lmesh.surface_nodes()
-        # tributary interface arc of each pair [m] and the elements around it
-        th = mesh.theta
-        dth = np.diff(th)
-        trib_t = 0.5 * (np.concatenate([[0.0], dth]) + np.concatenate([dth, [0.0]]))
-        self.pair_arc = mesh.r[kk] * trib_t[jj]
-        n_el_t = nt - 1
-
-        def el(jq: IntArray, iq: IntArray) -> IntArray:
-            return jq * (nr - 1) + iq
-
-        self.pair_elements = np.stack(
-            [el(jj - 1, kk - 1), el(jj, kk - 1), el(jj - 1, kk), el(jj, kk)], axis=1
-        )
-        assert np.all(self.pair_elements < n_el_t * (nr - 1))
+        self.pair_arc, self.pair_elements = _pair_geometry(mesh, jj, kk)
 
     def jump(self, du: FloatArray) -> FloatArray:
         """Tangential jump ``u_theta(above) - u_theta(below)`` at the pairs [m]."""
@@ -450,24 +453,8 @@ class _LayeredLoading(_Loading):
         sign = np.sign(t_old)
         T = np.where(stick, t_old, sign * g)
         fa, fb = asm.fa, asm.fb
-        tol = self.lopts.tol
         for _ in range(self.lopts.max_passes):
-            rho = asm.rho
-            for _ in range(self.lopts.max_passes):
-                x = -(T - t_old)
-                load = np.zeros(asm.n_free) if extra is None else extra.copy()
-                np.add.at(load, fb, x)
-                np.add.at(load, fa, -x)
-                step = contact(load, lu)
-                self.passes += 1
-                s = roll.jump(step.du)
-                scale = max(float(np.max(np.abs(step.du))), 1e-300)
-                viol = float(np.max(np.abs(s[stick]), initial=0.0)) / scale
-                T[stick] += rho[stick] * s[stick]
-                if viol <= tol:
-                    break
-            else:
-                raise self._unsettled("stick multipliers")
+            step, s, scale = self._stick_passes(contact, lu, T, t_old, stick, extra)
             # the active set: a stick pair over its limit slips along its force; a slipping
             # pair that moves against its force sticks
             over = stick & (np.abs(T) > g * (1.0 + 1e-9))
@@ -495,6 +482,37 @@ class _LayeredLoading(_Loading):
         self.stick_trial = stick
         self.slip_trial = self.slip + np.where(stick, 0.0, np.abs(s))
         return step
+
+    def _stick_passes(
+        self,
+        contact: Callable[[FloatArray | None, _Factor], _Step],
+        lu: _Factor,
+        T: FloatArray,
+        t_old: FloatArray,
+        stick: NDArray[np.bool_],
+        extra: FloatArray | None,
+    ) -> tuple[_Step, FloatArray, float]:
+        """Uzawa passes at a fixed stick set on its augmented factor ``lu``: the interface
+        forces ``T`` (updated in place) move the stick pairs until their tangential jumps
+        vanish (to ``tol`` of the largest displacement increment); the last step, the jumps
+        and that scale."""
+        roll: _LayeredRoll = self.roll  # type: ignore[assignment]
+        asm: _CutAssembler = roll.assembler  # type: ignore[assignment]
+        rho = asm.rho
+        for _ in range(self.lopts.max_passes):
+            x = -(T - t_old)
+            load = np.zeros(asm.n_free) if extra is None else extra.copy()
+            np.add.at(load, asm.fb, x)
+            np.add.at(load, asm.fa, -x)
+            step = contact(load, lu)
+            self.passes += 1
+            s = roll.jump(step.du)
+            scale = max(float(np.max(np.abs(step.du))), 1e-300)
+            viol = float(np.max(np.abs(s[stick]), initial=0.0)) / scale
+            T[stick] += rho[stick] * s[stick]
+            if viol <= self.lopts.tol:
+                return step, s, scale
+        raise self._unsettled("stick multipliers")
 
     def _unsettled(self, what: str) -> ConvergenceError:
         k = min(self.history_k, self.delta.size - 1)
