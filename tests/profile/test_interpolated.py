@@ -173,14 +173,13 @@ def test_cli_bad_contact_stage_is_a_one_line_error(tmp_path: Path) -> None:
     assert "profile.contact" in res.output and "Traceback" not in res.output
 
 
-@pytest.mark.slow
 def test_cli_runs_each_contact_stage(tmp_path: Path) -> None:
     out = {}
     for stage in ("every-sector", "interpolated"):
         path = _case(tmp_path, f'contact = "{stage}"\ncontact_tolerance = 0.2')
         res = CliRunner().invoke(app, ["run", str(path), "--json"])
         assert res.exit_code == 0, res.output
-        prof = json.loads(res.output)["profile"]
+        prof = json.loads(res.stdout)["profile"]
         assert prof["contact_stage"]["stage"] == stage
         out[stage] = prof
     # three sectors: each is a node of the interpolation (extremes and median), so the two
