@@ -45,9 +45,12 @@ def study_elastic() -> str:
 
 
 def _span(values: list[float], fmt: str, unit: str = "") -> str:
+    """``lo-hi unit``; ``lo to hi unit`` when a bound has a sign (no "-4--2 %")."""
     lo, hi = min(values), max(values)
     a, b = format(lo, fmt), format(hi, fmt)
-    return f"{a}{unit}" if a == b else f"{a}-{b}{unit}"
+    if a == b:
+        return f"{a}{unit}"
+    return f"{a} to {b}{unit}" if "+" in fmt or lo < 0 else f"{a}-{b}{unit}"
 
 
 def summary() -> str:

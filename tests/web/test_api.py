@@ -335,6 +335,7 @@ def test_inputs_used_and_their_sources(client):
         "winding.outer_radius",
         "winding.nip_load",
         "winding.friction",
+        "winding.speed",
         "web.thickness",
         "web.width",
         "web.E_theta",
@@ -379,6 +380,36 @@ def test_plots_hoop_stress_smooth_and_impact_from_contact(client):
     assert abs(x[0]) <= dt and x[-1] == pytest.approx(
         ref.hardness.fd.contact_time * 1e3, abs=2 * dt
     )
+
+
+def test_air_and_storage_plots_on_the_page(client):
+    # the speed typed on the form and a storage time in the case: the page gets the
+    # diameter with and without air and both pressure comparisons, the numbers of the JSON
+    toml = FAST_TOML + (
+        '[storage]\ntime = "30 d"\nradial_creep = { law = "power", n = 0.2, tau = "60 d" }\n'
+    )
+    r = client.post("/api/run", json={"case": toml, "overrides": {"winding.speed": "5 m/s"}})
+    s = wait(client, r.json()["job"])
+    assert s["state"] == "done", s
+    plots = {p["id"]: p for p in s["result"]["plots"]}
+    case = woundroll.load_case(__import__("tomllib").loads(toml), ["winding.speed='5 m/s'"])
+    w = woundroll.run(case).winding
+    d = plots["plot-air-diameter"]
+    assert [x["label"] for x in d["series"]] == ["without air", "with air"]
+    np.testing.assert_allclose(d["series"][1]["y"], np.asarray(w.air["diameter_with_air_m"]) * 1e3)
+    # air makes the roll bigger for the same length
+    assert d["series"][1]["y"][-1] > d["series"][0]["y"][-1]
+    p = plots["plot-air-pressure"]
+    np.testing.assert_allclose(
+        p["series"][0]["y"], -np.asarray(w.air["sigma_r_at_winding_Pa"]) / 1e3
+    )
+    st = plots["plot-storage"]
+    assert st["title"] == "pressure before and after 30 d of storage"
+    np.testing.assert_allclose(st["series"][1]["y"], -w.sigma_r / 1e3, rtol=1e-12, atol=1e-12)
+    # without either, none of the three
+    r = client.post("/api/run", json={"case": FAST_TOML})
+    ids = {p["id"] for p in wait(client, r.json()["job"])["result"]["plots"]}
+    assert not ids & {"plot-air-diameter", "plot-air-pressure", "plot-storage"}
 
 
 def test_job_progress_never_claims_100_percent_while_working(client, monkeypatch):

@@ -75,6 +75,20 @@ class WebSpec(_Section):
     beta_r: float = 0.0  # hygroscopic: strain per unit moisture content
     beta_theta: float = 0.0
     tensile_strength: Q("pressure") | None = None
+    # -- speed and entrained air (woundroll.winding.air) --
+    roughness: Q("length", "nonnegative") | None = None  # combined Rq of both faces [m]
+
+    @model_validator(mode="after")
+    def _roughness_below_thickness(self) -> WebSpec:
+        if self.roughness is not None and self.roughness >= self.thickness:
+            raise InputError(
+                f"must be smaller than the web thickness ({self.thickness * 1e6:.3g} um), "
+                f"got {self.roughness * 1e6:.3g} um",
+                "web.roughness",
+            )
+        return self
+
+    # -- end speed and entrained air --
 
     @model_validator(mode="before")
     @classmethod
@@ -100,7 +114,11 @@ class WebSpec(_Section):
     def build(self) -> Web:
         """The SI :class:`~woundroll.materials.web.Web` of this section."""
         return Web(
-            **{name: getattr(self, name) for name in type(self).model_fields if name != "preset"}
+            **{
+                name: getattr(self, name)
+                for name in type(self).model_fields
+                if name not in ("preset", "roughness")
+            }
         )
 
 
@@ -260,12 +278,74 @@ class WindingSpec(_Section):
     thickness_profile: str | None = None
     nip_roller: NipRollerSpec | None = None
     options: dict[str, Any] = Field(default_factory=dict)
+    # --- winder type (woundroll.winding.tension; docs/winding.md "Surface and centre-surface
+    # winding"). ``friction`` above is the kinetic friction between web layers. ---
+    mode: Literal["center", "surface", "center-surface"] = "center"
+    drum_friction: Q("dimensionless", "nonnegative") | None = None
+    nip_saturation: Q("force_per_length") | None = None
+    #: wrap of the web on the drum; None: the schedule's default (TensionSchedule.drum_wrap)
+    drum_wrap: Q("dimensionless", "nonnegative") | None = None
+    tension_differential: Annotated[tuple[str, float], BeforeValidator(_tension)] | None = None
+    drum_torque: Q("energy", "any") | None = None
+    drum_radius: Q("length") | None = None
+    # -- speed and entrained air (woundroll.winding.air): 0 = no air, today's model --
+    speed: Q("velocity", "nonnegative") = 0.0
+    # -- end speed and entrained air --
 
     @model_validator(mode="after")
     def _size(self) -> WindingSpec:
         if (self.outer_radius is None) == (self.length is None):
             raise InputError("give exactly one of outer_radius or length", "winding.outer_radius")
         return self
+
+    @model_validator(mode="after")
+    def _mode(self) -> WindingSpec:
+        surface_keys = (
+            "drum_friction",
+            "nip_saturation",
+            "tension_differential",
+            "drum_torque",
+            "drum_radius",
+            "drum_wrap",
+        )
+        if self.mode == "center":
+            for name in surface_keys:
+                if getattr(self, name) is not None:
+                    raise InputError(
+                        "only with winding.mode = 'surface' or 'center-surface'", f"winding.{name}"
+                    )
+            return self
+        if self.thickness_profile is not None:
+            raise InputError(
+                "surface winding is not modelled with winding.thickness_profile yet", "winding.mode"
+            )
+        if self.nip_saturation is None:
+            raise InputError(
+                "needed for surface winding: the nip load where the nip-induced tension levels "
+                "off, from wound-in-tension measurements (docs/winding.md)",
+                "winding.nip_saturation",
+            )
+        given = [n for n in ("tension_differential", "drum_torque") if getattr(self, n) is not None]
+        if self.mode == "surface" and given:
+            raise InputError("only with winding.mode = 'center-surface'", f"winding.{given[0]}")
+        if self.mode == "center-surface":
+            if len(given) != 1:
+                raise InputError(
+                    "give exactly one of tension_differential or drum_torque (with drum_radius)",
+                    "winding.tension_differential",
+                )
+            if self.drum_torque is not None and self.drum_radius is None:
+                raise InputError("needed with winding.drum_torque", "winding.drum_radius")
+        return self
+
+    def _differential(self, web: Web) -> float:
+        """The centre-surface tension differential as a force per width [N/m]."""
+        if self.drum_torque is not None and self.drum_radius is not None:
+            return self.drum_torque / (web.width * self.drum_radius)
+        if self.tension_differential is None:
+            return 0.0
+        kind, v = self.tension_differential
+        return {"force": v / web.width, "force_per_length": v, "pressure": v * web.thickness}[kind]
 
     def final_radius(self, web: Web, core: Core) -> float:
         """Outer radius [m]: as given, or from the wound length (no compaction assumed)."""
@@ -290,11 +370,23 @@ class WindingSpec(_Section):
             "force_per_length": v / web.thickness,
             "pressure": v,
         }[kind]
+        if self.mode == "center":
+            return TensionSchedule(
+                web_stress=stress,
+                taper=self.taper.build(),
+                nip_load=self.nip_load,
+                friction=self.friction,
+            )
         return TensionSchedule(
             web_stress=stress,
             taper=self.taper.build(),
             nip_load=self.nip_load,
             friction=self.friction,
+            mode=self.mode,
+            drum_friction=self.drum_friction,
+            nip_saturation=self.nip_saturation,
+            tension_differential=self._differential(web),
+            **({} if self.drum_wrap is None else {"drum_wrap": self.drum_wrap}),
         )
 
 
@@ -553,12 +645,79 @@ class StorageSpec(_Section):
 
     temperature_change: Annotated[float, BeforeValidator(_kelvin)] = 0.0
     moisture_change: Q("dimensionless", "any") = 0.0
+    # --- storage time (creep; woundroll.winding.creep, docs/winding.md "Storage time") ---
+    #: time in storage (``"30 d"``); > 0 needs ``radial_creep``
+    time: Q("time", "nonnegative") = 0.0
+    #: the stack's creep law, e.g. ``{ law = "power", n = 0.2, tau = "40 d" }``
+    #: (:func:`woundroll.materials.creep.creep_from_spec`; ``woundroll fit-stack --creep``)
+    radial_creep: dict[str, Any] | None = None
+    #: time steps through the storage time; None: :data:`woundroll.winding.creep.TIME_STEPS`
+    time_steps: int | None = Field(default=None, ge=1, le=10_000)
+
+    @model_validator(mode="after")
+    def _creep_law(self) -> StorageSpec:
+        if self.radial_creep is not None:
+            self.creep_law()  # its errors name storage.radial_creep.<key>
+        elif self.time > 0.0:
+            raise InputError(
+                "a storage time needs the stack's creep law, e.g. radial_creep = "
+                '{ law = "power", n = 0.2, tau = "40 d" } (woundroll fit-stack CSV --creep)',
+                "storage.radial_creep",
+            )
+        return self
+
+    def creep_law(self) -> Any:
+        """The creep law (:mod:`woundroll.materials.creep`), or None."""
+        if self.radial_creep is None:
+            return None
+        from woundroll.materials.creep import creep_from_spec
+
+        return creep_from_spec(self.radial_creep, "storage.radial_creep")
 
     def build(self) -> Any:
         """The :class:`~woundroll.winding.storage.StorageChange` of this section."""
         from woundroll.winding.storage import StorageChange
 
         return StorageChange(self.temperature_change, self.moisture_change)
+
+
+# -- speed and entrained air (woundroll.winding.air) --
+def _air_default(name: str) -> float:
+    from woundroll.winding import air
+
+    return float(getattr(air, name))
+
+
+class AirSpec(_Section):
+    """``[air]``: the air a fast web entrains (:mod:`woundroll.winding.air`; used when
+    ``winding.speed`` > 0): ``viscosity`` [Pa s] (bare number, default 1.8e-5, air at
+    20 C), ``pressure`` (ambient, default 101.325 kPa), ``nip_modulus`` (contact modulus E*
+    of the lay-on roller's cover against the roll, default 10 MPa) and ``nip_radius``
+    (default ``winding.nip_roller.outer_radius``, else 5 cm); ``time`` after winding of the
+    roll downstream (default: all the air that can leave has left)."""
+
+    viscosity: float = Field(default_factory=lambda: _air_default("VISCOSITY"))
+    pressure: Q("pressure") = Field(default_factory=lambda: _air_default("PRESSURE"))
+    nip_modulus: Q("pressure") = Field(default_factory=lambda: _air_default("NIP_MODULUS"))
+    nip_radius: Q("length") | None = None
+    time: Q("time", "nonnegative") | None = None
+
+    def build(self, speed: float, roughness: float | None, nip_radius: float | None) -> Any:
+        """The :class:`~woundroll.winding.air.AirSettings` of the case."""
+        from woundroll.winding.air import NIP_RADIUS, AirSettings
+
+        return AirSettings(
+            speed=speed,
+            roughness=roughness or 0.0,
+            viscosity=self.viscosity,
+            pressure=self.pressure,
+            nip_modulus=self.nip_modulus,
+            nip_radius=self.nip_radius or nip_radius or NIP_RADIUS,
+            time=math.inf if self.time is None else self.time,
+        )
+
+
+# -- end speed and entrained air --
 
 
 class Case(_Section):
@@ -576,6 +735,7 @@ class Case(_Section):
     uncertainty: UncertaintySpec | None = None
     defects: DefectsSpec | None = None
     storage: StorageSpec | None = None
+    air: AirSpec | None = None  # speed and entrained air
     _base_dir: Path | None = PrivateAttr(default=None)
     _warnings: tuple[str, ...] = PrivateAttr(default=())
     _given: dict[str, Any] = PrivateAttr(default_factory=dict)

@@ -132,10 +132,18 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
             raise InputError(
                 "a storage change is not modelled with winding.thickness_profile yet", "storage"
             )
+        if case.winding.speed > 0:
+            raise InputError(
+                "entrained air is not modelled with winding.thickness_profile yet",
+                "winding.speed",
+            )
         return _run_profile(case, web, core, r_out, schedule, options, setup, report)
     # winding: the stresses in the roll
     winding = wind(
         web, core, r_out, schedule, options=options, progress=lambda f: report("winding", f)
+    )
+    winding, air_notes, air_warnings, loose = _after_air(
+        case, winding, web, core, r_out, schedule, options
     )
     winding, storage_warnings = _after_storage(case, winding, web, core)
     max_p = float(-np.min(winding.sigma_r))
@@ -146,13 +154,27 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         result = _run_given_spring(case, winding, setup, web, core, r_out, max_p, report)
     else:
         result = _run_contact(case, winding, setup, web, core, r_out, max_p, report)
+    if winding.air is not None:
+        result = replace(
+            result,
+            notes=(*result.notes, *air_notes),
+            warnings=result.warnings + air_warnings,
+            flags={**result.flags, "air_loose": loose},
+        )
+    result = _with_mode_notes(result, schedule, web, core, r_out)
     if case.storage is None:
         return result
     st = winding.storage
     note = (
         f"storage: temperature change {st['temperature_change_K']:g} K, moisture change "
-        f"{st['moisture_change']:g}: core pressure {st['core_pressure_before_Pa'] / 1e3:.4g} -> "
-        f"{st['core_pressure_Pa'] / 1e3:.4g} kPa; stresses and reading are after the change"
+        f"{st['moisture_change']:g}"
+        + (
+            f", {st['storage_time_s'] / 86400:.4g} d of radial creep"
+            if "storage_time_s" in st
+            else ""
+        )
+        + f": core pressure {st['core_pressure_before_Pa'] / 1e3:.4g} -> "
+        f"{st['core_pressure_Pa'] / 1e3:.4g} kPa; stresses and reading are after storage"
     )
     return replace(
         result,
@@ -160,6 +182,68 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
         warnings=result.warnings + storage_warnings,
         flags={**result.flags, "storage_overstress": bool(storage_warnings)},
     )
+
+
+def _with_mode_notes(
+    result: RunResult, schedule: Any, web: Web, core: Any, r_out: float
+) -> RunResult:
+    """Surface and centre-surface winding (``winding.mode``): a note with the nip-induced
+    tension against centre winding's ``mu N``, a warning where the web slips on the drum
+    (:mod:`woundroll.winding.tension`). Centre winding: the result as is."""
+    if schedule.mode == "center":
+        return result
+    nit = schedule.nip_induced_line()
+    notes = [
+        f"winding.mode = {schedule.mode}: nip-induced tension {nit:.4g} N/m (centre winding's "
+        f"mu N would be {schedule.friction * schedule.nip_load:.4g} N/m; it levels off at "
+        f"{min(schedule.friction, schedule.drum_friction) * schedule.nip_saturation:.4g} N/m)"
+    ]
+    warnings: tuple[str, ...] = ()
+    r = result.winding.radius
+    if schedule.drum_slips(r, core.outer_radius, r_out, web.thickness):
+        hold = float(schedule.drum_limit(schedule.web_stress * web.thickness))
+        warnings = (
+            f"winding: the tension differential {schedule.tension_differential:.4g} N/m exceeds "
+            f"what the drum holds ({hold:.4g} N/m at the core's web tension): the web slips on "
+            "the drum and the wound-on tension takes the drum's limit",
+        )
+    return replace(
+        result,
+        notes=(*result.notes, *notes),
+        warnings=result.warnings + warnings,
+        flags={**result.flags, "drum_slip": bool(warnings)},
+    )
+
+
+def _after_air(
+    case: Case, winding: Any, web: Web, core: Any, r_out: float, schedule: Any, options: Any
+) -> tuple[Any, tuple[str, ...], tuple[str, ...], bool]:
+    """``winding.speed`` > 0: the roll wound with entrained air
+    (:func:`woundroll.winding.air.wind_with_air`); everything downstream (storage, contact,
+    reading) sees the roll after the air has left (the contact model knows the stack's law,
+    not the air layer). Speed 0 (the default): the roll as wound, untouched."""
+    if not case.winding.speed > 0:
+        return winding, (), (), False
+    from woundroll.case.schema import AirSpec
+    from woundroll.winding.air import wind_with_air
+
+    spec = case.air if case.air is not None else AirSpec()
+    roller = case.winding.nip_roller
+    settings = spec.build(
+        case.winding.speed, case.web.roughness, roller.outer_radius if roller else None
+    )
+    res = wind_with_air(web, core, r_out, schedule, settings, options=options, no_air=winding)
+    when = (
+        "after the air has left"
+        if math.isinf(settings.time)
+        else f"{settings.time:g} s after winding (air.time)"
+    )
+    notes = (
+        res.summary(),
+        f"air: the roll downstream (storage, contact, reading) is the roll {when}; 'air' in "
+        "result.json holds the roll at winding and the diameters",
+    )
+    return replace(res.after, air=res.to_dict()), notes, res.warnings, res.loose
 
 
 def _after_storage(case: Case, winding: Any, web: Web, core: Any) -> tuple[Any, tuple[str, ...]]:
@@ -170,8 +254,28 @@ def _after_storage(case: Case, winding: Any, web: Web, core: Any) -> tuple[Any, 
         return winding, ()
     from woundroll.winding.storage import apply_storage
 
-    res = apply_storage(winding, web, core, case.storage.build())
-    return replace(res.winding, storage=res.to_dict()), res.warnings
+    spec = case.storage
+    res = apply_storage(winding, web, core, spec.build())
+    record = res.to_dict()
+    after = res.winding
+    law = spec.creep_law()
+    if law is not None and spec.time > 0.0:
+        # storage time: the stack creeps under the pressure after the temperature change
+        from woundroll.winding.creep import apply_creep
+
+        steps = {} if spec.time_steps is None else {"steps": spec.time_steps}
+        crept = apply_creep(after, web, core, law, spec.time, **steps)
+        after = crept.winding
+        record = {
+            **record,
+            **crept.to_dict(),
+            "core_pressure_Pa": float(after.core_pressure),
+            "max_pressure_Pa": float(np.max(-after.sigma_r)),
+            "max_sigma_theta_Pa": float(np.max(after.sigma_theta)),
+            "min_sigma_theta_Pa": float(np.min(after.sigma_theta)),
+            "pressure_wound_in_Pa": (-winding.sigma_r).tolist(),
+        }
+    return replace(after, storage=record), res.warnings
 
 
 def _run_given_spring(

@@ -22,12 +22,21 @@ Rows = list[tuple[str, str]]
 
 
 def _winding_rows(w: Any) -> Rows:
-    return [
+    rows = [
         ("layers", f"{w.n_layers}"),
         ("outer radius", f"{_num(w.radius[-1] * 100, '.3f')} cm"),
         ("core pressure", f"{_num(w.core_pressure / 1e3, '.1f')} kPa"),
         ("max pressure", f"{_num(-w.sigma_r.min() / 1e3, '.1f')} kPa"),
     ]
+    st = w.storage or {}
+    if "storage_time_s" in st:  # storage time (creep): the wound-in value beside it
+        days = f"{st['storage_time_s'] / 86400:.4g} d"
+        rows[2] = (f"core pressure after {days} storage", rows[2][1])
+        rows.insert(
+            2,
+            ("core pressure as wound", f"{_num(st['core_pressure_before_Pa'] / 1e3, '.1f')} kPa"),
+        )
+    return rows
 
 
 def _hardness_rows(result: RunResult) -> Rows:

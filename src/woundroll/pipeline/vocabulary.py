@@ -44,6 +44,7 @@ UNIT_SUFFIXES: dict[str, str] = {
     "N s": "_N_s",
     "N m": "_N_m",
     "K": "_K",
+    "Pa s": "_Pa_s",
     "pli": "_pli",  # lbf/in: the US copy of a tension per width beside its SI key
 }
 
@@ -209,7 +210,7 @@ _TERMS: tuple[Term, ...] = (
     _t("width_m", "m", "web width, or a band's width", "W"),
     _t("E_theta_Pa", "Pa", "in-plane (MD) Young's modulus of the web", "E_θ"),
     _t("nu_theta_r", "", "Poisson ratio theta-r", "ν_θr"),
-    _s("law", "name of a radial-modulus law"),
+    _s("law", "name of a law: radial modulus, unloading or creep"),
     _t("K1_Pa", "Pa", "Pfeiffer's K1", "K1"),
     _t("K2", "", "Pfeiffer's K2", "K2"),
     _t("stiffness_Pa", "Pa", "radial stiffness of the core", "E_c"),
@@ -325,6 +326,38 @@ _TERMS: tuple[Term, ...] = (
     _b("implausible_input", "a case value outside its plausible range"),
     _b("pressure_implausible", "the largest pressure beyond its plausible range"),
     _b("storage_overstress", "after the storage change layers separate or exceed strength"),
+    _b("drum_slip", "centre-surface winding: the tension differential exceeds the drum's hold"),
+    _b("air_loose", "after the entrained air has left, layers are apart (a loose roll)"),
+    # ------------------------------------------------------------------ air (winding speed)
+    _o("air", "the roll wound at speed with entrained air, and after the air has left"),
+    _t("speed_m_per_s", "m/s", "winding speed (mean surface speed at the lay-on line)", "U"),
+    _t("roughness_m", "m", "combined Rq of the two web faces in contact", "σ"),
+    _t("viscosity_Pa_s", "Pa s", "dynamic viscosity of the air", "η"),
+    _t("ambient_pressure_Pa", "Pa", "ambient (absolute) air pressure", "p_atm"),
+    _t("nip_modulus_Pa", "Pa", "contact modulus E* of the lay-on roller's cover against the roll", "E*"),  # noqa: E501
+    _t("nip_radius_m", "m", "lay-on (nip) roller radius", "R_nip"),
+    _t("film_at_lay_on_m", "m", "air film at the lay-on line at the end of winding", "h_0"),
+    _t("entrained_air_m", "m", "air layer per layer wound in, beyond the roughness", "a_0"),
+    _t("film_radius_m", "m", "roll radius at which each layer is laid on (per layer)"),
+    _t("film_m", "m", "air film at the lay-on line (per layer)", "h_0"),
+    _t("outer_diameter_no_air_m", "m", "outer diameter of the roll wound without air, compacted"),  # noqa: E501
+    _t("outer_diameter_at_winding_m", "m", "outer diameter of the roll with its air, compacted"),  # noqa: E501
+    _t("outer_diameter_after_m", "m", "outer diameter after the air has left"),
+    _t("core_pressure_at_winding_Pa", "Pa", "core pressure of the roll with its air"),
+    _t("core_pressure_after_Pa", "Pa", "core pressure after the air has left"),
+    _t("core_pressure_no_air_Pa", "Pa", "core pressure of the roll wound without air"),
+    _t("air_radius_m", "m", "node radii of the roll wound with air (per node)", "r"),
+    _t("sigma_r_at_winding_Pa", "Pa", "radial stress of the roll with its air (per node)", "σ_r"),  # noqa: E501
+    _t("sigma_theta_at_winding_Pa", "Pa", "wound-in (hoop) stress of the web with the air in (per node)", "σ_θ"),  # noqa: E501
+    _t("sigma_r_after_Pa", "Pa", "radial stress after the air has left (per node)", "σ_r"),
+    _t("sigma_theta_after_Pa", "Pa", "hoop stress of the web after the air has left (per node)", "σ_θ"),  # noqa: E501
+    _t("wound_length_m", "m", "web length wound up to a point of the finished roll"),
+    _t("diameter_no_air_m", "m", "diameter where that length sits, roll wound without air"),
+    _t("diameter_with_air_m", "m", "diameter where that length sits, roll wound with air"),
+    _t("air_leakage_time_s", "s", "initial time constant of the air leaving at the roll's edges (slowest layer)", "τ"),  # noqa: E501
+    _t("time_after_winding_s", "s", "time after winding of the roll 'after' (null: all the air that can leave has left)"),  # noqa: E501
+    _t("air_gone_fraction", "", "share of the wound-in air gone in the roll 'after'"),
+    _t("air_leaves_90_s", "s", "time for 90 % of the air to leave the slowest layer (the gap narrowing)", "t_90"),  # noqa: E501
     # ------------------------------------------------------------------ storage
     _o("storage", "the roll's change after winding: temperature and moisture"),
     _t("temperature_change_K", "K", "temperature in storage minus at winding", "ΔT"),
@@ -335,6 +368,18 @@ _TERMS: tuple[Term, ...] = (
     _t("delta_sigma_r_Pa", "Pa", "change of the radial stress by the storage change (per node)"),
     _t("delta_sigma_theta_Pa", "Pa", "change of the hoop stress by the storage change (per node)"),
     _i("iterations", "iterations used"),
+    _t("storage_time_s", "s", "time in storage (radial creep)", "t_s"),
+    _o("radial_creep", "the stack's creep law: phi(t), J(t) = (1 + phi(t)) / E_r"),
+    _t("exponent", "", "exponent n of a power creep law phi = (t/tau)^n", "n"),
+    _t("tau_s", "s", "time constant(s) of a creep law: power tau, Prony retardation times", "τ"),  # noqa: E501
+    _t("weights", "", "Prony weights c_i of a creep law", "c_i"),
+    _t("core_pressure_before_creep_Pa", "Pa", "core pressure when the storage time begins"),
+    _t("core_pressure_after_creep_Pa", "Pa", "core pressure after the storage time"),
+    _t("pressure_wound_in_Pa", "Pa", "interlayer pressure as wound, before storage (per node)"),
+    _t("pressure_before_creep_Pa", "Pa", "interlayer pressure when the storage time begins (per node)"),  # noqa: E501
+    _t("pressure_after_creep_Pa", "Pa", "interlayer pressure after the storage time (per node)"),
+    _t("creep_time_s", "s", "time steps through the storage time"),
+    _t("creep_core_pressure_Pa", "Pa", "core pressure at each creep time step"),
     # ------------------------------------------------------------------ profile
     _t("z_m", "m", "CMD position of a sector's centre", "z"),
     _r("reading_energy", "readout", "the energy model's reading"),

@@ -65,6 +65,8 @@ class WindingResult:
     stats: dict[str, Any] = field(default_factory=dict)
     #: the change after winding (:mod:`woundroll.winding.storage`), when one was applied
     storage: dict[str, Any] | None = None
+    #: the roll wound with entrained air (:mod:`woundroll.winding.air`), when speed > 0
+    air: dict[str, Any] | None = None
 
     @property
     def pressure(self) -> FloatArray:
@@ -100,6 +102,8 @@ class WindingResult:
         )
         if self.storage is not None:
             out["storage"] = self.storage
+        if self.air is not None:
+            out["air"] = self.air
         return out
 
     def to_table(self) -> str:
@@ -161,4 +165,9 @@ class WindingResult:
             ax.grid(alpha=0.3)
         if path is not None:
             fig.savefig(path, dpi=120)
+        if self.air is not None:  # and the roll wound with entrained air
+            from woundroll.winding.air_plot import plot_air
+
+            p = None if path is None else Path(path).with_name(Path(path).stem + "_air.png")
+            return [fig, plot_air(self.air, p)]
         return fig

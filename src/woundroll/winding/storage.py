@@ -116,7 +116,7 @@ def solve_increment(
     E_r: FloatArray,
     E_theta: float,
     nu_theta_r: float,
-    eps_r: float,
+    eps_r: float | FloatArray,
     eps_theta: float,
     core_stiffness: float,
     core_strain: float,
@@ -128,7 +128,8 @@ def solve_increment(
     radius : nodes from the core to the surface [m] (strictly increasing)
     E_r : radial modulus at the nodes [Pa]
     E_theta, nu_theta_r : the web's MD modulus [Pa] and Poisson ratio [-]
-    eps_r, eps_theta : the web's free strains [-]
+    eps_r, eps_theta : the web's free strains [-] (``eps_r`` a number, or one per node: the
+        equation holds pointwise, as ``eps_r*`` enters it undifferentiated)
     core_stiffness : E_c [Pa] (``inf``: rigid)
     core_strain : the core's free radial strain ``alpha_c dT`` [-]
     """
@@ -151,7 +152,8 @@ def solve_increment(
     ab[2 + 1, idx - 1] = lower  # A[i, i-1]
     ab[2, idx] = diag  # A[i, i]
     ab[1, idx + 1] = upper  # A[i, i+1]
-    rhs[1:-1] = E_theta * (eps_r - eps_theta)
+    # a free radial strain may vary from node to node (creep, :mod:`woundroll.winding.creep`)
+    rhs[1:-1] = E_theta * (np.broadcast_to(np.asarray(eps_r, dtype=float), (n,))[1:-1] - eps_theta)
     # core row: one-sided second-order s'(r0) = c0 s0 + c1 s1 + c2 s2
     h0, h1 = r[1] - r[0], r[2] - r[1]
     c0 = -(2.0 * h0 + h1) / (h0 * (h0 + h1))

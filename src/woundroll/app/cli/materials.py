@@ -56,8 +56,21 @@ def fit_stack_cmd(
             "(web.radial_unloading).",
         ),
     ] = False,
+    creep: Annotated[
+        bool,
+        typer.Option(
+            "--creep",
+            help="A creep test (time, strain at a constant pressure) or relaxation test (time, "
+            "pressure at a constant strain): fit [storage] radial_creep (power, prony or all).",
+        ),
+    ] = False,
 ) -> None:
     """Fit radial-modulus laws to a stack test and print their parameters and fit quality."""
+    if creep:
+        from woundroll.app.cli.creep import fit_creep_cmd
+
+        fit_creep_cmd(csv_file, law, as_json, out, fail)
+        return
     if unloading:
         from woundroll.app.cli.unloading import fit_cycle_cmd
 

@@ -6,7 +6,7 @@ from datetime import UTC, datetime
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from woundroll.app.report.figures import _figures
+from woundroll.app.report.figures import _figures, storage_and_mode_figures
 from woundroll.app.report.inputs import case_hash, input_sections
 from woundroll.app.report.sections import (
     EQUATION_NOTE,
@@ -74,7 +74,11 @@ def build_report(
     case = result.case
     figures: list[dict[str, Any]] = []
     captions = {
-        "winding": ["Stresses wound into the roll: sigma_r, sigma_theta and E_r against radius."],
+        "winding": [
+            "Stresses wound into the roll: sigma_r, sigma_theta and E_r against radius.",
+            "Winding speed: diameter against wound length with and without entrained air; "
+            "pressure and wound-in stress at winding and after the air has left.",
+        ],
         "contact": [
             "Roll under the striker: force against depth with the fitted spring {3}, and the "
             "contact half-width.",
@@ -97,6 +101,8 @@ def build_report(
         if part is None or not hasattr(part, "plot"):
             continue
         sections.append({"title": sec_title, "figures": _figures(part, captions[name])})
+        if name == "winding":  # storage time, surface winding: before/after, WOT(r)
+            sections[-1]["figures"] += storage_and_mode_figures(result)
     check = profile_check if profile_check is not None else _check_of(readings, ids)
     id_rows = []
     for key, label in ID_FIELDS.items():

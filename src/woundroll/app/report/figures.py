@@ -66,3 +66,50 @@ def _figures(part: Any, captions: list[str]) -> list[dict[str, str]]:
             cap = captions[i] if i < len(captions) else ""
             out.append({"src": _png(fig), "caption": cap})
     return out
+
+
+def storage_and_mode_figures(result: Any) -> list[dict[str, str]]:
+    """The roll before and after its storage time (pressure against radius) and the wound-on
+    tension against radius, for a run with ``[storage] time`` or a surface winding mode;
+    none otherwise (a centre-wound roll without storage time: the winding figure says it)."""
+    w = result.winding
+    if w is None:
+        return []
+    st = w.storage or {}
+    creep = "pressure_after_creep_Pa" in st
+    mode = getattr(result.case.winding, "mode", "center")
+    if not creep and mode == "center":
+        return []
+    import numpy as np
+    from matplotlib.figure import Figure
+
+    with _PLOT_LOCK:
+        fig = Figure(figsize=(8.0, 3.4))
+        ax1, ax2 = fig.subplots(1, 2)
+        r_cm = np.asarray(w.radius) * 100
+        if creep:
+            ax1.plot(r_cm, np.asarray(st["pressure_wound_in_Pa"]) / 1e3, label="as wound")
+            before = np.asarray(st["pressure_before_creep_Pa"])
+            if not np.array_equal(before, np.asarray(st["pressure_wound_in_Pa"])):
+                ax1.plot(r_cm, before / 1e3, "--", label="after the temperature/moisture change")
+            days = st["storage_time_s"] / 86400
+            ax1.plot(
+                r_cm, np.asarray(st["pressure_after_creep_Pa"]) / 1e3, label=f"after {days:.3g} d"
+            )
+            ax1.legend(fontsize=8)
+        else:
+            ax1.plot(r_cm, -np.asarray(w.sigma_r) / 1e3)
+        ax1.set_xlabel("radius [cm]")
+        ax1.set_ylabel("interlayer pressure P [kPa]")
+        ax2.plot(r_cm, np.asarray(w.wot) / 1e6)
+        ax2.set_xlabel("radius [cm]")
+        ax2.set_ylabel("wound-on tension [MPa]")
+        ax2.set_title(f"winding.mode = {mode}", fontsize=9)
+        fig.tight_layout()
+        caption = (
+            "Interlayer pressure against radius before and after storage; wound-on tension "
+            "against radius."
+            if creep
+            else "Interlayer pressure and wound-on tension against radius."
+        )
+        return [{"src": _png(fig), "caption": caption}]

@@ -7,6 +7,8 @@ import math
 import re
 from typing import Any
 
+import numpy as np
+
 from woundroll.errors import ConvergenceError, InputError
 
 
@@ -75,6 +77,58 @@ def _winding_plots(w: Any) -> list[dict[str, Any]]:
             [_series(rm * 100, st / 1e3, "sigma_theta, layer mean")],
         ),
     ]
+
+
+def _air_and_storage_plots(w: Any) -> list[dict[str, Any]]:
+    """The roll wound with entrained air (diameter against wound length with and without
+    air, pressure at winding and after the air left) and the pressure before and after a
+    storage time, when the run asked for them (the same data as ``winding_air.png`` and the
+    report's storage figure)."""
+    plots = []
+    air = w.air
+    if air is not None and "wound_length_m" in air:
+        L = np.asarray(air["wound_length_m"])
+        plots.append(
+            _plot(
+                "plot-air-diameter",
+                f"diameter with entrained air ({air['speed_m_per_s']:g} m/s)",
+                "wound length [m]",
+                "diameter [mm]",
+                [
+                    _series(L, np.asarray(air["diameter_no_air_m"]) * 1e3, "without air"),
+                    _series(L, np.asarray(air["diameter_with_air_m"]) * 1e3, "with air"),
+                ],
+            )
+        )
+        r = np.asarray(air["air_radius_m"]) * 100.0
+        plots.append(
+            _plot(
+                "plot-air-pressure",
+                "pressure at winding and after the air has left",
+                "radius [cm]",
+                "-sigma_r [kPa]",
+                [
+                    _series(r, -np.asarray(air["sigma_r_at_winding_Pa"]) / 1e3, "at winding"),
+                    _series(r, -np.asarray(air["sigma_r_after_Pa"]) / 1e3, "after the air left"),
+                ],
+            )
+        )
+    st = w.storage
+    if st is not None and "pressure_before_creep_Pa" in st:
+        r = w.radius * 100.0
+        plots.append(
+            _plot(
+                "plot-storage",
+                f"pressure before and after {st['storage_time_s'] / 86400:g} d of storage",
+                "radius [cm]",
+                "-sigma_r [kPa]",
+                [
+                    _series(r, np.asarray(st["pressure_before_creep_Pa"]) / 1e3, "before"),
+                    _series(r, np.asarray(st["pressure_after_creep_Pa"]) / 1e3, "after"),
+                ],
+            )
+        )
+    return plots
 
 
 def _profile_plot(result: Any, measured: Any) -> dict[str, Any] | None:
@@ -207,6 +261,8 @@ def result_payload(
 
     d = result.to_dict()
     plots = _winding_plots(result.winding) if result.winding is not None else []
+    if result.winding is not None:
+        plots += _air_and_storage_plots(result.winding)
     profile = _profile_plot(result, measured)
     if profile is not None:
         plots.append(profile)
