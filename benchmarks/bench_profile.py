@@ -336,7 +336,11 @@ def main() -> None:
     ap.add_argument("--process", action="store_true", help="whole-process runs only")
     ap.add_argument("--before", default=None, help="git revision to compare (--process, --kernel)")
     ap.add_argument("--repeat", type=int, default=3)
-    ap.add_argument("--cases", default="pet3-2.3MPa,pet3-3.45MPa-nip")
+    ap.add_argument(
+        "--cases",
+        default=None,
+        help="default: pet3-2.3MPa,pet3-3.45MPa-nip (--contact-stage: the four pet3 cases)",
+    )
     ap.add_argument("--deep", action="store_true", help="the deep part's schemes only")
     ap.add_argument("--kernel", action="store_true", help="the winding alone [--before REF]")
     ap.add_argument("--kernel-child", default=None, help=argparse.SUPPRESS)
@@ -348,7 +352,7 @@ def main() -> None:
     ap.add_argument("--workers", type=int, default=None)
     args = ap.parse_args()
     if args.contact_stage:
-        cases = STAGE_CASES if args.cases == ap.get_default("cases") else args.cases.split(",")
+        cases = STAGE_CASES if args.cases is None else args.cases.split(",")
         contact_stages(cases, args.workers)
         return
     if args.kernel_child:
@@ -358,7 +362,8 @@ def main() -> None:
         kernel(args.before, args.repeat)
         return
     if args.process:
-        whole_process(args.cases.split(","), args.before, args.repeat)
+        cases = (args.cases or "pet3-2.3MPa,pet3-3.45MPa-nip").split(",")
+        whole_process(cases, args.before, args.repeat)
         return
     if args.deep:
         deep_part(400)
