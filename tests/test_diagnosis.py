@@ -459,3 +459,55 @@ def test_sentence_saturated_reading_is_a_bound(monkeypatch):
     assert s.endswith(
         "1 of 1 positions read at the scale's end (saturated): a bound there, not a value"
     )
+
+
+@pytest.mark.parametrize(
+    "sets",
+    [
+        # 30 days of creep after winding (docs/winding.md, "Storage time")
+        ["storage.time='30 d'", "storage.radial_creep={law='power', n=0.2, tau='60 d'}"],
+        # entrained air under a nip: the roll after the air has left (docs/winding.md)
+        ["winding.speed='10 m/s'", "winding.nip_load='300 N/m'", "winding.friction=0.2"],
+    ],
+    ids=["storage", "air"],
+)
+def test_forward_model_reads_the_roll_the_run_reads(sets):
+    # the reverse road's forward run at the case's own tension is woundroll.run's reading
+    # bit for bit: both take the steps after winding (air, storage) in one place
+    # (pipeline.runner.after_winding); before, the diagnosis read the roll as wound
+    from woundroll.case import load_case
+    from woundroll.inverse.diagnosis import RollModel
+    from woundroll.pipeline import run
+
+    case = load_case("pet1-26.7N", sets)
+    ref = run(case)
+    model = RollModel.from_case(case)
+    pt = model.evaluate(model.tension)
+    assert pt.rho_fd == pytest.approx(ref.hardness.fd.rho, rel=1e-12)
+    plain = RollModel.from_case(load_case("pet1-26.7N")).evaluate(model.tension)
+    # and the steps matter here: the reading moves by more than a Rho
+    assert abs(pt.rho_fd - plain.rho_fd) > 1.0
+
+
+def test_verification_position_with_an_even_count_is_the_lower_middle(monkeypatch):
+    # four positions: the two middle tensions are equally far from the median, so "nearest
+    # the median" was decided by rounding (it flipped between machines); now the lower one
+    import numpy as np
+
+    from woundroll.inverse import diagnosis as dg
+
+    seen = []
+
+    class Model:
+        def evaluate(self, t):
+            seen.append(t)
+            return dg.ForwardPoint(t, t, 0.0, 50.0, 50.0, False)
+
+    monkeypatch.setattr(dg, "_power", lambda curve, t: np.zeros(len(t)))
+    T = np.array([4.0e6, 1.0e6, np.nan, 3.0e6, 2.0e6])
+    v = dg._verify_median(Model(), None, T, np.array([54.0, 51.0, np.nan, 53.0, 52.0]))
+    assert seen == [2.0e6] and v["target_reading"] == 52.0
+    # an odd count: the median itself
+    seen.clear()
+    dg._verify_median(Model(), None, T[:4], np.array([54.0, 51.0, np.nan, 53.0]))
+    assert seen == [3.0e6]

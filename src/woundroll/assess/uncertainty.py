@@ -435,7 +435,14 @@ def _winding_samples(
             "stresses: 1D model at the nominal thickness; CMD profile: reduced model "
             "(uncoupled sectors, P_s -> reading along the forward curve)"
         )
-    nominal = wind(web0, core, r_out, sched0, options=options)
+    from woundroll.pipeline.runner import after_winding
+
+    def wound(web: Any, sched: Any) -> Any:
+        # as the reading sees the roll: after the case's entrained air and storage
+        w = wind(web, core, r_out, sched, options=options)
+        return after_winding(case, w, web, core, r_out, sched, options).winding
+
+    nominal = wound(web0, sched0)
     radius = nominal.radius
     sr = np.empty((n, radius.size))
     st = np.empty((n, radius.size))
@@ -444,7 +451,7 @@ def _winding_samples(
     min_hoop = np.empty(n)
     for i in range(n):
         web, t = _perturb(web0, sched0.web_stress, params, {k: v[i] for k, v in u.items()})
-        w = wind(web, core, r_out, replace(sched0, web_stress=t), options=options)
+        w = wound(web, replace(sched0, web_stress=t))
         sr[i] = np.interp(radius, w.radius, w.sigma_r)
         st[i] = np.interp(radius, w.radius, w.sigma_theta)
         core_p[i] = w.core_pressure

@@ -429,6 +429,48 @@ class ContactSpec(_Section):
     slip: Literal["none", "reduced-shear"] = "none"
     slip_shear_fraction: Q("dimensionless") = 0.01
 
+    # -- other explanations of the readings (issue 25; docs/contact.md "Other
+    # explanations"), in the plane-strain models "2d" and "layered" --
+    #: G_r_theta = shear_ratio x E_r (unset: the web's rule, G_r_theta or 2 E_r)
+    shear_ratio: Q("dimensionless") | None = None
+    #: G_r_theta kept at its pre-impact value while E_r stiffens under the head
+    shear_frozen: bool = False
+    # -- the layered roll (contact.model = "layered"; docs/contact.md "The layered roll") --
+    #: depth of the layered zone under the surface (unset: 1.0 a_geo)
+    layered_depth: Q("length") | None = None
+    #: web layers per element shell in the layered zone
+    layers_per_shell: int = 1
+
+    def model_options(self) -> Any:
+        """The options of the roll model this section names: :meth:`layered_options` for
+        ``"layered"``, else :meth:`contact_options`."""
+        return self.layered_options() if self.model == "layered" else self.contact_options()
+
+    def layered_options(self) -> Any:
+        """The :class:`~woundroll.contact.layered.solver.LayeredOptions` of this section:
+        the 2D options (without the modified Newton step, the layered model factorises
+        every increment) and the zone's keys."""
+        from dataclasses import replace
+
+        from woundroll.contact.layered.solver import LayeredOptions
+
+        base = replace(self.contact_options(layered=True), newton=False)
+        try:
+            return LayeredOptions(
+                base=base, layered_depth=self.layered_depth, layers_per_shell=self.layers_per_shell
+            )
+        except InputError as exc:
+            raise exc.at("contact") from None
+
+    def _shear_options(self, table: dict[str, Any]) -> dict[str, Any]:
+        """``table`` with the section's shear keys (set as contact.<key> only)."""
+        for key in ("shear_ratio", "shear_frozen"):
+            if key in table:
+                raise InputError(
+                    f"set contact.{key}, not contact.options.{key}", f"contact.options.{key}"
+                )
+        return {**table, "shear_ratio": self.shear_ratio, "shear_frozen": self.shear_frozen}
+
     def roll_model(self, head_shape: str = "cylinder") -> Any:
         """The registry entry of the roll model that reads this case's roll
         (:func:`woundroll.contact.models.resolve_model`: ``model``, or the default for the
@@ -477,6 +519,14 @@ class ContactSpec(_Section):
         """The :class:`~woundroll.contact.dynamic.plane_strain.DynamicOptions` of this section."""
         from woundroll.contact.dynamic.plane_strain import DynamicOptions
 
+        if self.dynamic:  # the FE impact builds its own moduli: not taken silently
+            for key, unset in (("shear_ratio", None), ("shear_frozen", False)):
+                if getattr(self, key) != unset:
+                    raise InputError(
+                        "is taken by the quasi-static '2d' and 'layered' models only, not by "
+                        "the FE impact (contact.dynamic)",
+                        f"contact.{key}",
+                    )
         known = set(DynamicOptions.__dataclass_fields__) - {"mesh"}
         unknown = sorted(set(self.dynamic_options) - known)
         if unknown:
@@ -498,9 +548,15 @@ class ContactSpec(_Section):
             mesh = replace(mesh, tangential_growth=GROWTH)
         return DynamicOptions(mesh=mesh, **opts)
 
-    def contact_options(self) -> Any:
-        """The :class:`~woundroll.contact.ContactOptions` of this section (validated)."""
+    def contact_options(self, layered: bool = False) -> Any:
+        """The :class:`~woundroll.contact.ContactOptions` of this section (validated);
+        ``layered``: for the layered model (its zone keys are refused otherwise)."""
         from woundroll.contact import ContactOptions
+
+        if not layered and self.model != "layered":
+            for key, unset in (("layered_depth", None), ("layers_per_shell", 1)):
+                if getattr(self, key) != unset:
+                    raise InputError("is used by contact.model = 'layered' only", f"contact.{key}")
 
         known = set(ContactOptions.__dataclass_fields__)
         unknown = sorted(set(self.options) - known)
@@ -509,7 +565,7 @@ class ContactSpec(_Section):
                 f"unknown option(s) {', '.join(unknown)}; known: {', '.join(sorted(known))}",
                 f"contact.options.{unknown[0]}",
             )
-        table = self._slip_options(self.options, "options")
+        table = self._shear_options(self._slip_options(self.options, "options"))
         try:
             return ContactOptions(**table)
         except InputError as exc:

@@ -57,13 +57,23 @@ def _cmd_spread(web: Any, core: Any, r: Any, sigma_r: Any, instrument: Any, **kw
     return correction.corrected, correction
 
 
+def _refuse_shear_options(options: Any, model: str) -> None:
+    """The other explanations' shear options are in the plane-strain models only."""
+    for key in ("shear_ratio", "shear_frozen"):
+        if getattr(options, key, None) not in (None, False):
+            raise InputError(
+                f"is taken by the '2d' and 'layered' models only, not by {model!r}",
+                key,  # the pipeline prefixes "contact."
+            )
+
+
 def _solid3d(web: Any, core: Any, r: Any, sigma_r: Any, instrument: Any, **kw: Any) -> Any:
     """The 3D continuum model (:func:`woundroll.contact.solid3d.solver.indent3d`): (result,
     None)."""
     from woundroll.contact.heads import Head
     from woundroll.contact.solid3d.solver import indent3d
 
-    kw.pop("options", None)
+    _refuse_shear_options(kw.pop("options", None), "3d")
     options3d = kw.pop("options3d", None)
     res = indent3d(
         web, core, r, sigma_r, head=Head.from_instrument(instrument), options=options3d, **kw
@@ -82,11 +92,10 @@ def _layered(web: Any, core: Any, r: Any, sigma_r: Any, instrument: Any, **kw: A
 
     kw.pop("options3d", None)
     base = kw.pop("options", None)
-    options = (
-        LayeredOptions()
-        if base is None
-        else LayeredOptions(base=dataclasses.replace(base, newton=False))
-    )
+    if base is None or isinstance(base, LayeredOptions):  # the case's [contact] keys
+        options = base if base is not None else LayeredOptions()
+    else:
+        options = LayeredOptions(base=dataclasses.replace(base, newton=False))
     res = indent_layered(
         web,
         core,

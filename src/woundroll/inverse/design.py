@@ -565,11 +565,11 @@ class _SetpointProblem:
         return "linear" if self.target.taper_kind == "table" else self.target.taper_kind
 
     def winding(self, t0: float, taper: Taper, nip: float) -> WindingResult:
-        from woundroll.winding.hakiel import wind
-
+        """The roll at these setpoints as the reading sees it (after the case's entrained air
+        and storage, :meth:`RollModel.wound`)."""
         m = self.model
         sched = replace(m.schedule, web_stress=t0, taper=taper, nip_load=float(nip))
-        return wind(m.web, m.core, m.outer_radius, sched, options=m.winding_options)
+        return m.wound(sched)
 
     def ps(self, t0: float, taper: Taper, nip: float) -> float:
         from woundroll.inverse.diagnosis import near_surface_pressure

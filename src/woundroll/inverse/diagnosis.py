@@ -114,6 +114,9 @@ class RollModel:
     winding_options: Any = None
     contact_model: str | None = None  # a registry name; None: the default
     contact3d_options: Any = None  # the case's [contact.options3d] for the 3D model
+    #: the case whose steps after winding (entrained air, storage) every forward run takes
+    #: (:func:`woundroll.pipeline.runner.after_winding`); None: the roll as wound
+    case: Any = field(default=None, repr=False, compare=False)
 
     @classmethod
     def from_case(cls, case: Case, scale: str | None = None) -> RollModel:
@@ -150,12 +153,13 @@ class RollModel:
             setup=setup,
             scale=scale,
             friction=case.contact.friction,
-            contact_options=case.contact.contact_options(),
+            contact_options=case.contact.model_options(),
             depth=inst.head_radius,
             semi_contact_width_given="semi_contact_width" in (case.tester or {}),
             winding_options=WindingOptions.from_dict(case.winding.options, "winding.options"),
             contact_model=case.contact.model,
             contact3d_options=case.contact.contact3d_options(),
+            case=case,
         )
 
     @property
@@ -173,14 +177,30 @@ class RollModel:
     def with_web(self, web: Web) -> RollModel:
         return replace(self, web=web)
 
+    def wound(self, schedule: TensionSchedule | None = None, web: Web | None = None) -> Any:
+        """The roll wound on ``schedule`` (default the case's) from ``web`` (default the
+        model's), as the contact model sees it: after the case's entrained air and storage
+        (:func:`woundroll.pipeline.runner.after_winding`), as :func:`woundroll.run` does."""
+        from woundroll.winding.hakiel import wind
+
+        sched = self.schedule if schedule is None else schedule
+        web = self.web if web is None else web
+        w = wind(web, self.core, self.outer_radius, sched, options=self.winding_options)
+        if self.case is None:
+            return w
+        from woundroll.pipeline.runner import after_winding
+
+        return after_winding(
+            self.case, w, web, self.core, self.outer_radius, sched, self.winding_options
+        ).winding
+
     def evaluate(self, web_stress: float) -> ForwardPoint:
         """One full forward run at web tension ``web_stress`` [Pa] (taper and nip kept)."""
         from woundroll.contact import roll_stiffness
         from woundroll.pipeline import hardness_on_roll
-        from woundroll.winding.hakiel import wind
 
         sched = replace(self.schedule, web_stress=float(web_stress))
-        w = wind(self.web, self.core, self.outer_radius, sched, options=self.winding_options)
+        w = self.wound(sched)
         stiff = roll_stiffness(
             self.web,
             self.core,
@@ -1091,8 +1111,13 @@ def _combined_interval(
 def _verify_median(
     model: RollModel, curve: ForwardCurve, T: FloatArray, r_mid: FloatArray
 ) -> dict[str, Any]:
-    """The full chain once more at the median position's tension, against the curve."""
-    i = int(np.nanargmin(np.abs(T - np.nanmedian(T))))
+    """The full chain once more at the median position's tension, against the curve; with an
+    even number of positions the lower of the two middle ones (the position nearest the
+    median was a tie there, decided by the last bit of the tensions)."""
+    ok = np.flatnonzero(np.isfinite(T))
+    if ok.size == 0:
+        raise ConvergenceError("no position has a tension to verify")
+    i = int(ok[np.argsort(T[ok], kind="stable")[(ok.size - 1) // 2]])
     full = model.evaluate(float(T[i]))
     return {
         "web_tension_Pa": float(T[i]),

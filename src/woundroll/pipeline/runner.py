@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -142,10 +142,9 @@ def run(case: Case | str | Path, *, progress: Progress | None = None) -> RunResu
     winding = wind(
         web, core, r_out, schedule, options=options, progress=lambda f: report("winding", f)
     )
-    winding, air_notes, air_warnings, loose = _after_air(
-        case, winding, web, core, r_out, schedule, options
-    )
-    winding, storage_warnings = _after_storage(case, winding, web, core)
+    after = after_winding(case, winding, web, core, r_out, schedule, options)
+    winding, air_notes, air_warnings = after.winding, after.air_notes, after.air_warnings
+    loose, storage_warnings = after.air_loose, after.storage_warnings
     max_p = float(-np.min(winding.sigma_r))
     if setup is None:
         flags, warns = result_flags(None, None, [], case.warnings, max_p)
@@ -213,6 +212,34 @@ def _with_mode_notes(
         warnings=result.warnings + warnings,
         flags={**result.flags, "drum_slip": bool(warnings)},
     )
+
+
+@dataclass(frozen=True)
+class AfterWinding:
+    """The roll the rest of the chain reads (:func:`after_winding`), with what the steps
+    after winding have to say."""
+
+    winding: Any  # WindingResult: after the air has left and after storage
+    air_notes: tuple[str, ...] = ()
+    air_warnings: tuple[str, ...] = ()
+    air_loose: bool = False
+    storage_warnings: tuple[str, ...] = ()
+
+
+def after_winding(
+    case: Case, winding: Any, web: Web, core: Any, r_out: float, schedule: Any, options: Any
+) -> AfterWinding:
+    """The wound roll as the contact model and the reading see it: after the entrained air
+    has left (``winding.speed`` > 0) and after storage (``[storage]``: temperature,
+    moisture, creep), in that order. The one place every road through the chain takes
+    these steps: :func:`run`, and the reverse road's forward model
+    (:meth:`woundroll.inverse.diagnosis.RollModel.wound`: diagnose, causes, design,
+    uncertainty). A case with neither gets ``winding`` back untouched."""
+    winding, air_notes, air_warnings, loose = _after_air(
+        case, winding, web, core, r_out, schedule, options
+    )
+    winding, storage_warnings = _after_storage(case, winding, web, core)
+    return AfterWinding(winding, air_notes, air_warnings, loose, storage_warnings)
 
 
 def _after_air(
@@ -327,7 +354,7 @@ def _contact_args(case: Case, setup: TesterSetup) -> tuple[dict[str, Any], bool]
     args = {
         "depth_max": spec.depth_max,
         "friction": spec.friction,
-        "options": spec.contact_options(),
+        "options": spec.model_options(),
         "model": "2d" if plane else model,
         "options3d": spec.contact3d_options(),
     }

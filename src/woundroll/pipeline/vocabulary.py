@@ -640,6 +640,8 @@ _TERMS: tuple[Term, ...] = (
     _i("slip_elements_near_contact", "slipping elements near the contact"),
     _t("slip_region_depth_whole_model_m", "m", "depth of the slip region over the whole model"),  # noqa: E501
     _t("slip_shear_fraction", "", "reduced-shear emulation's shear fraction"),
+    _t("shear_ratio", "", "G_r_theta / E_r set in place of the web's rule"),
+    _b("shear_frozen", "G_r_theta kept at its pre-impact value"),
     _i("slipped_elements", "elements that slipped"),
     _t("active_mass_column_kg", "kg", "active mass of the striker column"),
     _t("active_mass_fe_kg", "kg", "active mass in the FE model"),

@@ -3,9 +3,11 @@ the model toward the paper's measured facts?
 
 Per roll of Table 2 and per pile height of the PET2 53.4 N roll (H = 2, 4, 6, 8.89 cm,
 Figures 16/17) the Rho reading (FD {4}-{13}) with the plane-strain continuum (``"2d"``) and
-the layered roll (``"layered"``) at mu = 0.1, 0.3, 0.5 (``contact.friction``). The facts to
-compare with (docs/studies.md): the paper's tests read nearly the same at every pile height,
-and soft PET2 reads below the continuum models.
+the layered roll (``"layered"``) at mu = 0.1, 0.3, 0.5 (``contact.friction``), and beside
+them the other explanations (item 4): G_r_theta frozen at its pre-impact value
+(``contact.shear_frozen``) and a lower G/E_r (``contact.shear_ratio``). The facts to compare
+with (docs/studies.md): the paper's tests read nearly the same at every pile height, and
+soft PET2 reads below the continuum models.
 """
 
 from __future__ import annotations
@@ -33,6 +35,29 @@ FRICTIONS: tuple[float, ...] = (0.1, 0.3, 0.5)
 PILE_CASE = "pet2-53.4N"
 #: Core outer radius of the bundled PET cases [m] (pile height = outer radius - this).
 _PILE_OVERRIDE = "winding.outer_radius={r!r} m"
+#: The other explanations (issue 25, item 4): column name -> (title, overrides, JSON fields)
+EXPLANATIONS: dict[str, tuple[str, tuple[str, ...], dict[str, Any]]] = {
+    "2d_shear_frozen": (
+        "2d, G frozen",
+        ("contact.model='2d'", "contact.shear_frozen=true"),
+        {"model": "2d", "shear_frozen": True},
+    ),
+    "2d_shear_ratio1": (
+        "2d, G = 1 E_r",
+        ("contact.model='2d'", "contact.shear_ratio=1.0"),
+        {"model": "2d", "shear_ratio": 1.0},
+    ),
+    "2d_shear_ratio0.5": (
+        "2d, G = 0.5 E_r",
+        ("contact.model='2d'", "contact.shear_ratio=0.5"),
+        {"model": "2d", "shear_ratio": 0.5},
+    ),
+    "layered_mu0.3_shear_frozen": (
+        "layered mu=0.3, G frozen",
+        ("contact.model='layered'", "contact.friction=0.3", "contact.shear_frozen=true"),
+        {"model": "layered", "friction": 0.3, "shear_frozen": True},
+    ),
+}
 
 
 @dataclass(frozen=True)
@@ -49,6 +74,7 @@ class LayeredStudy:
 
     rows: tuple[dict[str, Any], ...]
     frictions: tuple[float, ...] = FRICTIONS
+    explanations: tuple[str, ...] = ()
     name: str = field(default="layered")
 
     def to_dict(self) -> dict[str, Any]:
@@ -64,6 +90,14 @@ class LayeredStudy:
                         "friction": m,
                         "rho_fd": r[f"rho_layered_mu{m:g}"],
                         "impact_depth_m": r[f"delta_max_layered_mu{m:g}_m"],
+                    }
+                )
+            for e in self.explanations:
+                readings.append(
+                    {
+                        **EXPLANATIONS[e][2],
+                        "rho_fd": r[f"rho_{e}"],
+                        "impact_depth_m": r[f"delta_max_{e}_m"],
                     }
                 )
             rolls.append(
@@ -82,6 +116,7 @@ class LayeredStudy:
             "H [cm]",
             "Rho 2d [-]",
             *(f"Rho layered mu={m:g} [-]" for m in self.frictions),
+            *(f"Rho {EXPLANATIONS[e][0]} [-]" for e in self.explanations),
         )
         tables = []
         for series, title in (
@@ -94,6 +129,7 @@ class LayeredStudy:
                     f"{r['pile_height_m'] * 100:.2f}",
                     _fmt(r["rho_2d"]),
                     *(_fmt(r[f"rho_layered_mu{m:g}"]) for m in self.frictions),
+                    *(_fmt(r[f"rho_{e}"]) for e in self.explanations),
                 )
                 for r in self.rows
                 if r["series"] == series
@@ -113,6 +149,10 @@ class LayeredStudy:
                 + ", ".join(
                     f"mu={m:g} {lo[f'rho_layered_mu{m:g}'] / hi[f'rho_layered_mu{m:g}']:.2f}x"
                     for m in self.frictions
+                )
+                + "".join(
+                    f"; {EXPLANATIONS[e][0]} {lo[f'rho_{e}'] / hi[f'rho_{e}']:.2f}x"
+                    for e in self.explanations
                 )
                 + " (the paper's tests: nearly 1x)"
             )
@@ -141,8 +181,13 @@ class LayeredStudy:
 
 
 def _job(case: str, overrides: tuple[str, ...]) -> dict[str, Any]:
-    row = _measure(case, overrides)
-    return {k: row[k] for k in ("case", "pile_height_m", "rho_fd", "delta_max_m")}
+    row = _measure(case, overrides)["row"]
+    return {
+        "case": row["case"],
+        "pile_height_m": row["pile_height_m"],
+        "rho_fd": row["rho_fd"],
+        "delta_max_m": row["impact_depth_m"],
+    }
 
 
 def layered_study(
@@ -152,15 +197,18 @@ def layered_study(
     progress: Progress | None = None,
     *,
     workers: int = 1,
+    explanations: Sequence[str] = tuple(EXPLANATIONS),
 ) -> LayeredStudy:
-    """Rho by ``"2d"`` and ``"layered"`` (each mu of ``frictions``) for ``cases`` and for
-    :data:`PILE_CASE` wound to core radius + each of ``pile_heights`` [m]."""
+    """Rho by ``"2d"``, ``"layered"`` (each mu of ``frictions``) and the ``explanations``
+    (keys of :data:`EXPLANATIONS`) for ``cases`` and for :data:`PILE_CASE` wound to core
+    radius + each of ``pile_heights`` [m]."""
     from woundroll.case import load_case
 
     models = [("2d", ("contact.model='2d'",))] + [
         (f"layered_mu{m:g}", ("contact.model='layered'", f"contact.friction={m!r}"))
         for m in frictions
     ]
+    models += [(e, EXPLANATIONS[e][1]) for e in explanations]
     r_core = load_case(PILE_CASE).core.build().outer_radius
     rolls: list[tuple[str, str, tuple[str, ...]]] = [(c, "table2", ()) for c in cases]
     rolls += [
@@ -186,7 +234,9 @@ def layered_study(
             row[f"rho_{name}"] = g["rho_fd"]
             row[f"delta_max_{name}_m"] = g["delta_max_m"]
         rows.append(row)
-    return LayeredStudy(rows=tuple(rows), frictions=tuple(frictions))
+    return LayeredStudy(
+        rows=tuple(rows), frictions=tuple(frictions), explanations=tuple(explanations)
+    )
 
 
 def run(

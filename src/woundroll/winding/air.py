@@ -595,6 +595,66 @@ def _lay_on_films(
     return s, film, a0, n1
 
 
+def _wind_composite(
+    web: Web,
+    core: Core,
+    tension: TensionSchedule,
+    options: Any,
+    air: AirSettings,
+    a0: float,
+    n_layers: int,
+    floor: float,
+) -> tuple[WindingResult, WindingResult, float]:
+    """The roll wound as a composite web of pitch ``h + a0`` (web and its air layer, the
+    stack's law in series with the gas spring, :class:`AirLayerLaw`) by the unchanged
+    kernels: (the composite's result, the same with the web's own hoop stresses and WOT, the
+    web's share ``f = h / pitch`` of the pitch)."""
+    from woundroll.winding.hakiel import wind
+
+    h = web.thickness
+    pitch = h + a0
+    law = AirLayerLaw(web.radial_modulus, h, a0, air.pressure, floor)
+    f = h / pitch
+    cweb = replace(
+        web,
+        thickness=pitch,
+        E_theta=web.E_theta * f,
+        nu_theta_r=web.nu_theta_r * f,
+        radial_modulus=law,
+    )
+    ctension = replace(tension, web_stress=tension.web_stress * f)
+    copts = replace(options, modulus_floor=options.modulus_floor / f)  # same floor in Pa
+    wc = wind(cweb, core, core.outer_radius + n_layers * pitch, ctension, options=copts)
+    return wc, replace(wc, sigma_theta=wc.sigma_theta / f, wot=wc.wot / f), f
+
+
+def _warnings(a0: float, h: float, converged: bool, after: WindingResult) -> list[str]:
+    """What a roll wound with ``a0`` of air per layer of thickness ``h`` has to be warned of:
+    it floats on air; the roll after the air left did not settle; layers pulled apart."""
+    warnings: list[str] = []
+    if a0 > h:
+        warnings.append(
+            f"air: {a0 * 1e6:.3g} um of air is wound in under each {h * 1e6:.3g} um layer: the "
+            "roll floats on air (it can telescope or shift while winding), and the gas spring in "
+            "series with the stack is a rough model there; raise the tension, add a nip or "
+            "slow down"
+        )
+    if not converged:
+        warnings.append(
+            f"air: the roll after the air has left did not settle in {MAX_ITERATIONS} "
+            "iterations; its stresses are approximate"
+        )
+    tens = after.sigma_r[:-1] >= 0.0  # let go: sigma_r = 0 below the surface
+    if np.any(tens):
+        r = after.radius[:-1][tens]
+        warnings.append(
+            f"air: after the air has left, the layers between r = {r.min() * 100:.2f} and "
+            f"{r.max() * 100:.2f} cm are pulled apart: no pressure between them, the roll is "
+            "loose there (its layers can slip or telescope; the air stays in the gaps)"
+        )
+    return warnings
+
+
 def wind_with_air(
     web: Web,
     core: Core,
@@ -633,20 +693,7 @@ def wind_with_air(
             air, s, film, 0.0, no_air, no_air, no_air, r_no_air, r_no_air, r_no_air,
             np.zeros(no_air.radius.size),
         )  # fmt: skip
-    pitch = h + a0
-    law = AirLayerLaw(web.radial_modulus, h, a0, air.pressure, floor)
-    f = h / pitch
-    cweb = replace(
-        web,
-        thickness=pitch,
-        E_theta=web.E_theta * f,
-        nu_theta_r=web.nu_theta_r * f,
-        radial_modulus=law,
-    )
-    ctension = replace(tension, web_stress=tension.web_stress * f)
-    copts = replace(options, modulus_floor=options.modulus_floor / f)  # same floor in Pa
-    wc = wind(cweb, core, rc + n1 * pitch, ctension, options=copts)
-    at_winding = replace(wc, sigma_theta=wc.sigma_theta / f, wot=wc.wot / f)
+    wc, at_winding, f = _wind_composite(web, core, tension, options, air, a0, n1, floor)
     P0n = np.maximum(-wc.sigma_r, 0.0)
     kept = remaining_air(
         air_thickness(P0n, a0, air.pressure), air.roughness, air.pressure + P0n, web.width,
@@ -670,27 +717,7 @@ def wind_with_air(
         air_thickness(Pn, a0, air.pressure), air.roughness, air.pressure + Pn, web.width, 0.9,
         air.viscosity,
     )  # fmt: skip
-    warnings: list[str] = []
-    if a0 > h:
-        warnings.append(
-            f"air: {a0 * 1e6:.3g} um of air is wound in under each {h * 1e6:.3g} um layer: the "
-            "roll floats on air (it can telescope or shift while winding), and the gas spring in "
-            "series with the stack is a rough model there; raise the tension, add a nip or "
-            "slow down"
-        )
-    if not converged:
-        warnings.append(
-            f"air: the roll after the air has left did not settle in {MAX_ITERATIONS} "
-            "iterations; its stresses are approximate"
-        )
-    tens = after.sigma_r[:-1] >= 0.0  # let go: sigma_r = 0 below the surface
-    if np.any(tens):
-        r = after.radius[:-1][tens]
-        warnings.append(
-            f"air: after the air has left, the layers between r = {r.min() * 100:.2f} and "
-            f"{r.max() * 100:.2f} cm are pulled apart: no pressure between them, the roll is "
-            "loose there (its layers can slip or telescope; the air stays in the gaps)"
-        )
+    warnings = _warnings(a0, h, converged, after)
     after = replace(after, inputs={**no_air.inputs, "outer_radius_m": float(after.radius[-1])})
     L0, rn = radius_along_length(no_air, web, core, 0.0, air.pressure, floor)
     L1, ra = radius_along_length(wc, web, core, a0, air.pressure, floor)

@@ -21,14 +21,16 @@ radial modulus {2}, exact head-contact LCP and step control) and cuts it into sh
   at the node, at the start of the increment: explicit in the step, first order) and A the
   node's tributary interface arc; a node sticks (no jump increment) below the limit and
   slips opposite to T at it;
-* the increment's friction problem is solved exactly (to a tolerance) by the alternating
-  direction augmented-Lagrangian method of Glowinski and Le Tallec (ALG2, ADMM): the
-  stiffness augmented by ``rho`` times the jump's square on every interface pair is
-  factorised once per increment (LAPACK banded Cholesky); each pass solves the head
-  contact exactly (the 2D model's LCP) under the current interface forces, then shrinks
-  the jumps to the slip (a projection, closed form) and updates the multipliers. At the
-  fixed point the continuum equations hold with exactly the interface forces T; no
-  penalty enters the answer (``rho`` only sets the rate).
+* the increment's friction problem is solved exactly (to a tolerance) by primal-dual
+  active-set passes: the stick pairs carry an augmentation ``rho (s)^2`` in the factorised
+  stiffness (LAPACK banded Cholesky) and their multipliers are found by Uzawa passes on it
+  (each pass solves the head contact exactly, the 2D model's LCP); a stick pair whose force
+  exceeds the bound slips, a slipping pair that moves against its force sticks; repeated
+  until the sets hold. At the fixed point the continuum equations hold with exactly the
+  interface forces T; ``rho`` only sets the rate. Where a pass changes the sets of at most
+  :data:`WOODBURY_MAX` pairs against the factorised stiffness, the factor is corrected by a
+  low-rank (Woodbury) update instead of factorised again (:class:`_Woodbury`; exact to
+  rounding); each increment starts from the stick and slip sets the last one ended with.
 
 With mu large every interface sticks and the model is the continuum roll on the same
 mesh; with mu -> 0 the sheets slide freely and the stack bends as separate plates.
@@ -76,6 +78,92 @@ LAYERED_DEPTH = 1.0
 #: A slipping pair returns to stick when its jump increment runs against its force by more
 #: than this fraction of the largest displacement increment (hysteresis of the active set).
 BACK_TOL = 1e-5
+#: Pairs whose stick/slip state differs from the factorised stiffness's, up to which the
+#: active-set passes correct the factor by a low-rank (Woodbury) update instead of
+#: factorising again (:class:`_Woodbury`); measured on PET1 26.7 N (benchmarks/bench_layered.py).
+WOODBURY_MAX = 16
+
+
+class _Woodbury:
+    """The stiffness ``K = K_f + U C U^T`` solved through the factor of ``K_f`` (the
+    Sherman-Morrison-Woodbury identity): ``U`` has one column ``e_b - e_a`` per interface
+    pair whose augmentation differs from the factor's, ``C`` is ``+rho`` for a pair stuck
+    since (augmented now, not in the factor) and ``-rho`` for one slipping since. With
+    ``Z = K_f^-1 U`` and the capacitance ``S = C^-1 + U^T Z`` (m x m, m the changed pairs):
+    ``K^-1 x = K_f^-1 x - Z S^-1 Z^T x``. The same interface as :class:`_Factor` for
+    :func:`woundroll.contact.plane_strain.solver._step` (``forward`` / ``flexibility``),
+    so the exact head-contact LCP runs on the updated stiffness unchanged; ``forward``
+    returns the base factor's ``L^-1 e`` with ``e`` itself (for ``Z^T e``)."""
+
+    def __init__(self, base: _Factor, Z: FloatArray, fa: IntArray, fb: IntArray, c: FloatArray):
+        import scipy.linalg as la
+
+        self.base, self.Z = base, Z
+        UZ = Z[fb] - Z[fa]  # U^T Z (m x m), symmetric
+        S = np.diag(1.0 / c) + 0.5 * (UZ + UZ.T)
+        self._S = la.lu_factor(S, check_finite=False)
+        self._la = la
+
+    def _s_solve(self, x: FloatArray) -> FloatArray:
+        return self._la.lu_solve(self._S, x, check_finite=False)
+
+    def solve(self, b: FloatArray) -> FloatArray:
+        return self.base.solve(b) - self.Z @ self._s_solve(self.Z.T @ b)
+
+    def forward(self, b: FloatArray) -> tuple[FloatArray, FloatArray]:
+        return self.base.forward(b), b
+
+    def flexibility(
+        self, rows: IntArray, B: FloatArray, n: int, pre: Any = None
+    ) -> tuple[FloatArray, FloatArray | None, Callable[[FloatArray], FloatArray]]:
+        pre_f, e = (None, None) if pre is None else pre
+        G, gq, solve_f = self.base.flexibility(rows, B, n, pre_f)
+        top = B.shape[0]
+        ZB = self.Z[:top].T @ B  # Z^T B (m x columns)
+        W = self._s_solve(ZB)
+        G = G - ZB.T @ W
+        we = None
+        if e is not None:
+            we = self._s_solve(self.Z.T @ e)
+            gq = gq - ZB.T @ we
+        Z = self.Z
+
+        def solve_for(cc: FloatArray) -> FloatArray:
+            y = W @ cc if we is None else W @ cc + we
+            return solve_f(cc) - Z @ y
+
+        return G, gq, solve_for
+
+
+class _UpdatedFactor:
+    """The factor of the stiffness at one stick set, and the low-rank updates to nearby
+    sets (:class:`_Woodbury`), with the columns ``K_f^-1 (e_b - e_a)`` cached per pair."""
+
+    def __init__(self, lu: _Factor, stick: NDArray[np.bool_], rho: FloatArray) -> None:
+        self.lu, self.stick, self.rho = lu, stick.copy(), rho.copy()
+        self.cols: dict[int, FloatArray] = {}
+
+    def at(
+        self, stick: NDArray[np.bool_], fa: IntArray, fb: IntArray, n: int
+    ) -> _Factor | _Woodbury | None:
+        """The factor at ``stick`` (``fa``, ``fb``: the pairs' free indices below and
+        above, ``n`` the free DOFs); None where more than WOODBURY_MAX pairs differ."""
+        diff = np.flatnonzero(stick != self.stick)
+        if diff.size == 0:
+            return self.lu
+        if diff.size > WOODBURY_MAX:
+            return None
+        new = [int(i) for i in diff if int(i) not in self.cols]
+        if new:
+            U = np.zeros((n, len(new)))
+            U[fb[new], np.arange(len(new))] = 1.0
+            U[fa[new], np.arange(len(new))] = -1.0
+            X = self.lu.solve(U)
+            for q, i in enumerate(new):
+                self.cols[i] = X[:, q]
+        Z = np.stack([self.cols[int(i)] for i in diff], axis=1)
+        c = np.where(stick[diff], self.rho[diff], -self.rho[diff])
+        return _Woodbury(self.lu, Z, fa[diff], fb[diff], c)  # type: ignore[return-value]
 
 
 @dataclass(frozen=True)
@@ -94,12 +182,11 @@ class LayeredOptions:
     layers_per_shell : int
         Web layers per shell (one element ring) in the layered zone [-].
     penalty : float
-        ALG2's augmentation ``rho`` as a multiple of the stiffness diagonal at the
+        The stick pairs' augmentation ``rho`` as a multiple of the stiffness diagonal at the
         interface DOFs [-]; sets the rate of the passes only, not the answer.
     tol : float
-        The passes stop when the stick violation ``|s - q|`` is below ``tol`` times the
-        largest displacement increment and the multipliers move less than ``tol`` times the
-        largest friction bound [-].
+        The Uzawa passes stop when the stick pairs' jump increments ``|s|`` are below
+        ``tol`` times the largest displacement increment [-].
     max_passes : int
         Passes per increment before :class:`ConvergenceError`.
     interfaces : bool
@@ -164,7 +251,7 @@ def layered_radii(
 
 
 class _CutAssembler(Assembler):
-    """The 2D assembler plus ALG2's augmentation ``rho (u_a - u_b)^2`` on every interface
+    """The 2D assembler plus the augmentation ``rho (u_a - u_b)^2`` on every interface
     pair (free indices ``fa`` below, ``fb`` above); ``rho`` per pair is ``penalty`` times
     the mean stiffness diagonal of the pair, set at each assembly (:attr:`rho`)."""
 
@@ -298,7 +385,7 @@ class _LayeredRoll(_Roll):
 
 
 class _LayeredLoading(_Loading):
-    """The 2D model's loading with ALG2's passes in every solve (module docstring)."""
+    """The 2D model's loading with the active-set passes in every solve (module docstring)."""
 
     def __init__(self, roll: _LayeredRoll, lopts: LayeredOptions, *args: Any) -> None:
         super().__init__(roll, lopts.base, *args)
@@ -308,7 +395,9 @@ class _LayeredLoading(_Loading):
         self.slip = np.zeros(roll.pair_a.size)  # accumulated |slip| [m]
         self.slip_trial = self.slip
         self.g_trial = np.zeros(roll.pair_a.size)
+        self.stick_trial = np.ones(roll.pair_a.size, dtype=bool)
         self.passes = 0
+        self.updates = 0  # active-set passes on a low-rank update of the factor
 
     def bound(self) -> FloatArray:
         """Coulomb's limit mu P A per pair [N/m] at the start of the increment."""
@@ -357,6 +446,7 @@ class _LayeredLoading(_Loading):
         g = self.bound()
         t_old = self.T
         stick = asm.stick.copy()
+        updated = _UpdatedFactor(lu, stick, asm.rho)
         sign = np.sign(t_old)
         T = np.where(stick, t_old, sign * g)
         fa, fb = asm.fa, asm.fb
@@ -388,14 +478,21 @@ class _LayeredLoading(_Loading):
             stick = (stick & ~over) | back
             T = np.where(stick, T, sign * g)
             asm.stick = stick
+            near = updated.at(stick, fa, fb, asm.n_free) if WOODBURY_MAX > 0 else None
+            if near is not None:
+                lu = near  # type: ignore[assignment]
+                self.updates += 1
+                continue
             lu = _factorize(roll, mod)
             lu.stick = asm.band_stick  # type: ignore[attr-defined]
+            updated = _UpdatedFactor(lu, stick, asm.rho)
             self.factorisations += 1
         else:
             raise self._unsettled("stick and slip zones")
         step.dsig = roll.stress_increment(mod, step.du)
         self.T_trial = T
         self.g_trial = g
+        self.stick_trial = stick
         self.slip_trial = self.slip + np.where(stick, 0.0, np.abs(s))
         return step
 
@@ -415,8 +512,7 @@ class _LayeredLoading(_Loading):
         # the next increment starts from this one's stick set (slipping pairs keep slipping
         # while the head goes on)
         asm: _CutAssembler = self.roll.assembler  # type: ignore[assignment]
-        g = self.bound()
-        asm.stick = np.abs(self.T) < g * (1.0 - 1e-9)
+        asm.stick = self.stick_trial.copy()
         self.slip = self.slip_trial
         return step
 
@@ -440,7 +536,7 @@ class LayeredState:
     limit : ndarray [Pa]
         Coulomb's limit mu P of the last increment (P at its start: explicit).
     passes : int
-        ALG2 passes over the whole loading.
+        Head-contact solves (Uzawa passes) over the whole loading.
     n_shells : int
         Shells in the layered zone.
     """

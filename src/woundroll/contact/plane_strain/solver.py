@@ -140,6 +140,13 @@ class ContactOptions:
         Fraction of G_r_theta left in a slipped element, in (0, 1] (1: no change).
     slip_max_passes : int
         Passes of the slip-zone iteration per increment before ConvergenceError.
+    shear_ratio : float or None
+        Other explanations of the readings (issue 25, docs/contact.md "Other explanations"):
+        G_r_theta = ``shear_ratio`` x E_r in every element instead of the web's rule (its
+        set G_r_theta, or 2 E_r, Table 2) [-]; None: the web's rule.
+    shear_frozen : bool
+        G_r_theta of each element kept at its pre-impact value (the rule at E_r of the
+        wound-in stress) while E_r stiffens under the head; False: G follows E_r.
     """
 
     n_steps: int = 16
@@ -164,9 +171,12 @@ class ContactOptions:
     slip: str = "none"
     slip_shear_fraction: float = 0.01
     slip_max_passes: int = 50
+    shear_ratio: float | None = None
+    shear_frozen: bool = False
 
     def __post_init__(self) -> None:
         _check_slip_options(self)
+        _check_shear_options(self)
         if self.element not in ELEMENTS:
             raise InputError(
                 f"must be one of {', '.join(ELEMENTS)}, got {self.element!r}", "options.element"
@@ -235,6 +245,22 @@ SLIP_MODES = ("none", "reduced-shear")
 #: The slip-zone iteration has settled when no element's slipping share of the increment
 #: grows by more than this.
 SLIP_TOL = 0.05
+
+
+def _check_shear_options(opts: Any) -> None:
+    """The other explanations' shear options (``shear_ratio``, ``shear_frozen``)."""
+    q = opts.shear_ratio
+    if q is not None and not (
+        isinstance(q, int | float | np.number)
+        and not isinstance(q, bool)
+        and math.isfinite(q)
+        and q > 0
+    ):
+        raise InputError(f"must be a positive number, got {q!r}", "options.shear_ratio")
+    if not isinstance(opts.shear_frozen, bool | np.bool_):
+        raise InputError(
+            f"must be true or false, got {opts.shear_frozen!r}", "options.shear_frozen"
+        )
 
 
 def _check_slip_options(opts: Any) -> None:
@@ -319,6 +345,12 @@ class _Roll:
         #: it spends slipped (1: slipped since an earlier increment, 0: sticking)
         self.slip_weight: FloatArray | None = None
         self.slip_fraction = float(getattr(opts, "slip_shear_fraction", 1.0))
+        #: other explanations (issue 25): G_r_theta = ratio x E_r (None: the web's rule),
+        #: and G_r_theta frozen at the pre-impact E_r (None: G follows E_r)
+        self.shear_ratio: float | None = getattr(opts, "shear_ratio", None)
+        self.G_pre: FloatArray | None = None
+        if getattr(opts, "shear_frozen", False):
+            self.G_pre = self._shear(self.radial_modulus(self.sigma_pre))
         #: (E0, slope) of a law linear in pressure, for the secant modulus (None: the
         #: mid-step tangent)
         lin = getattr(getattr(web, "radial_modulus", None), "linear_in_pressure", lambda: None)()
@@ -370,10 +402,21 @@ class _Roll:
     def moduli_at(self, E_r: FloatArray) -> tuple[FloatArray, ...]:
         """Plane-strain moduli of the elements at per-element radial modulus ``E_r``."""
         C11, C12, C22, G = plane_strain_moduli(self.web, E_r)
+        if self.G_pre is not None:
+            G = self.G_pre
+        elif self.shear_ratio is not None:
+            G = self.shear_ratio * np.asarray(E_r, dtype=float)
         if self.slip_weight is not None and np.any(self.slip_weight > 0):
             # slip emulation (Figure 19): a slipped element keeps a fraction of G_r_theta
             G = G * self.shear_factor()
         return C11, C12, C22, G
+
+    def _shear(self, E_r: FloatArray) -> FloatArray:
+        """G_r_theta [Pa] of the elements at radial modulus ``E_r`` by the shear rule
+        (``shear_ratio`` x E_r, or the web's)."""
+        if self.shear_ratio is not None:
+            return self.shear_ratio * np.asarray(E_r, dtype=float)
+        return plane_strain_moduli(self.web, E_r)[3]
 
     def shear_factor(self) -> FloatArray:
         """G_r_theta used / G_r_theta of the law, per element (slip emulation)."""
