@@ -30,6 +30,7 @@ of sigma_r (of its peak) and of the core pressure between them (same-answer spee
 from __future__ import annotations
 
 import argparse
+import os
 import time
 from pathlib import Path
 
@@ -254,6 +255,73 @@ def kernel(before: str | None, repeat: int) -> None:
         )
 
 
+STAGE_CASES = ["pet3-2.3MPa", "pet3-3.45MPa", "pet3-2.3MPa-nip", "pet3-3.45MPa-nip"]
+
+
+def _cpu() -> float:
+    """CPU time of this process and its reaped children (the sector workers, once their
+    pool is closed)."""
+    t = os.times()
+    return t.user + t.system + t.children_user + t.children_system
+
+
+def contact_stages(cases: list[str], workers: int | None) -> None:
+    """``--contact-stage``: each case in-process with ``profile.contact = "every-sector"``
+    and ``"interpolated"`` (alternating which goes first), the yardstick (a 10k-layer 1D
+    winding, benchmarks/yardstick.py) before each run: wall and CPU (workers included),
+    their ratios to the yardstick of the same run, the full solves, and the largest change
+    of any sector's shown reading and of the profile statistics (docs/profile.md, section 7;
+    docs/performance.md, "CMD profile")."""
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from yardstick import wind_per_layer
+
+    from woundroll.case import load_case
+    from woundroll.pipeline.runner import run
+
+    print(f"load average at the start: {os.getloadavg()}")
+    print(
+        f"{'case':18s} {'stage':13s} {'wall':>6} {'CPU':>6} {'yard':>5} {'wall/y':>7}"
+        f" {'CPU/y':>6} {'solved':>6} {'contact':>8}  stats"
+    )
+    for k, name in enumerate(cases):
+        out = {}
+        order = ["every-sector", "interpolated"][:: 1 if k % 2 == 0 else -1]
+        for stage in order:
+            case = load_case(name)
+            upd = {"contact": stage} | ({} if workers is None else {"workers": workers})
+            case = case.model_copy(update={"profile": case.profile.model_copy(update=upd)})
+            _, yard = wind_per_layer()
+            c0, t0 = _cpu(), time.perf_counter()
+            res = run(case)
+            wall, cpu = time.perf_counter() - t0, _cpu() - c0
+            p = res.profile
+            st = p.rho_stats
+            n = p.rho.size if p.contact_stage.solved is None else int(p.contact_stage.solved.sum())
+            out[stage] = p
+            print(
+                f"{name:18s} {stage:13s} {wall:6.1f} {cpu:6.1f} {yard:5.2f} {wall / yard:7.1f}"
+                f" {cpu / yard:6.1f} {n:6d} {p.timings['contact']:8.1f}  mean {st.mean:.3f}"
+                f" CoV {st.cov:.4f} sat {int(p.saturated.sum())} slack {int(p.slack.sum())}"
+                f"  load {os.getloadavg()[0]:.1f}",
+                flush=True,
+            )
+        a, b = out["every-sector"], out["interpolated"]
+        d = np.abs(a.shown - b.shown)
+        print(
+            f"{'':18s} largest change of a shown reading {d.max():.3f} (sector {int(d.argmax())}),"
+            f" of the model's reading on the scale"
+            f" {np.max(np.abs(a.rho - b.rho)[~a.saturated]):.3f}, beyond it"
+            f" {np.max(np.abs(a.rho - b.rho)[a.saturated], initial=0):.2f};"
+            f" mean {abs(a.rho_stats.mean - b.rho_stats.mean):.4f},"
+            f" CoV {abs(a.rho_stats.cov - b.rho_stats.cov):.5f},"
+            f" saturated {int(a.saturated.sum())} / {int(b.saturated.sum())},"
+            f" slack {int(a.slack.sum())} / {int(b.slack.sum())}",
+            flush=True,
+        )
+
+
 def timed(fn):
     t0 = time.perf_counter()
     out = fn()
@@ -268,11 +336,25 @@ def main() -> None:
     ap.add_argument("--process", action="store_true", help="whole-process runs only")
     ap.add_argument("--before", default=None, help="git revision to compare (--process, --kernel)")
     ap.add_argument("--repeat", type=int, default=3)
-    ap.add_argument("--cases", default="pet3-2.3MPa,pet3-3.45MPa-nip")
+    ap.add_argument(
+        "--cases",
+        default=None,
+        help="default: pet3-2.3MPa,pet3-3.45MPa-nip (--contact-stage: the four pet3 cases)",
+    )
     ap.add_argument("--deep", action="store_true", help="the deep part's schemes only")
     ap.add_argument("--kernel", action="store_true", help="the winding alone [--before REF]")
     ap.add_argument("--kernel-child", default=None, help=argparse.SUPPRESS)
+    ap.add_argument(
+        "--contact-stage",
+        action="store_true",
+        help="every-sector against interpolated on the four pet3 cases (--cases, --workers)",
+    )
+    ap.add_argument("--workers", type=int, default=None)
     args = ap.parse_args()
+    if args.contact_stage:
+        cases = STAGE_CASES if args.cases is None else args.cases.split(",")
+        contact_stages(cases, args.workers)
+        return
     if args.kernel_child:
         kernel_child(args.kernel_child)
         return
@@ -280,7 +362,8 @@ def main() -> None:
         kernel(args.before, args.repeat)
         return
     if args.process:
-        whole_process(args.cases.split(","), args.before, args.repeat)
+        cases = (args.cases or "pet3-2.3MPa,pet3-3.45MPa-nip").split(",")
+        whole_process(cases, args.before, args.repeat)
         return
     if args.deep:
         deep_part(400)

@@ -30,6 +30,7 @@ from woundroll.errors import InputError
 from woundroll.materials.presets import material_preset
 from woundroll.materials.radial_modulus import RadialModulusLaw, law_from_spec
 from woundroll.materials.web import Core, Web
+from woundroll.profile.interpolated import CONTACT_STAGES, DEFAULT_CONTACT_STAGE, DEFAULT_TOLERANCE
 from woundroll.units import quantity_kind, to_si
 from woundroll.winding.tension import Taper, TensionSchedule
 
@@ -584,7 +585,11 @@ class ProfileSpec(_Section):
     solutions (default 2); ``foundation_stride``: nip foundation evaluated at every k-th
     sector; ``depth_max``: depth of each sector's contact solution (default 1 mm, deepened
     where the striker goes further); ``measured``: a measured profile (CSV, path relative to
-    the case file, ``position [in],rho``) to compare with the prediction.
+    the case file, ``position [in],rho``) to compare with the prediction. ``contact``:
+    ``"every-sector"`` (default: one full contact solve per sector) or ``"interpolated"``
+    (the contact solved on a few sectors, the springs interpolated between them and checked
+    by full solves until no checked reading moves by more than ``contact_tolerance``, in
+    the instrument's units, default 0.2).
     """
 
     sectors: int = Field(default=61, ge=1, le=2000)
@@ -593,6 +598,9 @@ class ProfileSpec(_Section):
     workers: int = Field(default=2, ge=1, le=64)
     foundation_stride: int = Field(default=4, ge=1)
     depth_max: Q("length") = 1e-3
+    # the contact stage (woundroll.profile.interpolated: one default in one place)
+    contact: Literal[CONTACT_STAGES] = DEFAULT_CONTACT_STAGE  # type: ignore[valid-type]
+    contact_tolerance: float = Field(default=DEFAULT_TOLERANCE, ge=0.0, allow_inf_nan=False)
 
 
 class ReadingsSpec(_Section):

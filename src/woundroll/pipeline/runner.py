@@ -606,6 +606,13 @@ def _run_profile(
     ]
     nip, schedule = _profile_nip(case, schedule, notes)
     contact = _profile_contact(case, web, core, instrument, notes)
+    if spec.contact == "interpolated":
+        notes.append(
+            "profile contact: solved fully on a few sectors, the roll spring interpolated "
+            "between them and checked by full solves until no checked reading moved by "
+            f'more than {spec.contact_tolerance:g} ([profile] contact = "every-sector" '
+            "solves every sector)"
+        )
 
     def progress(stage: str, done: int, total: int) -> None:
         report(stage, done / max(total, 1))
@@ -629,6 +636,8 @@ def _run_profile(
             progress=progress,
             pool=pool,
             setup=setup if setup is not None else tester_from_spec({"instrument": "rho-meter"}),
+            contact_stage=spec.contact,
+            contact_tolerance=spec.contact_tolerance,
         )
         winding = job.result() if job is not None else wind(*reference, options=options)
     measured = case.measured_profile

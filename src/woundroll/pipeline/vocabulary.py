@@ -399,6 +399,13 @@ _TERMS: tuple[Term, ...] = (
     _t("contact_fraction", "", "share of the width the nip touches"),
     _t("peak_to_mean", "", "peak over mean nip load"),
     _t("foundation_depth_m", "m", "depth of the nip's foundation"),
+    _o("contact_stage", "how the sectors' roll springs were found (every sector or interpolated)"),
+    _s("stage", "the contact stage: every-sector or interpolated"),
+    _r("contact_tolerance", "readout", "largest reading change the interpolation's check accepts"),
+    _b("solved", "a sector whose contact was solved fully (not interpolated)"),
+    _i("n_solved", "sectors whose contact was solved fully"),
+    _i("check_rounds", "rounds of full solves that checked the interpolation"),
+    _r("largest_check", "readout", "largest reading change found by the last check round"),
     # ------------------------------------------------------------------ readings
     _i("passes", "passes over the roll"),
     _t("lane_width_m", "m", "lane width, for lane numbers"),

@@ -12,9 +12,9 @@ Modules
     nip roller as a beam on the roll, a nonlinear non-uniform elastic foundation.
 :mod:`woundroll.profile.hardness`
     the integrated model: axisymmetric winding -> per-sector contact -> Rho(z).
+:mod:`woundroll.profile.interpolated`
+    the contact stage on a few sectors, interpolated between them and checked.
 """
-
-from typing import Any
 
 from woundroll.materials.thickness_profile import (
     ThicknessProfile,
@@ -22,20 +22,23 @@ from woundroll.materials.thickness_profile import (
     read_thickness_map,
     read_thickness_profile,
 )
-from woundroll.profile.nip import NipRoller, roller_from_induced_tension, solve_nip
 from woundroll.profile.stats import ProfileStats, profile_stats
+from woundroll.util.lazy import lazy_names
 
-_LAZY = {"NipSpec", "ProfileResult", "predict_profile"}
-
-
-def __getattr__(name: str) -> Any:
-    # woundroll.profile.hardness imports the winding model (scipy): loaded on first use so
-    # that importing woundroll.profile stays light
-    if name in _LAZY:
-        from woundroll.profile import hardness
-
-        return getattr(hardness, name)
-    raise AttributeError(f"module 'woundroll.profile' has no attribute {name!r}")
+# woundroll.profile.nip (scipy.linalg, 0.3 s) and woundroll.profile.hardness (the winding
+# model) are loaded on first use, so that importing woundroll.profile (the case schema
+# reads the contact stage's defaults from woundroll.profile.interpolated) stays light
+__getattr__ = lazy_names(
+    __name__,
+    {
+        "NipRoller": "woundroll.profile.nip",
+        "roller_from_induced_tension": "woundroll.profile.nip",
+        "solve_nip": "woundroll.profile.nip",
+        "NipSpec": "woundroll.profile.hardness",
+        "ProfileResult": "woundroll.profile.hardness",
+        "predict_profile": "woundroll.profile.hardness",
+    },
+)
 
 
 __all__ = [

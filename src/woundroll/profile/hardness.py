@@ -51,6 +51,13 @@ from woundroll.instruments.definitions import beyond_scale as saturated
 from woundroll.materials.thickness_profile import ThicknessProfile
 from woundroll.materials.web import Core, Web
 from woundroll.profile.compare import MeasuredProfile, ProfileComparison, compare_profiles
+from woundroll.profile.interpolated import (
+    DEFAULT_CONTACT_STAGE,
+    DEFAULT_TOLERANCE,
+    InterpolatedContact,
+    check_stage,
+    interpolated_springs,
+)
 from woundroll.profile.nip import NipRoller, nip_hook, solve_nip
 from woundroll.profile.stats import ProfileStats, profile_stats, reading_stats
 from woundroll.winding.axisymmetric import AxisymmetricResult, wind_axisymmetric
@@ -232,6 +239,34 @@ class NipSpec:
 
 
 @dataclass(frozen=True)
+class ContactStage:
+    """How the sectors' springs were found: ``stage`` (``"every-sector"`` or
+    ``"interpolated"``), the check's ``tolerance`` (reading units) and, interpolated, the
+    record of :func:`~woundroll.profile.interpolated.interpolated_springs`."""
+
+    stage: str
+    tolerance: float
+    record: InterpolatedContact | None = None
+
+    @property
+    def solved(self) -> NDArray[np.bool_] | None:
+        """Sectors solved fully (None: every one)."""
+        return None if self.record is None else self.record.solved
+
+    def to_dict(self, n: int) -> dict[str, Any]:
+        rec = self.record
+        solved = [True] * n if rec is None else [bool(x) for x in rec.solved]
+        return {
+            "stage": self.stage,
+            "contact_tolerance": self.tolerance if rec is not None else None,
+            "solved": solved,
+            "n_solved": int(sum(solved)),
+            "check_rounds": 0 if rec is None else rec.rounds,
+            "largest_check": None if rec is None else rec.largest_check,
+        }
+
+
+@dataclass(frozen=True)
 class ProfileResult:
     """Predicted CMD hardness profile, SI, one value per sector.
 
@@ -252,6 +287,8 @@ class ProfileResult:
     rho_energy : ndarray or None  the energy model's reading {19}-{22} per sector (a check).
     scale : (float, float) or None  the instrument's scale (what it can show).
     roll_model : str or None      the roll model that gave the springs (registry name).
+    contact_stage : ContactStage or None  every sector solved, or interpolated (and which
+                                  sectors were solved fully).
     winding : AxisymmetricResult
     rho_stats : ProfileStats or None   of the on-scale readings (None: fewer than two).
     thickness_stats : ProfileStats
@@ -276,6 +313,7 @@ class ProfileResult:
     rho_energy: FloatArray | None = None
     scale: tuple[float, float] | None = None
     roll_model: str | None = None
+    contact_stage: ContactStage | None = None
 
     @property
     def slack(self) -> NDArray[np.bool_]:
@@ -343,6 +381,8 @@ class ProfileResult:
                 "peak_to_mean": float(self.nip_load.max() / mean) if mean > 0 else None,
                 "foundation_depth_m": self.nip_foundation_depth,
             }
+        if self.contact_stage is not None:
+            out["contact_stage"] = self.contact_stage.to_dict(self.rho.size)
         if self.comparison is not None:
             out["measured"] = self.comparison.to_dict()
         return out
@@ -646,6 +686,8 @@ def predict_profile(
     pool: cf.Executor | None = None,
     setup: Any = None,
     model: str | None = None,
+    contact_stage: str = DEFAULT_CONTACT_STAGE,
+    contact_tolerance: float = DEFAULT_TOLERANCE,
 ) -> ProfileResult:
     """Predict the CMD hardness profile of a center-wound roll.
 
@@ -688,6 +730,12 @@ def predict_profile(
     model : str, optional
         Roll model of the default contact callable (a name in
         :data:`woundroll.contact.models.ROLL_MODELS`; None: the registry's default).
+    contact_stage : {"every-sector", "interpolated"}
+        One full contact solve per sector (exact), or full solves on a few sectors with the
+        springs interpolated between and checked (:mod:`woundroll.profile.interpolated`).
+    contact_tolerance : float
+        Largest reading change (the instrument's units) the interpolation's last check may
+        find.
 
     Raises
     ------
@@ -695,6 +743,7 @@ def predict_profile(
         Bad input (dotted field names). ConvergenceError: a solver did not converge.
     """
     workers = _check_workers(workers)
+    stage_name, tolerance = check_stage(contact_stage, contact_tolerance)
     t0 = time.perf_counter()
     readout, contact = _readout_and_contact(
         web, core, contact, instrument, depth_max, setup=setup, model=model
@@ -716,6 +765,8 @@ def predict_profile(
             progress=progress,
             pool=pool,
             t0=t0,
+            stage_name=stage_name,
+            tolerance=tolerance,
         )
 
 
@@ -735,6 +786,8 @@ def _predict_profile(
     progress: ProgressFn | None,
     pool: cf.Executor | None,
     t0: float,
+    stage_name: str = DEFAULT_CONTACT_STAGE,
+    tolerance: float = DEFAULT_TOLERANCE,
 ) -> ProfileResult:
     """The steps of :func:`predict_profile` (nip foundation, winding, contact, reading) on
     the sector pool ``pool``."""
@@ -762,13 +815,17 @@ def _predict_profile(
     # 2. the roll spring under the striker, sector by sector
     t2 = time.perf_counter()
     profiles = [w.sector_profile(j) for j in range(w.z.size)]
-    alpha, beta = map_sectors(
-        sector_contacts(contact, w.slack),
-        profiles,
-        workers=workers,
-        progress=stage("contact"),
-        pool=pool,
-    )
+    fns = sector_contacts(contact, w.slack)
+    contact_stage = None
+    if stage_name == "every-sector":
+        alpha, beta = map_sectors(
+            fns, profiles, workers=workers, progress=stage("contact"), pool=pool
+        )
+    else:
+        contact_stage = _interpolated_contact(
+            fns, profiles, readout, w, web, pool, workers, tolerance, stage("contact")
+        )
+        alpha, beta = contact_stage.alpha, contact_stage.beta
     timings["contact"] = time.perf_counter() - t2
     # 3. the reading: the instrument's own (FD), the energy model beside it
     rho, rho_energy, scale = _sector_readings(readout, alpha, beta, w, web, pool, workers)
@@ -796,6 +853,51 @@ def _predict_profile(
         rho_energy=rho_energy,
         scale=scale,
         roll_model=roll_model,
+        contact_stage=ContactStage(stage_name, tolerance, contact_stage),
+    )
+
+
+def _interpolated_contact(
+    fns: list[ContactFn],
+    profiles: list[tuple[FloatArray, FloatArray]],
+    readout: InstrumentReadout | ReadoutFn,
+    w: Any,
+    web: Web,
+    pool: cf.Executor | None,
+    workers: int,
+    tolerance: float,
+    progress: Callable[[int, int], None] | None,
+) -> InterpolatedContact:
+    """The springs by :func:`woundroll.profile.interpolated.interpolated_springs`: full
+    solves by :func:`map_sectors` on the pool, readings of the checked sectors with their
+    own pile heights."""
+    pile = w.build_radius - w.core_radius
+    scale = None
+    if isinstance(readout, InstrumentReadout):
+        setup = readout.setup
+        scale = setup.instrument.reading_range
+
+        def readings(a: FloatArray, b: FloatArray, sel: NDArray[np.intp]) -> FloatArray:
+            return FdReadout(setup, pile[sel], web.density)(a, b)
+    else:
+
+        def readings(a: FloatArray, b: FloatArray, sel: NDArray[np.intp]) -> FloatArray:
+            return np.asarray(readout(a, b), dtype=float).reshape(-1)
+
+    def solve(
+        f: Sequence[ContactFn], p: Sequence[tuple[FloatArray, FloatArray]]
+    ) -> tuple[FloatArray, FloatArray]:
+        return map_sectors(list(f), list(p), workers=workers, pool=pool)
+
+    return interpolated_springs(
+        fns,
+        profiles,
+        solve,
+        readings,
+        tolerance=tolerance,
+        batch=2 * workers,
+        scale=scale,
+        progress=progress,
     )
 
 
@@ -974,6 +1076,7 @@ def _nip_on_the_roll(
 
 __all__ = [
     "ContactModel",
+    "ContactStage",
     "EnergyReadout",
     "FdReadout",
     "InstrumentReadout",

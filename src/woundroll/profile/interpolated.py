@@ -1,0 +1,361 @@
+"""The contact stage of a profile on a few sectors: solved there, interpolated between, checked.
+
+The sectors of a CMD profile differ mainly by their wound-in pressure profile under the
+striker, and the roll spring {3} of a sector is a smooth function of it. So instead of one
+2D contact solve per sector (:func:`woundroll.profile.hardness.map_sectors`, the exact path,
+``profile.contact = "every-sector"``), the ``"interpolated"`` path
+
+1. describes each sector by its interlayer pressure: ``v_k = ln p(d_k)`` at depths ``d_k``
+   below the sector's surface over the outer three quarters of its pile
+   (:data:`DESCRIPTOR_DEPTHS`), and one parameter ``x`` = the mean of ``v_k`` (the log of
+   the geometric-mean pressure there);
+2. groups the sectors by their contact callable (slack sectors, whose striker starts at the
+   model's reach, form a group of their own and are never interpolated from taut ones);
+3. solves the contact fully on the group's extremes and quartiles in ``x`` (the nodes);
+   a group of sectors with one descriptor (a uniform web) is solved once and copied, so its
+   profile is exactly flat;
+4. interpolates ``alpha`` and ``beta`` linearly in ``x`` between the nodes (linear in
+   (alpha, beta) is linear in the whole curve ``F(d) = alpha d^2 + beta d``); the active-mass
+   inputs of the FD reading (each sector's pile height) are the sector's own, not
+   interpolated;
+5. **checks**: an error estimate per interpolated sector (the larger of the interpolation's
+   curvature term ``0.5 |R''| (x - x_a)(x_b - x)`` from the node readings and the
+   difference between the reading of the interpolated spring and the reading interpolated
+   between the nodes', plus the mismatch of its pressure profile against the interpolated
+   one times the local slope ``|dR/dx|``), scaled up by the largest ratio of a checked
+   sector's change to its estimate so far; the
+   sectors with the largest estimates solved fully (``workers`` at a time, distinct
+   intervals first), each then a node. This repeats until, in one round, no checked
+   sector's reading changed by more than ``tolerance`` (reading units, default 0.2) from its
+   interpolated value. A sector whose interpolated reading lies beyond the scale by more
+   than its estimate shows the scale's end whatever the error: it is not checked (its
+   model value beyond the scale is interpolated; ``solved`` tells which sectors were).
+
+Assumptions (named): the spring depends on the sector's pressure profile only through
+``x`` between neighbouring nodes (the mismatch term of the estimate flags a sector where
+it does not); the check's largest estimate finds the largest error (verified against the
+exact path on all four bundled ``pet3-*`` cases, docs/profile.md section 7).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from woundroll.errors import InputError
+
+FloatArray = NDArray[np.float64]
+ContactFn = Callable[[FloatArray, FloatArray], tuple[float, float]]
+#: ``readings(alpha, beta, sectors) -> reading`` of the given sectors (their own pile heights)
+ReadingFn = Callable[[FloatArray, FloatArray, NDArray[np.intp]], FloatArray]
+#: ``solve(fns, profiles) -> (alpha, beta)``: full contact solves (map_sectors on the pool)
+SolveFn = Callable[
+    [Sequence[ContactFn], Sequence[tuple[FloatArray, FloatArray]]], tuple[FloatArray, FloatArray]
+]
+
+#: The contact stage of a profile: ``"every-sector"`` (one full contact solve per sector,
+#: exact) or ``"interpolated"`` (solved on a few sectors, checked). The one default of every
+#: entry point (``[profile] contact`` of a case, :func:`predict_profile`): every sector,
+#: because on the bundled Table 3 cases the check still solves 46-61 of the 61 sectors in
+#: 10-13 rounds, and the rounds cost more wall time than the skipped solves save
+#: (docs/profile.md section 7).
+CONTACT_STAGES = ("every-sector", "interpolated")
+DEFAULT_CONTACT_STAGE = "every-sector"
+#: Largest change of a checked sector's reading the interpolation may make (the
+#: instrument's reading units: 0.2 Rho, below the 1-Rho display resolution of a Rho-meter
+#: and the FD model's own time-step error, docs/instruments.md).
+DEFAULT_TOLERANCE = 0.2
+#: Depths of the pressure descriptor, as fractions of the sector's pile height H: the outer
+#: three quarters of the pile. The 2D contact model is the whole ring in plane strain and
+#: its spring depends on the pressure deep below the striker (on ``pet3-2.3MPa`` two
+#: sectors with equal pressure over the outer 8 mm but 36 / 27 kPa at 16 mm read 71 and 58
+#: Rho); ordered by the geometric-mean pressure over 0.75 H the readings of Table 3 are as
+#: smooth (sum of |second differences| 77 Rho) as ordered by alpha itself (77), against
+#: 160-250 for any depth window of 1-48 mm and 109 for the whole pile (measured,
+#: docs/profile.md section 7).
+DESCRIPTOR_DEPTHS = np.linspace(0.75 / 24, 0.75, 24)
+#: Pressure floor of the descriptor's logarithm, relative to the largest pressure of the
+#: profile over all sectors' descriptor depths (a slack surface reads as this floor).
+PRESSURE_FLOOR = 1e-6
+#: Nodes of a group before the first check: its extremes and quantiles in ``x`` (solved in
+#: one parallel batch).
+FIRST_NODES = 5
+#: Spread of ``x`` (ln units: a relative spread of the pressure) below which a group's
+#: sectors count as one roll: one solve, copied (a uniform web's sectors agree to 1e-7,
+#: docs/profile.md section 6; a 1e-6 pressure change moves a reading by ~1e-6 of it).
+SAME_DESCRIPTOR = 1e-6
+
+
+@dataclass(frozen=True)
+class InterpolatedContact:
+    """The outcome of :func:`interpolated_springs`.
+
+    Attributes
+    ----------
+    alpha, beta : ndarray   roll spring {3} per sector [N/m^2], [N/m].
+    solved : ndarray[bool]  sectors whose contact was solved fully (nodes and checks).
+    x : ndarray             the interpolation parameter per sector (ln of the geometric-mean
+                            pressure over the reach, ln Pa).
+    rounds : int            check rounds.
+    largest_check : float   largest reading change found by the last check round
+                            (reading units; 0 when every sector was solved).
+    largest_change : float  largest reading change found by any check.
+    """
+
+    alpha: FloatArray
+    beta: FloatArray
+    solved: NDArray[np.bool_]
+    x: FloatArray
+    rounds: int
+    largest_check: float
+    largest_change: float
+
+
+def check_stage(stage: object, tolerance: object) -> tuple[str, float]:
+    """The contact stage and its tolerance, checked (one-line errors naming the field)."""
+    if stage not in CONTACT_STAGES:
+        raise InputError(
+            f"must be one of {', '.join(CONTACT_STAGES)}, got {stage!r}", "profile.contact"
+        )
+    if (
+        isinstance(tolerance, bool)
+        or not isinstance(tolerance, int | float)
+        or not (math.isfinite(tolerance) and tolerance >= 0)
+    ):
+        raise InputError(
+            f"must be a reading change >= 0, got {tolerance!r}", "profile.contact_tolerance"
+        )
+    return str(stage), float(tolerance)
+
+
+def descriptors(profiles: Sequence[tuple[FloatArray, FloatArray]]) -> FloatArray:
+    """``ln p`` at :data:`DESCRIPTOR_DEPTHS` x the pile height below each sector's surface
+    (the last radius of its profile; the pile height is the last minus the first), one row
+    per sector; ``p = -sigma_r`` linear in r between the profile's points, floored at
+    :data:`PRESSURE_FLOOR` of the largest."""
+    rows = []
+    for r, s in profiles:
+        r, s = np.asarray(r, dtype=float), np.asarray(s, dtype=float)
+        d = DESCRIPTOR_DEPTHS * (r[-1] - r[0])
+        rows.append(-np.interp(r[-1] - d, r, s))
+    p = np.asarray(rows)
+    floor = PRESSURE_FLOOR * max(float(p.max()), 1e-300)
+    return np.log(np.maximum(p, floor))
+
+
+def _interpolate(
+    x: FloatArray, nodes: list[int], a: FloatArray, b: FloatArray, members: NDArray[np.intp]
+) -> None:
+    """alpha, beta of the group's ``members`` linear in x between its ``nodes`` (in place;
+    nodes at one x averaged)."""
+    xn = x[nodes]
+    order = np.argsort(xn, kind="stable")
+    xs, idx = np.unique(xn[order], return_inverse=True)
+    an = np.bincount(idx, a[nodes][order]) / np.bincount(idx)
+    bn = np.bincount(idx, b[nodes][order]) / np.bincount(idx)
+    rest = np.setdiff1d(members, nodes)
+    if rest.size:
+        # linear in (alpha, beta) is linear in the whole curve F(d); (measured: linear in
+        # ln(alpha + c) instead solves all 61 sectors of pet3-3.45MPa, against 49)
+        a[rest] = np.interp(x[rest], xs, an)
+        b[rest] = np.interp(x[rest], xs, bn)
+
+
+def _estimates(
+    x: FloatArray, v: FloatArray, nodes: list[int], reading: FloatArray, members: NDArray[np.intp]
+) -> dict[int, tuple[float, int, float]]:
+    """Error estimate of each interpolated member: ``(estimate, interval index, reading
+    interpolated linearly between the nodes' readings)``."""
+    nd = sorted(set(nodes), key=lambda j: x[j])
+    xs = x[nd]
+    rs = reading[nd]
+    slopes = np.zeros(max(len(nd) - 1, 0))
+    for i in range(len(nd) - 1):
+        dx = xs[i + 1] - xs[i]
+        slopes[i] = (rs[i + 1] - rs[i]) / dx if dx > 0 else 0.0
+    out: dict[int, tuple[float, int, float]] = {}
+    for j in np.setdiff1d(members, nd):
+        i = int(np.clip(np.searchsorted(xs, x[j]) - 1, 0, len(nd) - 2))
+        xa, xb = xs[i], xs[i + 1]
+        dx = xb - xa
+        w = 0.0 if dx <= 0 else float(np.clip((x[j] - xa) / dx, 0.0, 1.0))
+        # curvature from the neighbouring intervals' slopes (second divided differences)
+        curv = []
+        if i > 0:
+            curv.append(2 * abs(slopes[i] - slopes[i - 1]) / max(xb - xs[i - 1], 1e-300))
+        if i + 2 < len(nd):
+            curv.append(2 * abs(slopes[i + 1] - slopes[i]) / max(xs[i + 2] - xa, 1e-300))
+        if curv:
+            e_curv = 0.5 * max(curv) * (x[j] - xa) * (xb - x[j])
+        else:  # one interval: no curvature known, a quarter of its reading span
+            e_curv = 0.25 * abs(rs[i + 1] - rs[i]) * 4 * w * (1 - w)
+        # the sector's pressure profile against the one interpolated between the nodes
+        mismatch = float(np.max(np.abs(v[j] - ((1 - w) * v[nd[i]] + w * v[nd[i + 1]]))))
+        lin = (1 - w) * rs[i] + w * rs[i + 1]
+        out[int(j)] = (e_curv + abs(slopes[i]) * mismatch, i, lin)
+    return out
+
+
+def interpolated_springs(
+    fns: Sequence[ContactFn],
+    profiles: Sequence[tuple[FloatArray, FloatArray]],
+    solve: SolveFn,
+    readings: ReadingFn,
+    *,
+    tolerance: float = DEFAULT_TOLERANCE,
+    batch: int = 2,
+    scale: tuple[float, float] | None = None,
+    progress: Callable[[int, int], None] | None = None,
+) -> InterpolatedContact:
+    """The roll spring of every sector from full contact solves on a few (module docstring).
+
+    Parameters
+    ----------
+    fns : one contact callable per sector (sectors with equal callables form a group).
+    profiles : ``(radius, sigma_r)`` per sector (core to surface).
+    solve : the full contact solves of some sectors (``map_sectors`` on the pool).
+    readings : the reading of some sectors from their springs (their own pile heights).
+    tolerance : float
+        Largest reading change a check round may find before the interpolation is accepted.
+    batch : int
+        Sectors checked per round (the workers: one round costs one solve per worker).
+    scale : (lo, hi), optional
+        The instrument's scale: a sector interpolated beyond it by more than its estimate
+        is not checked (it shows the scale's end).
+    """
+    n = len(profiles)
+    x_all = descriptors(profiles)
+    x = x_all.mean(axis=1)
+    alpha, beta = np.zeros(n), np.zeros(n)
+    solved = np.zeros(n, dtype=bool)
+    reading = np.full(n, np.nan)  # readings of solved sectors
+    groups: dict[int, list[int]] = {}
+    keys: list[ContactFn] = []
+    for j, f in enumerate(fns):
+        for k, g in enumerate(keys):
+            if g is f or g == f:
+                groups[k].append(j)
+                break
+        else:
+            keys.append(f)
+            groups[len(keys) - 1] = [j]
+
+    def full(idx: list[int]) -> None:
+        idx = [j for j in idx if not solved[j]]
+        if not idx:
+            return
+        a, b = solve([fns[j] for j in idx], [profiles[j] for j in idx])
+        sel = np.asarray(idx, dtype=np.intp)
+        alpha[sel], beta[sel] = a, b
+        solved[sel] = True
+        reading[sel] = readings(alpha[sel], beta[sel], sel)
+        if progress is not None:
+            progress(int(solved.sum()), n)
+
+    # the nodes: extremes and median of each group (one sector for one descriptor)
+    members = {k: np.asarray(g, dtype=np.intp) for k, g in groups.items()}
+    first: list[int] = []
+    copies: dict[int, int] = {}
+    for k, m in members.items():
+        xm = x[m]
+        if float(np.ptp(xm)) <= SAME_DESCRIPTOR:
+            first.append(int(m[0]))
+            copies[k] = int(m[0])
+            continue
+        order = m[np.argsort(xm, kind="stable")]
+        q = np.round(np.linspace(0, len(order) - 1, FIRST_NODES)).astype(int)
+        first += sorted({int(order[i]) for i in q})
+    full(first)
+    for k, j0 in copies.items():
+        alpha[members[k]], beta[members[k]] = alpha[j0], beta[j0]
+    live = {k: m for k, m in members.items() if k not in copies}
+
+    rounds, largest_check, largest_change, calibration = 0, 0.0, 0.0, 1.0
+    memo: dict[int, tuple[float, float, float]] = {}
+
+    def cached(js: NDArray[np.intp]) -> FloatArray:
+        """Readings of interpolated springs (the FD reading is 2 ms a sector: a sector whose
+        interval did not change is not read again)."""
+        new = [j for j in js if memo.get(int(j), (None, None))[:2] != (alpha[j], beta[j])]
+        if new:
+            sel = np.asarray(new, dtype=np.intp)
+            for j, r in zip(new, readings(alpha[sel], beta[sel], sel), strict=True):
+                memo[int(j)] = (float(alpha[j]), float(beta[j]), float(r))
+        return np.array([memo[int(j)][2] for j in js])
+
+    while True:
+        for m in live.values():
+            _interpolate(x, [int(j) for j in m if solved[j]], alpha, beta, m)
+        cand: list[tuple[float, int, int, int]] = []  # (estimate, group, interval, sector)
+        for k, m in live.items():
+            nodes = [int(j) for j in m if solved[j]]
+            est = _estimates(x, x_all, nodes, reading, m)
+            if not est:
+                continue
+            js = np.asarray(list(est), dtype=np.intp)
+            r_int = cached(js)
+            for j, r in zip(js, r_int, strict=True):
+                e, i, lin = est[int(j)]
+                # the springs interpolated against the readings interpolated: two
+                # approximations of one order whose difference is of the order of the error
+                e = max(e, abs(r - lin))
+                ce = calibration * e
+                if scale is not None and (r - ce > scale[1] or r + ce < scale[0]):
+                    continue  # shows the scale's end whatever the error
+                cand.append((e, k, i, int(j)))
+        if not cand:
+            break
+        cand.sort(reverse=True)
+        pick: list[int] = []
+        seen: set[tuple[int, int]] = set()
+        for _e, k, i, j in cand:  # distinct intervals first
+            if (k, i) not in seen and len(pick) < batch:
+                pick.append(j)
+                seen.add((k, i))
+        for *_, j in cand:
+            if len(pick) >= batch:
+                break
+            if j not in pick:
+                pick.append(j)
+        sel = np.asarray(pick, dtype=np.intp)
+        estimate = {j: e for e, _, _, j in cand}
+        before = cached(sel)
+        full(pick)
+        change = np.abs(reading[sel] - before)
+        if scale is not None:  # what the instrument shows
+            change = np.abs(np.clip(reading[sel], *scale) - np.clip(before, *scale))
+        rounds += 1
+        largest_check = float(change.max())
+        largest_change = max(largest_change, largest_check)
+        # the estimates, calibrated by the checks so far (never below their face value)
+        for j, c in zip(pick, change, strict=True):
+            calibration = max(calibration, float(c) / max(estimate[j], 1e-12))
+        rest = [e for e, _, _, j in cand if j not in pick]
+        if largest_check <= tolerance and (not rest or calibration * max(rest) <= tolerance):
+            break
+    for m in live.values():
+        _interpolate(x, [int(j) for j in m if solved[j]], alpha, beta, m)
+    return InterpolatedContact(
+        alpha=alpha,
+        beta=beta,
+        solved=solved,
+        x=x,
+        rounds=rounds,
+        largest_check=largest_check,
+        largest_change=largest_change,
+    )
+
+
+__all__ = [
+    "CONTACT_STAGES",
+    "DEFAULT_CONTACT_STAGE",
+    "DEFAULT_TOLERANCE",
+    "InterpolatedContact",
+    "check_stage",
+    "descriptors",
+    "interpolated_springs",
+]
