@@ -200,6 +200,90 @@ def _estimates(
     return out
 
 
+def _groups(fns: Sequence[ContactFn]) -> dict[int, list[int]]:
+    """The sectors by contact callable: sectors with equal callables (same web and head)
+    form a group, interpolated among themselves."""
+    groups: dict[int, list[int]] = {}
+    keys: list[ContactFn] = []
+    for j, f in enumerate(fns):
+        for k, g in enumerate(keys):
+            if g is f or g == f:
+                groups[k].append(j)
+                break
+        else:
+            keys.append(f)
+            groups[len(keys) - 1] = [j]
+    return groups
+
+
+def _first_nodes(
+    x: FloatArray, members: dict[int, NDArray[np.intp]]
+) -> tuple[list[int], dict[int, int]]:
+    """The sectors solved first: the extremes and quartiles of each group's descriptor, one
+    sector for a group whose descriptors are all the same (its ``copies`` entry: the group
+    takes that sector's spring)."""
+    first: list[int] = []
+    copies: dict[int, int] = {}
+    for k, m in members.items():
+        xm = x[m]
+        if float(np.ptp(xm)) <= SAME_DESCRIPTOR:
+            first.append(int(m[0]))
+            copies[k] = int(m[0])
+            continue
+        order = m[np.argsort(xm, kind="stable")]
+        q = np.round(np.linspace(0, len(order) - 1, FIRST_NODES)).astype(int)
+        first += sorted({int(order[i]) for i in q})
+    return first, copies
+
+
+def _candidates(
+    x: FloatArray,
+    x_all: FloatArray,
+    live: dict[int, NDArray[np.intp]],
+    solved: NDArray[np.bool_],
+    reading: FloatArray,
+    cached: Callable[[NDArray[np.intp]], FloatArray],
+    calibration: float,
+    scale: tuple[float, float] | None,
+) -> list[tuple[float, int, int, int]]:
+    """(error estimate, group, interval, sector) of every interpolated sector whose shown
+    reading the error could change, largest first."""
+    cand: list[tuple[float, int, int, int]] = []
+    for k, m in live.items():
+        nodes = [int(j) for j in m if solved[j]]
+        est = _estimates(x, x_all, nodes, reading, m)
+        if not est:
+            continue
+        js = np.asarray(list(est), dtype=np.intp)
+        for j, r in zip(js, cached(js), strict=True):
+            e, i, lin = est[int(j)]
+            # the springs interpolated against the readings interpolated: two
+            # approximations of one order whose difference is of the order of the error
+            e = max(e, abs(r - lin))
+            ce = calibration * e
+            if scale is not None and (r - ce > scale[1] or r + ce < scale[0]):
+                continue  # shows the scale's end whatever the error
+            cand.append((e, k, i, int(j)))
+    cand.sort(reverse=True)
+    return cand
+
+
+def _pick(cand: list[tuple[float, int, int, int]], batch: int) -> list[int]:
+    """The ``batch`` sectors to check: the largest estimates, one per interval first."""
+    pick: list[int] = []
+    seen: set[tuple[int, int]] = set()
+    for _e, k, i, j in cand:  # distinct intervals first
+        if (k, i) not in seen and len(pick) < batch:
+            pick.append(j)
+            seen.add((k, i))
+    for *_, j in cand:
+        if len(pick) >= batch:
+            break
+        if j not in pick:
+            pick.append(j)
+    return pick
+
+
 def interpolated_springs(
     fns: Sequence[ContactFn],
     profiles: Sequence[tuple[FloatArray, FloatArray]],
@@ -233,16 +317,7 @@ def interpolated_springs(
     alpha, beta = np.zeros(n), np.zeros(n)
     solved = np.zeros(n, dtype=bool)
     reading = np.full(n, np.nan)  # readings of solved sectors
-    groups: dict[int, list[int]] = {}
-    keys: list[ContactFn] = []
-    for j, f in enumerate(fns):
-        for k, g in enumerate(keys):
-            if g is f or g == f:
-                groups[k].append(j)
-                break
-        else:
-            keys.append(f)
-            groups[len(keys) - 1] = [j]
+    groups = _groups(fns)
 
     def full(idx: list[int]) -> None:
         idx = [j for j in idx if not solved[j]]
@@ -258,17 +333,7 @@ def interpolated_springs(
 
     # the nodes: extremes and median of each group (one sector for one descriptor)
     members = {k: np.asarray(g, dtype=np.intp) for k, g in groups.items()}
-    first: list[int] = []
-    copies: dict[int, int] = {}
-    for k, m in members.items():
-        xm = x[m]
-        if float(np.ptp(xm)) <= SAME_DESCRIPTOR:
-            first.append(int(m[0]))
-            copies[k] = int(m[0])
-            continue
-        order = m[np.argsort(xm, kind="stable")]
-        q = np.round(np.linspace(0, len(order) - 1, FIRST_NODES)).astype(int)
-        first += sorted({int(order[i]) for i in q})
+    first, copies = _first_nodes(x, members)
     full(first)
     for k, j0 in copies.items():
         alpha[members[k]], beta[members[k]] = alpha[j0], beta[j0]
@@ -290,37 +355,10 @@ def interpolated_springs(
     while True:
         for m in live.values():
             _interpolate(x, [int(j) for j in m if solved[j]], alpha, beta, m)
-        cand: list[tuple[float, int, int, int]] = []  # (estimate, group, interval, sector)
-        for k, m in live.items():
-            nodes = [int(j) for j in m if solved[j]]
-            est = _estimates(x, x_all, nodes, reading, m)
-            if not est:
-                continue
-            js = np.asarray(list(est), dtype=np.intp)
-            r_int = cached(js)
-            for j, r in zip(js, r_int, strict=True):
-                e, i, lin = est[int(j)]
-                # the springs interpolated against the readings interpolated: two
-                # approximations of one order whose difference is of the order of the error
-                e = max(e, abs(r - lin))
-                ce = calibration * e
-                if scale is not None and (r - ce > scale[1] or r + ce < scale[0]):
-                    continue  # shows the scale's end whatever the error
-                cand.append((e, k, i, int(j)))
+        cand = _candidates(x, x_all, live, solved, reading, cached, calibration, scale)
         if not cand:
             break
-        cand.sort(reverse=True)
-        pick: list[int] = []
-        seen: set[tuple[int, int]] = set()
-        for _e, k, i, j in cand:  # distinct intervals first
-            if (k, i) not in seen and len(pick) < batch:
-                pick.append(j)
-                seen.add((k, i))
-        for *_, j in cand:
-            if len(pick) >= batch:
-                break
-            if j not in pick:
-                pick.append(j)
+        pick = _pick(cand, batch)
         sel = np.asarray(pick, dtype=np.intp)
         estimate = {j: e for e, _, _, j in cand}
         before = cached(sel)
