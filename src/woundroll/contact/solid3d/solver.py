@@ -157,7 +157,7 @@ class Roll3D:
         self.n_solves = 0
         self._D: FloatArray | None = None
         self._cols: dict[int, FloatArray] = {}
-        self._factored = self._exact = self._refactor_next = False
+        self._factored = self._exact = False
         self.pcg_iterations = self.n_pcg = self.n_pcg_failed = 0
         self.t_assembly = self.t_factor = self.t_solve = 0.0
         # neighbours of each surface node in the (theta, z) grid, to widen the candidates
@@ -175,21 +175,21 @@ class Roll3D:
         """Assemble K for the material constants ``D`` (kept if unchanged) and make it the
         matrix that :meth:`_solve` solves with.
 
-        Modified Newton (``opts.reuse_factorisation``): K is factorised afresh only when
-        there is no factorisation yet or the last solves needed more than
-        ``opts.pcg_max_iterations`` conjugate-gradient iterations; otherwise the solves are
+        Modified Newton (``opts.reuse_factorisation``, off by default): the solves are
         conjugate gradients on the new K preconditioned by the factorisation of an earlier
         one, to the relative residual ``opts.pcg_tol`` (the same answer as a fresh
-        factorisation to that tolerance: no accuracy is given up)."""
+        factorisation to that tolerance: no accuracy is given up); K is factorised afresh
+        when there is no factorisation yet, or as soon as a solve needs more than
+        ``opts.pcg_max_iterations`` iterations (then for the rest of the increment)."""
         if self._D is not None and np.array_equal(D, self._D):
             return  # the factorisation and the cached flexibility columns still hold
         self._D = D.copy()
         t0 = time.perf_counter()
         self._U = self.asm.upper(D)
-        self._Ut = self._U.T.tocsr()
-        self._Ud = self._U.diagonal()
         self.t_assembly += time.perf_counter() - t0
-        if self.opts.reuse_factorisation and self._factored and not self._refactor_next:
+        if self.opts.reuse_factorisation and self._factored:
+            self._Ut = self._U.T.tocsr()  # for the products with K (only here)
+            self._Ud = self._U.diagonal()
             self._exact = False
             return
         self._refactor()
@@ -199,7 +199,7 @@ class Roll3D:
         self.solver.factor(self._U.data)
         self.t_factor += time.perf_counter() - t1
         self.n_factor += 1
-        self._factored, self._exact, self._refactor_next = True, True, False
+        self._factored = self._exact = True
 
     def _matvec(self, x: FloatArray) -> FloatArray:
         d = self._Ud if x.ndim == 1 else self._Ud[:, None]
