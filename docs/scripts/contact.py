@@ -42,8 +42,9 @@ def _variants(name: str) -> dict[str, Any]:
     depth = (t.CASES | t.MORE_CASES)[name]
     ref = t.refinements(name, depth, base, angles=(3.0, 1.0))
     v = {
-        f"tangential growth {base.tangential_growth:g} -> "
-        f"{base.tangential_growth**0.5:.3f}": ref["tangential_growth"],
+        f"tangential growth {base.tangential_growth:g} -> {base.tangential_growth**0.5:.3f}": ref[
+            "tangential_growth"
+        ],
         "element angle capped at 3 deg": ref["max_element_angle 3 deg"],
         "element angle capped at 1 deg": ref["max_element_angle 1 deg"],
         "surface ring h / 2 -> h / 4": ref["surface_size"],
@@ -80,9 +81,7 @@ def refinement() -> str:
         "| F at depth_max, default mesh [N] | "
         + " | ".join(f"{base[n].force[-1]:.2f}" for n in names)
         + " |",
-        "| elements, default mesh | "
-        + " | ".join(f"{base[n].n_elements}" for n in names)
-        + " |",
+        "| elements, default mesh | " + " | ".join(f"{base[n].n_elements}" for n in names) + " |",
     ]
     variants = {n: _variants(n) for n in names}
     for row in variants[names[0]]:
