@@ -132,6 +132,30 @@ def width_default() -> str:
     return f"{a:.3f} mm"
 
 
+def fields() -> str:
+    """F, the largest radial pressure and the peak nodal contact pressure at depth_max on
+    PET1 and PET2 26.7 N for the default step count, 3x and 6x it."""
+    from woundroll.contact import ContactOptions
+
+    t = _tests()
+    n0 = ContactOptions().n_steps
+    steps = (n0, 3 * n0, 6 * n0)
+    lines = [
+        "| roll (depth) | steps | F [N] | largest radial pressure [MPa] "
+        "| peak nodal contact pressure [MPa] |",
+        "|---|---|---|---|---|",
+    ]
+    for name, depth in t.CASES.items():
+        for n in steps:
+            r = _solve(name, ContactOptions(n_steps=n))
+            lines.append(
+                f"| {name} ({1e3 * depth:g} mm) | {n}{' (default)' if n == n0 else ''} "
+                f"| {r.force[-1]:.2f} | {-r.sigma_r.min() / 1e6:.2f} "
+                f"| {r.contact_pressure_history[-1].max() / 1e6:.2f} |"
+            )
+    return "\n".join(lines)
+
+
 def head() -> str:
     """The head of the study: the bundled Rho-meter preset's."""
     h = _tests().rho_meter_head()
@@ -140,6 +164,7 @@ def head() -> str:
 
 BLOCKS: dict[str, Callable[[], str]] = {
     "head": head,
+    "fields": fields,
     "refinement": refinement,
     "width": width,
     "width_default": width_default,
