@@ -1,7 +1,8 @@
-"""Generator of docs/winding.md's convergence table (docs/scripts/regenerate.py): the 1D
+"""Generators of docs/winding.md's convergence numbers (docs/scripts/regenerate.py): the 1D
 winding model (``woundroll.winding.hakiel.wind``) on the bundled PET1 26.7 N roll with 1 to
-16 elements per layer, the whole roll solved every increment (no lazy deep part), one load
-step, today's other defaults. Cost: a few seconds (the 16-element solve dominates)."""
+16 elements per layer (the whole roll solved every increment, one load step), on the Table 3
+film (K1 = 0), and with layers lumped per increment on a 12 um film; today's other
+defaults. Cost: well under a minute (the whole-roll reference solves dominate)."""
 
 from __future__ import annotations
 
@@ -63,4 +64,84 @@ def elements() -> str:
     )
 
 
-BLOCKS: dict[str, Callable[[], str]] = {"elements": elements}
+def _profile_diff(a: Any, b: Any) -> float:
+    """max |sigma_r(a) - sigma_r(b)| over b's radii, relative to b's core pressure (the
+    measure of tests/winding/test_hakiel.py)."""
+    import numpy as np
+
+    return float(
+        np.max(np.abs(np.interp(b.radius, a.radius, a.sigma_r) - b.sigma_r)) / b.core_pressure
+    )
+
+
+def k1_zero() -> str:
+    """The Table 3 film (K1 = 0, 600 layers on the aluminium tube, 2.3 MPa): error against
+    16 elements per layer and 8 load substeps (whole roll every increment) for 1-8 elements
+    per layer, one load step, today's other defaults."""
+    from woundroll.materials.radial_modulus import Pfeiffer
+    from woundroll.materials.web import Core, Web
+    from woundroll.winding.hakiel import WindingOptions, wind
+    from woundroll.winding.tension import TensionSchedule
+
+    web = Web(
+        thickness=76e-6,
+        width=0.61,
+        E_theta=4999e6,
+        radial_modulus=Pfeiffer(0.0, 246.5),
+        nu_theta_r=0.01,
+    )
+    core = Core.tube(0.1016, 0.095, 69e9, 0.33)
+    r_out, ten = 0.1016 + 600 * 76e-6, TensionSchedule(2.3e6)
+    base = WindingOptions()
+    ref = wind(
+        web,
+        core,
+        r_out,
+        ten,
+        options=replace(base, subdivisions=16, load_substeps=8, window_layers=None),
+    )
+    errs = [
+        _profile_diff(
+            wind(web, core, r_out, ten, options=replace(base, subdivisions=s, window_layers=None)),
+            ref,
+        )
+        for s in (1, 2, 4, 8)
+    ]
+    return ", ".join(f"{100 * e:.2f} % ({s})" for e, s in zip(errs, (1, 2, 4, 8), strict=True))
+
+
+def lumping() -> str:
+    """``layers_per_increment`` L on a 12 um film (2000 layers, 7.6 cm rigid core, Pfeiffer
+    K1 = 10 kPa, K2 = 100, 1.5 MPa): error against a 4x grid with 4 load substeps."""
+    from woundroll.materials.radial_modulus import Pfeiffer
+    from woundroll.materials.web import Core, Web
+    from woundroll.winding.hakiel import WindingOptions, wind
+    from woundroll.winding.tension import TensionSchedule
+
+    web = Web(thickness=12e-6, width=1.0, E_theta=5e9, radial_modulus=Pfeiffer(10e3, 100.0))
+    core, r_out, ten = Core(0.076), 0.076 + 2000 * 12e-6, TensionSchedule(1.5e6)
+    base = WindingOptions()
+    ref = wind(
+        web,
+        core,
+        r_out,
+        ten,
+        options=replace(
+            base, subdivisions=4 * base.subdivisions, load_substeps=4, window_layers=None
+        ),
+    )
+    ls = (1, 2, 4, 8, 16)
+    errs = [
+        _profile_diff(
+            wind(web, core, r_out, ten, options=replace(base, layers_per_increment=n)), ref
+        )
+        for n in ls
+    ]
+    return ", ".join(f"{100 * e:.2f} % (L = {n})" for e, n in zip(errs, ls, strict=True))
+
+
+BLOCKS: dict[str, Callable[[], str]] = {
+    "elements": elements,
+    "k1_zero": k1_zero,
+    "lumping": lumping,
+}
