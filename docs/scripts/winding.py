@@ -172,7 +172,99 @@ def rules() -> str:
     return "\n".join(lines)
 
 
+#: The bundled Table 2 rolls (PET1, PET2).
+TABLE2 = (
+    "pet1-26.7N",
+    "pet1-33.4N",
+    "pet1-40N",
+    "pet1-46.7N",
+    "pet2-26.7N",
+    "pet2-53.4N",
+    "pet2-80N",
+)
+
+
+def _bundled(name: str) -> tuple[Any, Any, float, Any]:
+    from woundroll.case import load_case
+
+    case = load_case(name)
+    web, core = case.web.build(), case.core.build()
+    return web, core, case.winding.final_radius(web, core), case.winding.schedule(web)
+
+
+def _mid_sigma_r(res: Any) -> float:
+    """-sigma_r at the middle radius of the roll [Pa]."""
+    import numpy as np
+
+    r = np.asarray(res.radius)
+    mid = 0.5 * (r[0] + r[-1])
+    return float(-np.interp(mid, r, res.sigma_r))
+
+
+def new_layer() -> str:
+    """Core pressure and mid-roll sigma_r of the Table 2 rolls, laid-on against elastic new
+    layer, default options otherwise."""
+    from woundroll.winding.hakiel import WindingOptions, wind
+
+    lines = [
+        "| roll | laid on [kPa] | elastic [kPa] | difference "
+        "| sigma_r at mid-roll, laid on / elastic [kPa] |",
+        "|---|---|---|---|---|",
+    ]
+    for name in TABLE2:
+        web, core, r_out, ten = _bundled(name)
+        a = wind(web, core, r_out, ten, options=replace(WindingOptions(), new_layer="laid_on"))
+        b = wind(web, core, r_out, ten, options=replace(WindingOptions(), new_layer="elastic"))
+        pa, pb = float(a.core_pressure), float(b.core_pressure)
+        lines.append(
+            f"| {name} | {pa / 1e3:.1f} | {pb / 1e3:.1f} | {100 * (pb / pa - 1):+.1f} % "
+            f"| {_mid_sigma_r(a) / 1e3:.1f} / {_mid_sigma_r(b) / 1e3:.1f} |"
+        )
+    return "\n".join(lines)
+
+
+def surface_ratio() -> str:
+    """E_theta / E_r at the free surface (zero pressure) of PET1 and PET2."""
+    parts = []
+    for label, name in (("PET1", "pet1-26.7N"), ("PET2", "pet2-26.7N")):
+        web = _bundled(name)[0]
+        e_r = float(web.radial_modulus.modulus_at_pressure(0.0))
+        parts.append(f"{web.E_theta / e_r:,.0f} for {label}")
+    return ", ".join(parts)
+
+
+def layer_thickness() -> str:
+    """PET1 26.7 N with the layer thickness halved three times at the same stresses: the
+    two new-layer variants meet."""
+    from woundroll.winding.hakiel import WindingOptions, wind
+
+    web, core, r_out, ten = _bundled(CASE)
+    lines = [
+        "| h [um] | layers | laid on [Pa] | elastic [Pa] | difference |",
+        "|---|---|---|---|---|",
+    ]
+    for k in range(4):
+        w = replace(web, thickness=web.thickness / 2**k)
+        n = int(round((r_out - core.outer_radius) / w.thickness))
+        p = [
+            float(
+                wind(
+                    w, core, r_out, ten, options=replace(WindingOptions(), new_layer=v)
+                ).core_pressure
+            )
+            for v in ("laid_on", "elastic")
+        ]
+        lines.append(
+            f"| {1e6 * w.thickness:g}{' (the web)' if k == 0 else ''} | {n:,} ".replace(",", " ")
+            + f"| {p[0]:,.0f} | {p[1]:,.0f} | {100 * (p[1] / p[0] - 1):+.2f} % |".replace(",", " ")
+        )
+    return "\n".join(lines)
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
+    "new_layer": new_layer,
+    "surface_ratio": surface_ratio,
+    "layer_thickness": layer_thickness,
     "rules": rules,
     "elements": elements,
     "k1_zero": k1_zero,
