@@ -1,8 +1,10 @@
-"""Generators of docs/winding.md's convergence numbers (docs/scripts/regenerate.py): the 1D
-winding model (``woundroll.winding.hakiel.wind``) on the bundled PET1 26.7 N roll with 1 to
-16 elements per layer (the whole roll solved every increment, one load step), on the Table 3
-film (K1 = 0), and with layers lumped per increment on a 12 um film; today's other
-defaults. Cost: well under a minute (the whole-roll reference solves dominate)."""
+"""Generators of docs/winding.md's numbers (docs/scripts/regenerate.py): the 1D winding model
+(``woundroll.winding.hakiel.wind``) on the bundled PET1 26.7 N roll with 1 to 16 elements per
+layer (the whole roll solved every increment, one load step) and with each modulus rule and
+load-substep count, on the Table 3 film (K1 = 0), with layers lumped per increment on a 12 um
+film, and the two new-layer variants on the Table 2 rolls and under layer refinement; today's
+other defaults. Cost: about a minute on a quiet 2-core machine (the whole-roll reference
+solves dominate)."""
 
 from __future__ import annotations
 
