@@ -263,7 +263,54 @@ def layer_thickness() -> str:
     return "\n".join(lines)
 
 
+@cache
+def _hakiel_tests() -> Any:
+    """tests/winding/test_hakiel.py as a module (its rolls of the lazy-part test)."""
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[2] / "tests" / "winding" / "test_hakiel.py"
+    spec = importlib.util.spec_from_file_location("docs_test_hakiel", path)
+    assert spec is not None and spec.loader is not None
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def lazy() -> str:
+    """The default (levels of doubling depth) against the whole roll solved every increment:
+    largest |d sigma_r| / core pressure, on the rolls of test_default_deep_part_matches_exact_solve
+    plus the benchmark film at 10,000 layers and PET1 with the other modulus rules."""
+    from woundroll.materials.web import Core
+    from woundroll.winding.hakiel import WindingOptions, wind
+    from woundroll.winding.tension import TensionSchedule
+
+    t = _hakiel_tests()
+    cases = dict(t.LAZY_CASES)
+    cases["film-10000"] = (
+        t._film(),
+        Core(0.076),
+        0.076 + 10000 * 12e-6,
+        TensionSchedule(1.5e6),
+        {},
+    )
+    pet1 = cases["pet1"]
+    for rule in ("explicit", "end"):
+        cases[f"pet1 ({rule} rule)"] = (*pet1[:4], {"modulus_update": rule})
+    lines = [
+        "| roll | layers | default against exact |",
+        "|---|---|---|",
+    ]
+    for name, (web, core, r_out, sched, extra) in cases.items():
+        a = wind(web, core, r_out, sched, options=WindingOptions(**extra))
+        b = wind(web, core, r_out, sched, options=WindingOptions(window_layers=None, **extra))
+        n = int(round((r_out - core.outer_radius) / web.thickness))
+        lines.append(f"| `{name}` | {n:,} | {100 * _profile_diff(a, b):.3f} % |")
+    return "\n".join(lines)
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
+    "lazy": lazy,
     "new_layer": new_layer,
     "surface_ratio": surface_ratio,
     "layer_thickness": layer_thickness,
