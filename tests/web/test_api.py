@@ -336,6 +336,7 @@ def test_inputs_used_and_their_sources(client):
         "winding.nip_load",
         "winding.friction",
         "winding.speed",
+        "storage.temperature_change",
         "web.thickness",
         "web.width",
         "web.E_theta",

@@ -187,3 +187,17 @@ def test_run_flags_overstress_and_notes_the_change(tmp_path):
     assert any(w.startswith("storage:") for w in res.warnings)
     assert any(n.startswith("storage:") for n in res.notes)
     assert res.to_dict()["winding"]["storage"]["temperature_change_K"] == 150.0
+
+
+def test_temperature_change_in_the_units_a_mill_uses():
+    # a change of 1 degC is 1 K; of 1 degF, 5/9 K (a change, not a temperature: no offset)
+    from woundroll.case import load_case
+
+    def dt(text: str) -> float:
+        return load_case(
+            "pet1-26.7N", [f"storage.temperature_change='{text}'"]
+        ).storage.temperature_change
+
+    assert dt("-20 K") == dt("-20 degC") == dt("-20 °C") == -20.0
+    assert dt("-36 degF") == pytest.approx(-20.0, rel=1e-15)
+    assert dt("9 °F") == pytest.approx(5.0, rel=1e-15)

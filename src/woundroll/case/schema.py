@@ -677,17 +677,21 @@ class DefectsSpec(_Section):
 
 def _kelvin(value: Any) -> Any:
     """A temperature change: a number [K] or text with ``K`` / ``degC`` / ``°C`` (a change
-    of one degree Celsius is one kelvin)."""
+    of one degree Celsius is one kelvin) or ``degF`` / ``°F`` (a change of one degree
+    Fahrenheit is 5/9 K)."""
     if isinstance(value, str):
         text = value.strip()
-        for unit in ("degC", "°C", "K"):
+        factor = 1.0
+        for unit, f in (("degC", 1.0), ("°C", 1.0), ("degF", 5 / 9), ("°F", 5 / 9), ("K", 1.0)):
             if text.endswith(unit):
-                text = text[: -len(unit)].strip()
+                text, factor = text[: -len(unit)].strip(), f
                 break
         try:
-            return float(text)
+            return float(text) * factor
         except ValueError:
-            raise ValueError(f"must be a number of kelvin such as '-20 K', got {value!r}") from None
+            raise ValueError(
+                f"must be a number of kelvin such as '-20 K' (or degC, degF), got {value!r}"
+            ) from None
     return value
 
 

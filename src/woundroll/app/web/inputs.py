@@ -28,6 +28,7 @@ FORM_FIELDS: dict[str, tuple[str, str]] = {
     "winding.nip_load": ("nip load", "0 N/m, 1 pli"),
     "winding.friction": ("friction, web on web (nip-induced tension)", "0.3"),
     "winding.speed": ("winding speed (entrained air)", "0 m/s, 1000 ft/min"),
+    "storage.temperature_change": ("temperature change in storage", "-20 K, -36 degF"),
     "web.thickness": ("web thickness", "100 um, 4 mil"),
     "web.width": ("web width", "15.24 cm, 6 in"),
     "web.E_theta": ("web MD modulus E_theta", "5681 MPa"),
@@ -179,6 +180,10 @@ def inputs_used(text: str, overrides: dict[str, str], case: Any) -> list[dict[st
         "winding.nip_load": (case.winding.nip_load, "N/m"),
         "winding.friction": (case.winding.friction, ""),
         "winding.speed": (case.winding.speed, "m/s"),
+        "storage.temperature_change": (
+            case.storage.temperature_change if case.storage is not None else 0.0,
+            "K",
+        ),
         "web.thickness": (case.web.thickness, "m"),
         "web.width": (case.web.width, "m"),
         "web.E_theta": (case.web.E_theta, "Pa"),
