@@ -156,6 +156,43 @@ def fields() -> str:
     return "\n".join(lines)
 
 
+@cache
+def _own(name: str, update: bool) -> Any:
+    """The 2D contact on the winding model's own profile of a bundled roll, a 10 mm head
+    2 cm long, to 1 mm, with or without the E_r update; default options."""
+    from woundroll.contact import indent
+
+    web, core, radius, sigma_r = _tests().real_roll(name)
+    return indent(
+        web,
+        core,
+        radius,
+        sigma_r,
+        depth_max=1e-3,
+        head_radius=10e-3,
+        head_length=0.02,
+        update_modulus=update,
+    )
+
+
+def _e(x: float) -> str:
+    """``x`` in the docs' short scientific form, 3 digits: 2.03e8, not 2.03e+08."""
+    m, _, e = f"{x:.2e}".partition("e")
+    return f"{m}e{int(e)}"
+
+
+def own_profile() -> str:
+    """The sentence on PET1 26.7 N and 46.7 N with the winding model's profile."""
+    a, b = _own("pet1-26.7N", True), _own("pet1-26.7N", False)
+    c, d = _own("pet1-46.7N", True), _own("pet1-46.7N", False)
+    return (
+        f"F = {a.force[-1]:.0f} N, alpha = {_e(a.alpha)} N/m^2, beta = {_e(a.beta)} "
+        f"N/m, R^2 = {a.fit_r2:.4f}, a = {1e3 * a.half_width[-1]:.2f} mm; no update: "
+        f"F = {b.force[-1]:.0f} N, a = {1e3 * b.half_width[-1]:.1f} mm. At 46.7 N: "
+        f"F = {c.force[-1]:.0f} N (update) and {d.force[-1]:.0f} N (no update)"
+    )
+
+
 def head() -> str:
     """The head of the study: the bundled Rho-meter preset's."""
     h = _tests().rho_meter_head()
@@ -164,6 +201,7 @@ def head() -> str:
 
 BLOCKS: dict[str, Callable[[], str]] = {
     "head": head,
+    "own_profile": own_profile,
     "fields": fields,
     "refinement": refinement,
     "width": width,
