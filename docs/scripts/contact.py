@@ -193,6 +193,16 @@ def own_profile() -> str:
     )
 
 
+def memory() -> str:
+    """The size of the stress histories a result keeps, PET1 26.7 N on the default mesh."""
+    from woundroll.contact import ContactOptions
+
+    r = _solve("pet1-26.7N", ContactOptions())
+    n_rows, n_el = r.sigma_r_history.shape
+    mb = 3 * n_rows * n_el * 8 / 1e6
+    return f"3 x {n_rows} x {n_el} floats, {mb:.1f} MB, at the default mesh (PET1 26.7 N)"
+
+
 def head() -> str:
     """The head of the study: the bundled Rho-meter preset's."""
     h = _tests().rho_meter_head()
@@ -201,6 +211,7 @@ def head() -> str:
 
 BLOCKS: dict[str, Callable[[], str]] = {
     "head": head,
+    "memory": memory,
     "own_profile": own_profile,
     "fields": fields,
     "refinement": refinement,
