@@ -203,6 +203,64 @@ def memory() -> str:
     return f"3 x {n_rows} x {n_el} floats, {mb:.1f} MB, at the default mesh (PET1 26.7 N)"
 
 
+@cache
+def _contact_tests() -> Any:
+    """tests/contact/test_contact.py as a module (its Hertz problem)."""
+    path = ROOT / "tests" / "contact" / "test_contact.py"
+    spec = importlib.util.spec_from_file_location("docs_test_contact", path)
+    assert spec is not None and spec.loader is not None
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+@cache
+def _hertz() -> tuple[float, float, float, float]:
+    """Hertz line contact, the test's problem (its ``hertz`` fixture's arguments): the
+    range of the closed-form half-width [m] and the largest deviations of the half-width
+    and the peak pressure from the closed forms [%]."""
+    import math
+
+    import numpy as np
+
+    from woundroll.contact import ContactOptions, indent
+    from woundroll.materials.web import Core
+
+    t = _contact_tests()
+    E, nu, R, roll = t.HERTZ_E, t.HERTZ_NU, t.HERTZ_R, t.HERTZ_ROLL
+    opts = ContactOptions(
+        n_steps=4, step_exponent=1.0, tangential_size=5e-5, surface_size=5e-5, fine_halfwidth=2e-3
+    )
+    res = indent(
+        t.isotropic_web(E, nu),
+        Core(outer_radius=0.2),
+        np.array([0.2, roll]),
+        np.zeros(2),
+        head_radius=R,
+        head_length=1.0,
+        depth_max=2e-4,
+        options=opts,
+    )
+    r_eff = 1 / (1 / R + 1 / roll)
+    e_star = E / (1 - nu**2)
+    p = res.force_per_length[1:]
+    a = np.sqrt(4 * p * r_eff / (math.pi * e_star))
+    da = 100 * np.max(np.abs(res.half_width[1:] / a - 1))
+    dp = 100 * np.max(np.abs(res.peak_pressure[1:] / (2 * p / (math.pi * a)) - 1))
+    return float(a[0]), float(a[-1]), float(da), float(dp)
+
+
+def hertz_width() -> str:
+    """The half-width row of the verification table (a cell)."""
+    lo, hi, da, _ = _hertz()
+    return f"a = {1e3 * lo:.2f}-{1e3 * hi:.2f} mm: within {da:.1f} %"
+
+
+def hertz_pressure() -> str:
+    """The peak-pressure row of the verification table (a cell)."""
+    return f"within {_hertz()[3]:.2f} %"
+
+
 def head() -> str:
     """The head of the study: the bundled Rho-meter preset's."""
     h = _tests().rho_meter_head()
@@ -211,6 +269,8 @@ def head() -> str:
 
 BLOCKS: dict[str, Callable[[], str]] = {
     "head": head,
+    "hertz_width": hertz_width,
+    "hertz_pressure": hertz_pressure,
     "memory": memory,
     "own_profile": own_profile,
     "fields": fields,
