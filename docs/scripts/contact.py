@@ -261,6 +261,87 @@ def hertz_pressure() -> str:
     return f"within {_hertz()[3]:.2f} %"
 
 
+@cache
+def _ring() -> tuple[list[float], float, float, float]:
+    """The orthotropic ring on a rigid core under external pressure (the test's problem,
+    tests/contact/test_contact.py::test_orthotropic_ring_under_external_pressure): the
+    surface u_r against u = A r^k + B r^-k for E_t/E_r = 1, 100, 1e4 on the default
+    tangential grading, and the tangential displacement and the spread of u_r."""
+    import math
+
+    import numpy as np
+
+    from woundroll.contact import ContactOptions
+    from woundroll.materials.radial_modulus import Constant
+    from woundroll.materials.web import Web
+
+    t = _contact_tests()
+    growth = ContactOptions().tangential_growth
+    errs, rest = [], 0.0
+    for ratio in (1.0, 100.0, 1e4):
+        E_r = 5e6
+        web = Web(
+            thickness=t.H,
+            width=0.1,
+            E_theta=ratio * E_r,
+            radial_modulus=Constant(E_r),
+            nu_theta_z=0.0,
+            G_r_theta=E_r / 2,
+        )
+        mesh = t.build_mesh(
+            t.R_CORE,
+            t.R_OUT,
+            surface_size=2e-4,
+            radial_growth=1.1,
+            tangential_size=1e-3,
+            fine_halfwidth=2e-3,
+            tangential_growth=growth,
+        )
+        roll = t._Roll(
+            web, t.RIGID, np.array([t.R_CORE, t.R_OUT]), np.zeros(2), mesh, ContactOptions()
+        )
+        C11, C12, C22, G = roll.moduli(roll.sigma_pre)
+        lu = t._factorize(roll, (C11, C12, C22, G))
+        p = 1e4
+        surf = roll.surface
+        arc = np.diff(mesh.theta) * t.R_OUT
+        trib = 0.5 * (np.concatenate([[0.0], arc]) + np.concatenate([arc, [0.0]]))
+        F = np.zeros(2 * mesh.n_nodes)
+        F[2 * surf] = -p * trib
+        u = np.zeros_like(F)
+        u[roll.free] = lu.solve(F[roll.free])
+        k = math.sqrt(C22[0] / C11[0])
+        a, b = t.R_CORE, t.R_OUT
+        du_b = k * (b ** (k - 1) + a ** (2 * k) * b ** (-k - 1))
+        A = -p / (C11[0] * du_b)
+        u_exact = A * (b**k - a ** (2 * k) * b**-k)
+        u_fe = u[2 * surf]
+        errs.append(100 * float(np.max(np.abs(u_fe / u_exact - 1))))
+        rest = max(
+            rest,
+            float(np.max(np.abs(u[2 * surf + 1]))) / abs(u_exact),
+            float(np.ptp(u_fe)) / abs(u_exact),
+        )
+    far = math.degrees(float(np.max(np.diff(mesh.theta))))
+    return errs, rest, growth, far
+
+
+def ring() -> str:
+    """The ring row's result cell."""
+    errs, rest, _, _ = _ring()
+    return (
+        "surface u_r within "
+        + ", ".join(f"{e:.3f} %" for e in errs)
+        + f"; u_theta and the spread of u_r around the ring {rest:.0e} of u_r"
+    )
+
+
+def ring_grading() -> str:
+    """The ring row's mesh: the default tangential growth and the largest far element."""
+    _, _, growth, far = _ring()
+    return f"growth {growth:g}, far elements up to {far:.0f} deg"
+
+
 def head() -> str:
     """The head of the study: the bundled Rho-meter preset's."""
     h = _tests().rho_meter_head()
@@ -269,6 +350,8 @@ def head() -> str:
 
 BLOCKS: dict[str, Callable[[], str]] = {
     "head": head,
+    "ring": ring,
+    "ring_grading": ring_grading,
     "hertz_width": hertz_width,
     "hertz_pressure": hertz_pressure,
     "memory": memory,
