@@ -342,6 +342,58 @@ def ring_grading() -> str:
     return f"growth {growth:g}, far elements up to {far:.0f} deg"
 
 
+@cache
+def _synthetic(head_radius: float, update: bool = True) -> Any:
+    """The test's synthetic PET1 profile (30 kPa at the surface rising to ~1 MPa at the
+    core, rigid core), a head ``head_radius`` 2 cm long, to 1 mm; default options."""
+    from woundroll.contact import indent
+
+    t = _contact_tests()
+    r, s = t.pet_profile()
+    return indent(
+        t.PET1,
+        t.RIGID,
+        r,
+        s,
+        depth_max=1e-3,
+        head_radius=head_radius,
+        head_length=0.02,
+        update_modulus=update,
+    )
+
+
+def synthetic() -> str:
+    """The example's numbers: the 10 mm head with and without the update."""
+    a, b = _synthetic(0.01), _synthetic(0.01, False)
+    return (
+        f"F = {a.force[-1]:.0f} N, alpha = {_e(a.alpha)} N/m^2, beta = {_e(a.beta)} N/m, "
+        f"R^2 = {a.fit_r2:.5f}, max residual {100 * a.fit_max_rel_residual:.1f} % of F_max, "
+        f"a = {1e3 * a.half_width[-1]:.2f} mm; without the update F = {b.force[-1]:.0f} N and "
+        f"a = {1e3 * b.half_width[-1]:.2f} mm"
+    )
+
+
+def update_row() -> str:
+    """The verification table's cell: F at 1 mm without and with the update."""
+    a, b = _synthetic(0.01), _synthetic(0.01, False)
+    return f"F(1 mm) = {b.force[-1]:.0f} N vs {a.force[-1]:.0f} N"
+
+
+def head_sweep() -> str:
+    """F and a against the head radius on the synthetic profile."""
+    radii = (5e-3, 10e-3, 15e-3, 30e-3)
+    res = [_synthetic(r) for r in radii]
+    return (
+        "("
+        + ", ".join(f"{x.force[-1]:.0f}" for x in res)
+        + " N for R_h = "
+        + ", ".join(f"{1e3 * r:g}" for r in radii)
+        + " mm) while a grows ("
+        + ", ".join(f"{1e3 * x.half_width[-1]:.2f}" for x in res)
+        + " mm)"
+    )
+
+
 def head() -> str:
     """The head of the study: the bundled Rho-meter preset's."""
     h = _tests().rho_meter_head()
@@ -350,6 +402,9 @@ def head() -> str:
 
 BLOCKS: dict[str, Callable[[], str]] = {
     "head": head,
+    "synthetic": synthetic,
+    "head_sweep": head_sweep,
+    "update_row": update_row,
     "ring": ring,
     "ring_grading": ring_grading,
     "hertz_width": hertz_width,
