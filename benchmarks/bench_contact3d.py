@@ -7,8 +7,16 @@
    without the SuiteSparse headers.
 2. One whole F(d) curve with the E_r update at the default mesh, with its work counters,
    and the peak memory of the process.
+3. ``--ratio``: one Table 2 roll read with the 3D model, the user's whole process
+   (``woundroll run CASE --set contact.model=3d --json``, one BLAS/MKL thread), against the
+   yardstick of issue 23 (the straightforward 10k-layer winding,
+   :func:`yardstick.wind_per_layer`) run just before it in the same process: wall and CPU,
+   their ratios, Rho and the load average; each ``--variant`` (``name=KEY=VALUE,...``,
+   keys of ``contact.options3d``) is run the same way and its Rho compared with the default.
 
 Run: ``OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/bench_contact3d.py [--case pet2-26.7N]``
+or ``.venv/bin/python benchmarks/bench_contact3d.py --ratio --case pet1-26.7N
+--variant coarse=n_fine=5,radial_growth=1.6,tangential_growth=1.6,axial_growth=1.6``
 """
 
 from __future__ import annotations
@@ -34,8 +42,61 @@ def real_roll(name: str) -> tuple:
     return web, core, np.asarray(w.radius), np.asarray(w.sigma_r)
 
 
+def _run_3d(case: str, sets: list[str]) -> tuple[float, float, dict]:
+    """Wall and CPU seconds of one whole ``woundroll run`` with the 3D model, and its JSON."""
+    import json
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1", MKL_NUM_THREADS="1", OMP_NUM_THREADS="1")
+    src = str(Path(__file__).resolve().parents[1] / "src")
+    env["PYTHONPATH"] = src + os.pathsep + env.get("PYTHONPATH", "")
+    cmd = [sys.executable, "-m", "woundroll", "run", case, "--set", "contact.model=3d"]
+    for s in sets:
+        cmd += ["--set", s]
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    out = subprocess.run([*cmd, "--json"], env=env, check=True, capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return wall, cpu, json.loads(out.stdout)
+
+
+def ratio(case: str, variants: list[str]) -> None:
+    """The user's 3D reading of ``case`` against the 10k-layer winding yardstick."""
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from yardstick import wind_per_layer
+
+    runs = [("default", [])]
+    for v in variants:
+        name, _, kv = v.partition("=")
+        runs.append((name, [f"contact.options3d.{x}" for x in kv.split(",") if x]))
+    rho0 = None
+    for name, sets in runs:
+        c0 = time.process_time()
+        _, yard = wind_per_layer()
+        yard_cpu = time.process_time() - c0
+        load = os.getloadavg()[0]
+        wall, cpu, out = _run_3d(case, sets)
+        rho = out["hardness"]["reading"]
+        c = out["contact"]
+        rho0 = rho if rho0 is None else rho0
+        print(
+            f"{case} 3D [{name}] {c['n_dof']} DOF: wall {wall:.1f} s = {wall / yard:.1f}x the "
+            f"yardstick ({yard:.2f} s), CPU {cpu:.1f} s = {cpu / yard_cpu:.1f}x ({yard_cpu:.2f} "
+            f"s); Rho {rho:.3f} ({rho - rho0:+.3f}); load {load:.1f}"
+        )
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
+    ap.add_argument("--ratio", action="store_true", help="whole 3D run against the yardstick")
+    ap.add_argument("--variant", action="append", default=[], help="name=key=value,...")
     ap.add_argument("--case", default="pet2-26.7N")
     ap.add_argument("--depth", type=float, default=2.1e-3)
     ap.add_argument("--skip-solvers", action="store_true")
@@ -47,6 +108,9 @@ def main() -> None:
         help="n_fine of the mesh the solvers are compared on (10: the default mesh)",
     )
     args = ap.parse_args()
+    if args.ratio:
+        ratio(args.case, args.variant)
+        return
 
     from woundroll.contact.heads import Head
     from woundroll.contact.solid3d.linsolve import make_solver

@@ -66,6 +66,13 @@ class Contact3DOptions:
         Fraction of the transverse shear moduli left in a slipped element.
     solver : {"auto", "pardiso", "splu", "amg"}
         Linear solver (:mod:`woundroll.contact.solid3d.linsolve`); auto: PARDISO if installed.
+    reuse_factorisation : bool
+        Modified Newton: keep the factorisation of an earlier increment's K and solve with
+        the current K by preconditioned conjugate gradients (False: factorise every K).
+    pcg_max_iterations : int
+        Conjugate-gradient iterations allowed per solve before K is factorised afresh.
+    pcg_tol : float
+        Relative residual of those solves.
     """
 
     n_steps: int = 24
@@ -88,6 +95,9 @@ class Contact3DOptions:
     slip: str = "none"
     slip_shear_fraction: float = 0.01
     solver: str = "auto"
+    reuse_factorisation: bool = False
+    pcg_max_iterations: int = 8
+    pcg_tol: float = 1e-10
 
     def __post_init__(self) -> None:
         if self.predictor not in ("rate", "trial"):

@@ -156,7 +156,9 @@ class Roll3D:
         self.n_factor = 0
         self.n_solves = 0
         self._D: FloatArray | None = None
-        self._cols = {}
+        self._cols: dict[int, FloatArray] = {}
+        self._factored = self._exact = False
+        self.pcg_iterations = self.n_pcg = self.n_pcg_failed = 0
         self.t_assembly = self.t_factor = self.t_solve = 0.0
         # neighbours of each surface node in the (theta, z) grid, to widen the candidates
         g = np.arange(n_t * n_z).reshape(n_z, n_t)
@@ -170,23 +172,83 @@ class Roll3D:
         return D
 
     def factor(self, D: FloatArray) -> None:
-        """Assemble and factorise K for the material constants ``D`` (kept if unchanged)."""
+        """Assemble K for the material constants ``D`` (kept if unchanged) and make it the
+        matrix that :meth:`_solve` solves with.
+
+        Modified Newton (``opts.reuse_factorisation``, off by default): the solves are
+        conjugate gradients on the new K preconditioned by the factorisation of an earlier
+        one, to the relative residual ``opts.pcg_tol`` (the same answer as a fresh
+        factorisation to that tolerance: no accuracy is given up); K is factorised afresh
+        when there is no factorisation yet, or as soon as a solve needs more than
+        ``opts.pcg_max_iterations`` iterations (then for the rest of the increment)."""
         if self._D is not None and np.array_equal(D, self._D):
             return  # the factorisation and the cached flexibility columns still hold
         self._D = D.copy()
         t0 = time.perf_counter()
-        U = self.asm.upper(D)
+        self._U = self.asm.upper(D)
+        self.t_assembly += time.perf_counter() - t0
+        if self.opts.reuse_factorisation and self._factored:
+            self._Ut = self._U.T.tocsr()  # for the products with K (only here)
+            self._Ud = self._U.diagonal()
+            self._exact = False
+            return
+        self._refactor()
+
+    def _refactor(self) -> None:
         t1 = time.perf_counter()
-        self.solver.factor(U.data)
-        self.t_assembly += t1 - t0
+        self.solver.factor(self._U.data)
         self.t_factor += time.perf_counter() - t1
         self.n_factor += 1
+        self._factored = self._exact = True
+
+    def _matvec(self, x: FloatArray) -> FloatArray:
+        d = self._Ud if x.ndim == 1 else self._Ud[:, None]
+        return self._U @ x + self._Ut @ x - d * x
+
+    def _pcg(self, b: FloatArray) -> FloatArray | None:
+        """Block conjugate gradients (independent columns) on the current K preconditioned
+        by the factorised earlier K; None if it needs more than the allowed iterations."""
+        B = b.reshape(b.shape[0], -1)
+        tol = self.opts.pcg_tol * np.linalg.norm(B, axis=0)
+        x = self.solver.solve(B)
+        r = B - self._matvec(x)
+        z = self.solver.solve(r)
+        p = z.copy()
+        rz = np.einsum("ij,ij->j", r, z)
+        self.n_solves += 2 * B.shape[1]
+        for it in range(self.opts.pcg_max_iterations + 1):
+            live = np.linalg.norm(r, axis=0) > tol
+            if not np.any(live):
+                self.pcg_iterations = max(self.pcg_iterations, it)
+                self.n_pcg += it * B.shape[1]
+                return x.reshape(b.shape)
+            if it == self.opts.pcg_max_iterations:
+                break
+            q = self._matvec(p)
+            pq = np.einsum("ij,ij->j", p, q)
+            alpha = np.where(live, rz / np.where(live, pq, 1.0), 0.0)
+            x += alpha * p
+            r -= alpha * q
+            z = self.solver.solve(r)
+            self.n_solves += B.shape[1]
+            rz_new = np.einsum("ij,ij->j", r, z)
+            beta = np.where(live, rz_new / np.where(live, rz, 1.0), 0.0)
+            p = z + beta * p
+            rz = rz_new
+        return None
 
     def _solve(self, b: FloatArray) -> FloatArray:
         t0 = time.perf_counter()
-        x = self.solver.solve(b)
+        x = None if self._exact else self._pcg(b)
+        if x is None:
+            if not self._exact:
+                self.n_pcg_failed += 1
+                self.t_solve += time.perf_counter() - t0
+                self._refactor()  # too far from the factorised K: factorise this one
+                t0 = time.perf_counter()
+            x = self.solver.solve(b)
+            self.n_solves += 1 if b.ndim == 1 else b.shape[1]
         self.t_solve += time.perf_counter() - t0
-        self.n_solves += 1 if b.ndim == 1 else b.shape[1]
         return x
 
     def _widen(self, mask: NDArray[np.bool_], width: int = 2) -> NDArray[np.bool_]:
@@ -580,6 +642,9 @@ def _result3d(
             "factor_s": model.t_factor,
             "solve_s": model.t_solve,
             "setup_s": t_setup,
+            "pcg_iterations": model.n_pcg,
+            "pcg_max_iterations_used": model.pcg_iterations,
+            "pcg_refactorisations": model.n_pcg_failed,
             "slipped_elements": 0 if model.slipped is None else int(model.slipped.sum()),
         },
     )
