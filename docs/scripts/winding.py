@@ -1,0 +1,321 @@
+"""Generators of docs/winding.md's numbers (docs/scripts/regenerate.py): the 1D winding model
+(``woundroll.winding.hakiel.wind``) on the bundled PET1 26.7 N roll with 1 to 16 elements per
+layer (the whole roll solved every increment, one load step) and with each modulus rule and
+load-substep count, on the Table 3 film (K1 = 0), with layers lumped per increment on a 12 um
+film, and the two new-layer variants on the Table 2 rolls and under layer refinement; today's
+other defaults. Cost: about a minute on a quiet 2-core machine (the whole-roll reference
+solves dominate)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import replace
+from functools import cache
+from typing import Any
+
+SUBDIVISIONS = (1, 2, 4, 8, 16)
+CASE = "pet1-26.7N"
+
+
+@cache
+def _roll() -> tuple[Any, Any, float, Any]:
+    from woundroll.case import load_case
+
+    case = load_case(CASE)
+    web, core = case.web.build(), case.core.build()
+    return web, core, case.winding.final_radius(web, core), case.winding.schedule(web)
+
+
+@cache
+def _core_pressure(subdivisions: int) -> float:
+    from woundroll.winding.hakiel import WindingOptions, wind
+
+    web, core, r_out, ten = _roll()
+    opts = replace(WindingOptions(), subdivisions=subdivisions, window_layers=None, load_substeps=1)
+    return float(wind(web, core, r_out, ten, options=opts).core_pressure)
+
+
+def elements() -> str:
+    """Core pressure against the elements per layer, the observed order of the last
+    halvings and the default's distance from the Richardson limit."""
+    from woundroll.winding.hakiel import WindingOptions
+
+    default = WindingOptions().subdivisions
+    web, core, r_out, _ = _roll()
+    n = int(round((r_out - core.outer_radius) / web.thickness))
+    p = [_core_pressure(s) for s in SUBDIVISIONS]
+    head = " | ".join(f"{s}{' (default)' if s == default else ''}" for s in SUBDIVISIONS)
+    cells = " | ".join(f"{x:,.0f}".replace(",", " ") for x in p)
+    order = math.log2((p[-3] - p[-2]) / (p[-2] - p[-1]))
+    limit = p[-1] + (p[-1] - p[-2]) / (2**order - 1)
+    dev = 100 * abs(p[SUBDIVISIONS.index(default)] / limit - 1)
+    return "\n".join(
+        [
+            f"`{CASE}`, {n:,} layers, the bundled core "
+            f"(E_c = {core.stiffness / 1e9:.1f} GPa); core pressure, whole roll solved every "
+            "increment, one load step:",
+            "",
+            f"| elements per layer | {head} |",
+            "|---|" + "---|" * len(SUBDIVISIONS),
+            f"| core pressure [Pa] | {cells} |",
+            "",
+            f"Observed order of the last two halvings {order:.1f}; {default} elements per layer "
+            f"is {dev:.2f} % from the extrapolated limit.",
+        ]
+    )
+
+
+def _profile_diff(a: Any, b: Any) -> float:
+    """max |sigma_r(a) - sigma_r(b)| over b's radii, relative to b's core pressure (the
+    measure of tests/winding/test_hakiel.py)."""
+    import numpy as np
+
+    return float(
+        np.max(np.abs(np.interp(b.radius, a.radius, a.sigma_r) - b.sigma_r)) / b.core_pressure
+    )
+
+
+def k1_zero() -> str:
+    """The Table 3 film (K1 = 0, 600 layers on the aluminium tube, 2.3 MPa): error against
+    16 elements per layer and 8 load substeps (whole roll every increment) for 1-8 elements
+    per layer, one load step, today's other defaults."""
+    from woundroll.materials.radial_modulus import Pfeiffer
+    from woundroll.materials.web import Core, Web
+    from woundroll.winding.hakiel import WindingOptions, wind
+    from woundroll.winding.tension import TensionSchedule
+
+    web = Web(
+        thickness=76e-6,
+        width=0.61,
+        E_theta=4999e6,
+        radial_modulus=Pfeiffer(0.0, 246.5),
+        nu_theta_r=0.01,
+    )
+    core = Core.tube(0.1016, 0.095, 69e9, 0.33)
+    r_out, ten = 0.1016 + 600 * 76e-6, TensionSchedule(2.3e6)
+    base = WindingOptions()
+    ref = wind(
+        web,
+        core,
+        r_out,
+        ten,
+        options=replace(base, subdivisions=16, load_substeps=8, window_layers=None),
+    )
+    errs = [
+        _profile_diff(
+            wind(web, core, r_out, ten, options=replace(base, subdivisions=s, window_layers=None)),
+            ref,
+        )
+        for s in (1, 2, 4, 8)
+    ]
+    return ", ".join(f"{100 * e:.2f} % ({s})" for e, s in zip(errs, (1, 2, 4, 8), strict=True))
+
+
+def lumping() -> str:
+    """``layers_per_increment`` L on a 12 um film (2000 layers, 7.6 cm rigid core, Pfeiffer
+    K1 = 10 kPa, K2 = 100, 1.5 MPa): error against a 4x grid with 4 load substeps."""
+    from woundroll.materials.radial_modulus import Pfeiffer
+    from woundroll.materials.web import Core, Web
+    from woundroll.winding.hakiel import WindingOptions, wind
+    from woundroll.winding.tension import TensionSchedule
+
+    web = Web(thickness=12e-6, width=1.0, E_theta=5e9, radial_modulus=Pfeiffer(10e3, 100.0))
+    core, r_out, ten = Core(0.076), 0.076 + 2000 * 12e-6, TensionSchedule(1.5e6)
+    base = WindingOptions()
+    ref = wind(
+        web,
+        core,
+        r_out,
+        ten,
+        options=replace(
+            base, subdivisions=4 * base.subdivisions, load_substeps=4, window_layers=None
+        ),
+    )
+    ls = (1, 2, 4, 8, 16)
+    errs = [
+        _profile_diff(
+            wind(web, core, r_out, ten, options=replace(base, layers_per_increment=n)), ref
+        )
+        for n in ls
+    ]
+    return ", ".join(f"{100 * e:.2f} % (L = {n})" for e, n in zip(errs, ls, strict=True))
+
+
+def rules() -> str:
+    """Core pressure of PET1 26.7 N for each modulus rule, one step per layer and 4, 16, 64
+    load substeps (the reference: the midpoint rule at 64 substeps)."""
+    from woundroll.winding.hakiel import WindingOptions, wind
+
+    web, core, r_out, ten = _roll()
+    subs = (1, 4, 16, 64)
+    p = {
+        (rule, n): float(
+            wind(
+                web,
+                core,
+                r_out,
+                ten,
+                options=replace(WindingOptions(), modulus_update=rule, load_substeps=n),
+            ).core_pressure
+        )
+        for rule in ("explicit", "midpoint", "end")
+        for n in subs
+    }
+    ref = p["midpoint", 64]
+
+    def pa(x: float) -> str:
+        return f"{x:,.0f}".replace(",", " ")
+
+    lines = ["| rule | 1 step | 4 substeps | 16 | 64 |", "|---|---|---|---|---|"]
+    for rule in ("explicit", "midpoint", "end"):
+        first = f"{pa(p[rule, 1])} Pa ({100 * (p[rule, 1] / ref - 1):+.2f} %)"
+        lines.append(f"| {rule} | {first} | " + " | ".join(pa(p[rule, n]) for n in subs[1:]) + " |")
+    return "\n".join(lines)
+
+
+#: The bundled Table 2 rolls (PET1, PET2).
+TABLE2 = (
+    "pet1-26.7N",
+    "pet1-33.4N",
+    "pet1-40N",
+    "pet1-46.7N",
+    "pet2-26.7N",
+    "pet2-53.4N",
+    "pet2-80N",
+)
+
+
+def _bundled(name: str) -> tuple[Any, Any, float, Any]:
+    from woundroll.case import load_case
+
+    case = load_case(name)
+    web, core = case.web.build(), case.core.build()
+    return web, core, case.winding.final_radius(web, core), case.winding.schedule(web)
+
+
+def _mid_sigma_r(res: Any) -> float:
+    """-sigma_r at the middle radius of the roll [Pa]."""
+    import numpy as np
+
+    r = np.asarray(res.radius)
+    mid = 0.5 * (r[0] + r[-1])
+    return float(-np.interp(mid, r, res.sigma_r))
+
+
+def new_layer() -> str:
+    """Core pressure and mid-roll sigma_r of the Table 2 rolls, laid-on against elastic new
+    layer, default options otherwise."""
+    from woundroll.winding.hakiel import WindingOptions, wind
+
+    lines = [
+        "| roll | laid on [kPa] | elastic [kPa] | difference "
+        "| sigma_r at mid-roll, laid on / elastic [kPa] |",
+        "|---|---|---|---|---|",
+    ]
+    for name in TABLE2:
+        web, core, r_out, ten = _bundled(name)
+        a = wind(web, core, r_out, ten, options=replace(WindingOptions(), new_layer="laid_on"))
+        b = wind(web, core, r_out, ten, options=replace(WindingOptions(), new_layer="elastic"))
+        pa, pb = float(a.core_pressure), float(b.core_pressure)
+        lines.append(
+            f"| {name} | {pa / 1e3:.1f} | {pb / 1e3:.1f} | {100 * (pb / pa - 1):+.1f} % "
+            f"| {_mid_sigma_r(a) / 1e3:.1f} / {_mid_sigma_r(b) / 1e3:.1f} |"
+        )
+    return "\n".join(lines)
+
+
+def surface_ratio() -> str:
+    """E_theta / E_r at the free surface (zero pressure) of PET1 and PET2."""
+    parts = []
+    for label, name in (("PET1", "pet1-26.7N"), ("PET2", "pet2-26.7N")):
+        web = _bundled(name)[0]
+        e_r = float(web.radial_modulus.modulus_at_pressure(0.0))
+        parts.append(f"{web.E_theta / e_r:,.0f} for {label}")
+    return ", ".join(parts)
+
+
+def layer_thickness() -> str:
+    """PET1 26.7 N with the layer thickness halved three times at the same stresses: the
+    two new-layer variants meet."""
+    from woundroll.winding.hakiel import WindingOptions, wind
+
+    web, core, r_out, ten = _bundled(CASE)
+    lines = [
+        "| h [um] | layers | laid on [Pa] | elastic [Pa] | difference |",
+        "|---|---|---|---|---|",
+    ]
+    for k in range(4):
+        w = replace(web, thickness=web.thickness / 2**k)
+        n = int(round((r_out - core.outer_radius) / w.thickness))
+        p = [
+            float(
+                wind(
+                    w, core, r_out, ten, options=replace(WindingOptions(), new_layer=v)
+                ).core_pressure
+            )
+            for v in ("laid_on", "elastic")
+        ]
+        lines.append(
+            f"| {1e6 * w.thickness:g}{' (the web)' if k == 0 else ''} | {n:,} ".replace(",", " ")
+            + f"| {p[0]:,.0f} | {p[1]:,.0f} | {100 * (p[1] / p[0] - 1):+.2f} % |".replace(",", " ")
+        )
+    return "\n".join(lines)
+
+
+@cache
+def _hakiel_tests() -> Any:
+    """tests/winding/test_hakiel.py as a module (its rolls of the lazy-part test)."""
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[2] / "tests" / "winding" / "test_hakiel.py"
+    spec = importlib.util.spec_from_file_location("docs_test_hakiel", path)
+    assert spec is not None and spec.loader is not None
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def lazy() -> str:
+    """The default (levels of doubling depth) against the whole roll solved every increment:
+    largest |d sigma_r| / core pressure, on the rolls of test_default_deep_part_matches_exact_solve
+    plus the benchmark film at 10,000 layers and PET1 with the other modulus rules."""
+    from woundroll.materials.web import Core
+    from woundroll.winding.hakiel import WindingOptions, wind
+    from woundroll.winding.tension import TensionSchedule
+
+    t = _hakiel_tests()
+    cases = dict(t.LAZY_CASES)
+    cases["film-10000"] = (
+        t._film(),
+        Core(0.076),
+        0.076 + 10000 * 12e-6,
+        TensionSchedule(1.5e6),
+        {},
+    )
+    pet1 = cases["pet1"]
+    for rule in ("explicit", "end"):
+        cases[f"pet1 ({rule} rule)"] = (*pet1[:4], {"modulus_update": rule})
+    lines = [
+        "| roll | layers | default against exact |",
+        "|---|---|---|",
+    ]
+    for name, (web, core, r_out, sched, extra) in cases.items():
+        a = wind(web, core, r_out, sched, options=WindingOptions(**extra))
+        b = wind(web, core, r_out, sched, options=WindingOptions(window_layers=None, **extra))
+        n = int(round((r_out - core.outer_radius) / web.thickness))
+        lines.append(f"| `{name}` | {n:,} | {100 * _profile_diff(a, b):.3f} % |")
+    return "\n".join(lines)
+
+
+BLOCKS: dict[str, Callable[[], str]] = {
+    "lazy": lazy,
+    "new_layer": new_layer,
+    "surface_ratio": surface_ratio,
+    "layer_thickness": layer_thickness,
+    "rules": rules,
+    "elements": elements,
+    "k1_zero": k1_zero,
+    "lumping": lumping,
+}
