@@ -371,6 +371,10 @@ def test_plots_hoop_stress_smooth_and_impact_from_contact(client):
     st = plots["plot-sigma-t"]["series"][0]
     rm, mean = w.layer_mean_hoop_stress()
     np.testing.assert_allclose(st["y"], mean / 1e3, rtol=1e-12)
+    # the wound-on tension against radius beside it (issue 24 item 6)
+    wot = plots["plot-sigma-t"]["series"][1]
+    assert wot["label"] == "wound-on tension (WOT)"
+    np.testing.assert_allclose(wot["y"], w.wot / 1e3, rtol=1e-12)
     assert roughness(st["y"]) < 1e-3  # the layer means are smooth
     imp = plots["plot-impact"]
     x = imp["series"][0]["x"]

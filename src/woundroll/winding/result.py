@@ -155,6 +155,9 @@ class WindingResult:
             label=r"$\sigma_\theta$ (nodes)",
         )
         ax_t.plot(rm * 100.0, st_mean / 1e3, color="C1", label=r"$\sigma_\theta$ (layer mean)")
+        # the tension each layer was wound on with (taper, nip, winding mode), beside what is
+        # left of it in the roll
+        ax_t.plot(rc, self.wot / 1e3, color="C3", ls="--", label="wound-on tension (WOT)")
         ax_t.axhline(0.0, color="0.6", lw=0.5)
         ax_t.set_ylabel(r"hoop stress $\sigma_\theta$ [kPa]")
         ax_t.legend(loc="best")

@@ -57,7 +57,8 @@ def _plot(pid: str, title: str, xlabel: str, ylabel: str, series: list[Any]) -> 
 
 
 def _winding_plots(w: Any) -> list[dict[str, Any]]:
-    """Radial stress and the layer-mean hoop stress wound into the roll."""
+    """Radial stress, the layer-mean hoop stress wound into the roll and the wound-on
+    tension each layer was laid on with (taper, nip, winding mode)."""
     # the node values of sigma_theta saw-tooth with the layer period (within a layer the hoop
     # stress falls outward); the layer means from equilibrium are the field
     rm, st = w.layer_mean_hoop_stress()
@@ -71,10 +72,13 @@ def _winding_plots(w: Any) -> list[dict[str, Any]]:
         ),
         _plot(
             "plot-sigma-t",
-            "hoop stress (mean over each layer)",
+            "hoop stress (mean over each layer) and wound-on tension",
             "radius [cm]",
             "sigma_theta [kPa]",
-            [_series(rm * 100, st / 1e3, "sigma_theta, layer mean")],
+            [
+                _series(rm * 100, st / 1e3, "sigma_theta, layer mean"),
+                _series(w.radius * 100, w.wot / 1e3, "wound-on tension (WOT)"),
+            ],
         ),
     ]
 
