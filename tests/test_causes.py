@@ -107,6 +107,8 @@ def test_nip_deflection_on_a_soft_web_is_reported_not_identifiable():
     assert np.max(np.abs(h / roll.web.thickness - 1)) < 0.003
 
 
+# slow: a fit of causes with many forward runs (~20 s)
+@pytest.mark.slow
 def test_posterior_sds_scaled_by_the_residuals():
     # a fast fit on 7 sectors with a synthetic P_s -> reading map (through the cache): the
     # readings are the reduced model's own at 105 % tension plus a CMD step the smooth

@@ -83,6 +83,9 @@ def test_recovers_head_length_from_synthetic_readings(tmp_path):
     assert r0.hardness.reading == pytest.approx(d["rolls"][0]["model_fitted"], rel=1e-3)
 
 
+# slow: a synthetic calibration study, ~50 full model runs (the command line path stays in the
+# default suite)
+@pytest.mark.slow
 def test_misspecified_model_is_caught_by_leave_one_out(tmp_path):
     # truth: the PET2 stack is 2.5x softer than its preset (K2 / 2.5) while PET1 is as
     # preset; fitting the head length alone cannot serve both, and the rolls left out say so

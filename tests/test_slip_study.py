@@ -21,6 +21,9 @@ def study():
     return slip_factor_study("pet2-53.4N", emulation_cases=("pet2-53.4N",))
 
 
+# slow: with the next test it runs the slip study (~30 s of the default suite);
+# tests/contact/test_slip2d.py keeps the emulation in the default suite
+@pytest.mark.slow
 def test_emulation_rows_read_lower_with_slip(study) -> None:
     """Reduced shear where SF >= 1 softens the roll: lower reading, deeper striker (2D:
     measured 24.0 -> 13.4 Rho FD, 1.43 -> 2.01 mm); the no-slip row is the study's own
@@ -35,6 +38,8 @@ def test_emulation_rows_read_lower_with_slip(study) -> None:
     assert row["rho_fd"] == pytest.approx(study.row["rho_fd"], rel=1e-9)
 
 
+# slow: the slip study (see above)
+@pytest.mark.slow
 def test_emulation_in_tables_json_and_plot(study, tmp_path) -> None:
     titles = [t.title for t in study.summary()]
     assert len(titles) == 2 and "Figure 19" in titles[1]

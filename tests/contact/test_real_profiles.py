@@ -86,6 +86,9 @@ def max_change(res: ContactResult, ref: ContactResult, depth: float) -> float:
     )
 
 
+# slow: a refined-mesh contact solve per case (~25 s together); the mesh convergence tests of
+# tests/contact/test_convergence.py stay in the default suite
+@pytest.mark.slow
 @pytest.mark.parametrize("name", list(CASES))
 def test_default_mesh_converged_on_real_profiles(name: str) -> None:
     """Default mesh vs each parameter refined alone (8 depth increments on both: the mesh

@@ -73,6 +73,9 @@ def test_slip_off_and_its_limits_leave_the_curve_unchanged() -> None:
         np.testing.assert_array_equal(res.tau_r_theta, plain.tau_r_theta)
 
 
+# slow: a contact solve with the slip iteration at every depth (~16 s);
+# test_pipeline_reading_with_slip_is_lower keeps slip in the default suite
+@pytest.mark.slow
 def test_slip_softens_the_roll_at_every_depth_and_is_consistent() -> None:
     """Monotone: the reduced shear makes the roll softer at every depth (F with slip <=
     F without; measured 0.36-0.74 of it); the more shear is left, the stiffer (fractions

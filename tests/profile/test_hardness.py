@@ -344,6 +344,8 @@ def _sector_rho(w, sectors, contact, readout) -> np.ndarray:
     )
 
 
+# slow: two full profile windings (~11 s)
+@pytest.mark.slow
 def test_deep_levels_keep_the_reading_of_the_previous_winding() -> None:
     # Rho per sector from the default winding (deep part in levels, window 16 / flush 4)
     # against the previous single frozen stack (window 24 / flush 8) and the whole stack

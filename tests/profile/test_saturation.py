@@ -62,6 +62,9 @@ def test_hardness_result_reports_the_scale_end(tmp_path):
     assert any("shows the scale's end" in w for w in r.warnings)
 
 
+# slow: the whole Table 3 profile (~25 s); the README command
+# test runs the same CLI path (3 sectors) in the default suite
+@pytest.mark.slow
 def test_table3_profile_through_the_cli(tmp_path):
     # the user's path: `woundroll run pet3-2.3MPa --json --out DIR`; the Table 3 roll's
     # thick lanes read beyond the dial in plane strain: shown at 100, flagged, excluded
