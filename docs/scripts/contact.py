@@ -17,14 +17,19 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 @cache
-def _tests() -> Any:
-    """tests/contact/test_real_profiles.py as a module (its cases and helpers)."""
-    path = ROOT / "tests" / "contact" / "test_real_profiles.py"
-    spec = importlib.util.spec_from_file_location("docs_test_real_profiles", path)
+def _test_module(name: str) -> Any:
+    """tests/contact/<name>.py as a module: the page shows the tests' own problems."""
+    path = ROOT / "tests" / "contact" / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(f"docs_{name}", path)
     assert spec is not None and spec.loader is not None
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
     return mod
+
+
+def _tests() -> Any:
+    """tests/contact/test_real_profiles.py (its cases and helpers)."""
+    return _test_module("test_real_profiles")
 
 
 @cache
@@ -203,15 +208,9 @@ def memory() -> str:
     return f"3 x {n_rows} x {n_el} floats, {mb:.1f} MB, at the default mesh (PET1 26.7 N)"
 
 
-@cache
 def _contact_tests() -> Any:
-    """tests/contact/test_contact.py as a module (its Hertz problem)."""
-    path = ROOT / "tests" / "contact" / "test_contact.py"
-    spec = importlib.util.spec_from_file_location("docs_test_contact", path)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    """tests/contact/test_contact.py (its Hertz problem)."""
+    return _test_module("test_contact")
 
 
 @cache

@@ -111,18 +111,11 @@ def saturated() -> str:
     return f"{int(p.saturated.sum())} of {p.z.size} sectors saturate"
 
 
-#: The bundled rolls of section 6's table: Table 2 (PET1, PET2) and Table 3.
-ROLLS = (
-    "pet1-26.7N",
-    "pet1-33.4N",
-    "pet1-40N",
-    "pet1-46.7N",
-    "pet2-26.7N",
-    "pet2-53.4N",
-    "pet2-80N",
-    "pet3-2.3MPa",
-    "pet3-3.45MPa",
-)
+#: The bundled rolls of section 6's table: Table 2 (PET1, PET2; the studies' list) and
+#: Table 3.
+from woundroll.studies._common import TABLE2  # noqa: E402
+
+ROLLS = (*TABLE2, "pet3-2.3MPa", "pet3-3.45MPa")
 
 
 @cache

@@ -174,16 +174,8 @@ def rules() -> str:
     return "\n".join(lines)
 
 
-#: The bundled Table 2 rolls (PET1, PET2).
-TABLE2 = (
-    "pet1-26.7N",
-    "pet1-33.4N",
-    "pet1-40N",
-    "pet1-46.7N",
-    "pet2-26.7N",
-    "pet2-53.4N",
-    "pet2-80N",
-)
+#: The bundled Table 2 rolls (PET1, PET2): the studies' list.
+from woundroll.studies._common import TABLE2  # noqa: E402
 
 
 def _bundled(name: str) -> tuple[Any, Any, float, Any]:
