@@ -379,6 +379,19 @@ def ref_cost() -> str:
     return f"{min(cpu):.0f}-{max(cpu):.0f} CPU s a roll when they were made"
 
 
+def pile_effect() -> str:
+    """How much more the 2 cm pile reads than 8.89 cm, 2D (live) and 3D (stored) (inline)."""
+    ref = _ref()["cases"]
+    low, tall = "pet2-53.4N-H2cm", "pet2-53.4N"
+
+    def rho2(key: str) -> float:
+        return float(_run(key, "2d").hardness.to_dict()["rho_fd"])
+
+    d2 = rho2(low) / rho2(tall) - 1
+    d3 = ref[low]["3d"]["rho_fd"] / ref[tall]["3d"]["rho_fd"] - 1
+    return f"2D reads {100 * d2:+.0f} %, 3D {100 * d3:+.0f} %"
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
     "vs2d": vs2d,
     "vs2d_ratio": vs2d_ratio,
@@ -394,6 +407,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "basin": basin,
     "constants": constants,
     "ref_cost": ref_cost,
+    "pile_effect": pile_effect,
 }
 
 if __name__ == "__main__":

@@ -294,6 +294,25 @@ def zone() -> str:
     return "\n".join(lines)
 
 
+def pile_ratios() -> str:
+    """The pile-height ratios (2 / 8.89 cm) of the layered roll, frozen shear and a lower
+    G/E_r, for the bullet under "Which model reads a roll" (inline)."""
+    rows = _rows()
+    tall = next(r for r in rows if r["series"] == "table2" and r["case"] == "pet2-53.4N")
+    low = next(r for r in rows if r["series"] == "pile-height")
+
+    def q(key: str) -> float:
+        return low[key] / tall[key]
+
+    lay = [q(k) for k in LAYERED]
+    lower = [q("rho_2d_shear_ratio1"), q("rho_2d_shear_ratio0.5")]
+    return (
+        f'(`contact.model = "layered"`: {min(lay):.2f}-{max(lay):.2f} over mu 0.1-0.5), '
+        f"frozen shear ({q('rho_2d_shear_frozen'):.2f}) or a lower G/E_r "
+        f"({min(lower):.2f}-{max(lower):.2f})"
+    )
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
     "test_roll": test_roll,
     "mu_table": mu_table,
@@ -308,6 +327,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "effects": effects,
     "shear08": shear08,
     "zone": zone,
+    "pile_ratios": pile_ratios,
 }
 
 if __name__ == "__main__":
