@@ -731,6 +731,21 @@ def slip_checks() -> str:
     )
 
 
+def locking() -> str:
+    """The curved element with the full hoop integration against the default (assumed hoop
+    strain): F at depth_max on PET2 26.7 N, the study's case (inline)."""
+    from woundroll.contact import ContactOptions
+
+    t = _tests()
+    name = "pet2-26.7N"
+    full = _solve(name, ContactOptions(assumed_hoop=False))
+    base = _solve(name, ContactOptions())
+    return (
+        f"`assumed_hoop=False`: {full.force[-1]:.1f} N instead of {base.force[-1]:.1f} N, "
+        f"{name} at {1e3 * t.CASES[name]:g} mm"
+    )
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
     "head": head,
     "synthetic": synthetic,
@@ -758,6 +773,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "slip_steps": slip_steps,
     "slip_cost": slip_cost,
     "slip_checks": slip_checks,
+    "locking": locking,
 }
 
 if __name__ == "__main__":
