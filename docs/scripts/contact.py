@@ -594,42 +594,9 @@ def _step_tests() -> Any:
     return _test_module("test_step_control")
 
 
-@cache
-def _slack_force(n: int, explicit: bool) -> float:
-    """F at 3.2 mm of the test's slack Table 3 roll (outer 3 mm ramped to zero), Rho-meter."""
-    from woundroll.contact import ContactOptions, indent
-    from woundroll.instruments import get_instrument
-
-    web, core, r, s = _step_tests().table3_roll(3e-3)
-    ins = get_instrument("rho-meter")
-    opts = ContactOptions(n_steps=n, predictor=False) if explicit else ContactOptions(n_steps=n)
-    res = indent(
-        web,
-        core,
-        r,
-        s,
-        head_radius=ins.head_radius,
-        head_length=ins.head_length,
-        depth_max=3.2e-3,
-        options=opts,
-    )
-    return float(res.force[-1])
-
-
-def secant() -> str:
-    """F(3.2 mm) of the slack Table 3 roll at 24/48/96 steps, secant vs explicit midpoint."""
-    sec = [_slack_force(n, False) for n in (24, 48, 96)]
-    exp = [_slack_force(n, True) for n in (24, 48, 96)]
-    return (
-        " / ".join(f"{x:.2f}" for x in sec)
-        + " N with the secant modulus, "
-        + " / ".join(f"{x:.1f}" for x in exp)
-        + " N with the explicit midpoint"
-    )
-
-
 def window() -> str:
-    """The slack Table 3 roll's reading at 24, 48 and 192 steps (the fit window solved)."""
+    """The slack-ramped Table 3 roll's reading (tests/contact/test_step_control.py, started
+    at the model's reach as the profile does for slack sectors) at 24, 48 and 192 steps."""
     t = _step_tests()
     roll = t.table3_roll(3e-3)
     rho = [t.table3_rho(roll, float("inf"), f"n_steps={n}") for n in (24, 48, 192)]
@@ -767,7 +734,6 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "fine_zone_row": fine_zone_row,
     "step_row": step_row,
     "synthetic_extremes": synthetic_extremes,
-    "secant": secant,
     "window": window,
     "step_accuracy": step_accuracy,
     "slip_steps": slip_steps,
