@@ -171,14 +171,21 @@ def _vs2d() -> tuple[list[float], list[float], list[float]]:
     return list(d[idx]), list(f3[idx]), list(f2)
 
 
+def _sig3(x: float) -> str:
+    """``x`` to three significant digits, trailing zeros kept: 28.0, 1.77, 101."""
+    import math
+
+    return f"{x:.{max(0, 2 - math.floor(math.log10(abs(x))))}f}"
+
+
 def vs2d() -> str:
     """The 3D against the 2D table on PET2 26.7 N."""
     d, f3, f2 = _vs2d()
     lines = [
         "| depth [mm] | " + " | ".join(f"{1e3 * x:.2f}" for x in d) + " |",
         "|---|" + "---|" * len(d),
-        "| F 3D [N] | " + " | ".join(f"{x:.3g}" for x in f3) + " |",
-        "| F 2D (plane strain x head length) [N] | " + " | ".join(f"{x:.3g}" for x in f2) + " |",
+        "| F 3D [N] | " + " | ".join(_sig3(x) for x in f3) + " |",
+        "| F 2D (plane strain x head length) [N] | " + " | ".join(_sig3(x) for x in f2) + " |",
         "| ratio | " + " | ".join(f"{a / b:.2f}" for a, b in zip(f3, f2, strict=True)) + " |",
     ]
     return "\n".join(lines)
