@@ -399,6 +399,21 @@ def pile_effect() -> str:
     return f"2D reads {100 * d2:+.0f} %, 3D {100 * d3:+.0f} %"
 
 
+def mesh_growth() -> str:
+    """The 3D mesh's default growth away from the contact zone (inline; a default of
+    ``Contact3DOptions``)."""
+    from woundroll.contact.solid3d.solver import Contact3DOptions
+
+    o = Contact3DOptions()
+    g = {o.radial_growth, o.tangential_growth, o.axial_growth}
+    if len(g) == 1:
+        return f"growth {o.radial_growth:g} in all three directions"
+    return (
+        f"growth {o.radial_growth:g} radially, {o.tangential_growth:g} along the hoop and "
+        f"{o.axial_growth:g} along the CMD"
+    )
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
     "vs2d": vs2d,
     "vs2d_ratio": vs2d_ratio,
@@ -415,6 +430,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "constants": constants,
     "ref_cost": ref_cost,
     "pile_effect": pile_effect,
+    "mesh_growth": mesh_growth,
 }
 
 if __name__ == "__main__":
