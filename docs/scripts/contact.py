@@ -713,6 +713,43 @@ def locking() -> str:
     )
 
 
+def semi_width_reading() -> str:
+    """PET1 26.7 N read with the model's semi-contact width and with the paper's accepted
+    a = 0.6 cm (the pipeline, bundled case; inline)."""
+    import woundroll
+
+    runs = []
+    for over in ([], ["tester.semi_contact_width='6 mm'"]):
+        res = woundroll.run(woundroll.load_case("pet1-26.7N", over))
+        runs.append(res)
+    a, b = (r.hardness.to_dict() for r in runs)
+    return (
+        f"PET1 26.7 N reads {a['rho_fd']:.1f} Rho (FD) with the model's a of "
+        f"{1e3 * runs[0].contact.semi_contact_width:.2f} mm at the impact depth, and "
+        f"{b['rho_fd']:.1f} Rho with a = 0.6 cm, m_r = {1e3 * b['effective_mass_kg']:.1f} g: "
+        f"the FD reading does depend on a, through the active mass; the energy model has no "
+        f"mass and reads {a['rho_energy']:.1f} and {b['rho_energy']:.1f}"
+    )
+
+
+def fine_zone_margin() -> str:
+    """The contact half-width at the deepest depth solved against a_geo on the study's
+    Table 2 rolls (tests/contact/test_real_profiles.py's cases; inline)."""
+    import math
+
+    from woundroll.contact import ContactOptions
+
+    t = _tests()
+    out = {}
+    for name, depth in (t.CASES | t.MORE_CASES).items():
+        res = _solve(name, ContactOptions())
+        r_eff = 1.0 / (1.0 / t.rho_meter_head()["head_radius"] + 1.0 / res.outer_radius)
+        frac = res.half_width[-1] / math.sqrt(2.0 * r_eff * depth)
+        mat = name.split("-")[0].upper()
+        out[mat] = max(out.get(mat, 0.0), frac)
+    return " and ".join(f"{v:.2f} a_geo on the {k} rolls" for k, v in sorted(out.items()))
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
     "head": head,
     "synthetic": synthetic,
@@ -740,6 +777,8 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "slip_cost": slip_cost,
     "slip_checks": slip_checks,
     "locking": locking,
+    "semi_width_reading": semi_width_reading,
+    "fine_zone_margin": fine_zone_margin,
 }
 
 if __name__ == "__main__":
