@@ -123,7 +123,9 @@ def test_round_trip_pet1_rho():
         (
             "pet3-2.3MPa",
             ["winding.thickness_profile=''", "winding.nip_load='5 pli'", "winding.friction=0.2"],
-            2.5,
+            # below the case's tension: PET3 at 2.3 MPa already reads beyond the Rho-meter's
+            # 0-100 scale with the calibrated 7.82 mm head (2.5x read 189 Rho: not a reading)
+            0.5,
             "Rho",
         ),
     ],
