@@ -519,6 +519,72 @@ def work() -> str:
     return "per increment " + ", ".join(cells)
 
 
+# ---------------------------------------------------------------- docs/assumptions.md's
+# sentences (the same problems as the tables above, as percentages)
+
+
+def rules_prose() -> str:
+    """One step per layer, explicit and end-of-increment rules against the midpoint
+    reference (64 substeps), PET1 26.7 N."""
+    from woundroll.winding.hakiel import WindingOptions, wind
+
+    web, core, r_out, ten = _roll()
+
+    def p(rule: str, n: int) -> float:
+        opts = replace(WindingOptions(), modulus_update=rule, load_substeps=n)
+        return float(wind(web, core, r_out, ten, options=opts).core_pressure)
+
+    ref = p("midpoint", 64)
+    return (
+        f"explicit {100 * (p('explicit', 1) / ref - 1):+.1f} %, end-of-increment "
+        f"{100 * (p('end', 1) / ref - 1):+.1f} %"
+    )
+
+
+def new_layer_prose() -> str:
+    """Core pressure, elastic against laid-on new layer, the Table 2 rolls."""
+    from woundroll.winding.hakiel import WindingOptions, wind
+
+    out: dict[str, list[tuple[str, float]]] = {}
+    for name in TABLE2:
+        web, core, r_out, ten = _bundled(name)
+        pa, pb = (
+            float(
+                wind(
+                    web, core, r_out, ten, options=replace(WindingOptions(), new_layer=v)
+                ).core_pressure
+            )
+            for v in ("laid_on", "elastic")
+        )
+        out.setdefault(name.split("-")[0].upper(), []).append(
+            (name.split("-")[1].replace("N", ""), 100 * (pb / pa - 1))
+        )
+    return "; ".join(
+        f"{m} {' / '.join(t for t, _ in v)} N: {' / '.join(f'{d:.1f}' for _, d in v)} %"
+        for m, v in out.items()
+    )
+
+
+def layer_thickness_prose() -> str:
+    """PET1 26.7 N, the layer thickness halved three times: elastic against laid on."""
+    from woundroll.winding.hakiel import WindingOptions, wind
+
+    web, core, r_out, ten = _bundled(CASE)
+    cells = []
+    for k in range(4):
+        w = replace(web, thickness=web.thickness / 2**k)
+        pa, pb = (
+            float(
+                wind(
+                    w, core, r_out, ten, options=replace(WindingOptions(), new_layer=v)
+                ).core_pressure
+            )
+            for v in ("laid_on", "elastic")
+        )
+        cells.append(f"{abs(100 * (pb / pa - 1)):.1f} % at {1e6 * w.thickness:g} um")
+    return ", ".join(cells)
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
     "lazy": lazy,
     "new_layer": new_layer,
@@ -535,4 +601,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "air": air,
     "frozen_period": frozen_period,
     "work": work,
+    "rules_prose": rules_prose,
+    "new_layer_prose": new_layer_prose,
+    "layer_thickness_prose": layer_thickness_prose,
 }
