@@ -170,10 +170,44 @@ def coverage() -> str:
     )
 
 
+def causes_round_trip() -> str:
+    """tests/test_causes.py::test_round_trip_thickness_bands_and_tension: the fit's sentences,
+    the recovered tension and the thickness error."""
+    import numpy as np
+
+    from woundroll.case import load_case
+    from woundroll.inverse.causes import ProfileModel, fit_causes
+    from woundroll.inverse.diagnosis import RollModel, forward_curve
+    from woundroll.io.readings import readings_from_arrays
+
+    case = load_case("pet2-53.4N", ["web.width='24 in'"])
+    roll = RollModel.from_case(case)
+    curve = forward_curve(roll, [15, 40])
+    pos = np.linspace(0, case.web.width, 241)
+    m = ProfileModel(roll, curve, pos, np.full(pos.size, roll.web.thickness), 6, 31, False)
+    theta = np.zeros(7)
+    theta[0], theta[3], theta[5] = np.log(1.1), 0.012, -0.008
+    x = np.linspace(1, 23, 12) * 0.0254
+    truth = m.readings(theta, x)
+    rng = np.random.default_rng(0)
+    xs = np.repeat(x, 3)
+    r = readings_from_arrays(xs, np.repeat(truth, 3) + 0.4 * rng.standard_normal(xs.size))
+    fit = fit_causes(case, r, n_bands=6)
+    zz, hf, _ = fit.thickness_profile()
+    ht = m.thickness(theta[1:], zz)
+    err = np.max(np.abs(hf - ht)) / roll.web.thickness
+    said = "; ".join(f'"{c["sentence"]}"' for c in fit.causes[:3])
+    return (
+        f"{said}; the fitted thickness within {100 * err:.2f} % of h of the truth everywhere, "
+        f"{fit.forward_runs} forward runs"
+    )
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
     "sentence": sentence,
     "midpoints": midpoints,
     "smoothness": smoothness,
     "round_trips": round_trips,
     "coverage": coverage,
+    "causes_round_trip": causes_round_trip,
 }
