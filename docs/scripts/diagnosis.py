@@ -100,7 +100,7 @@ def round_trips() -> str:
     nip = nip.model_copy(
         update={"winding": nip.winding.model_copy(update={"thickness_profile": None})}
     )
-    cases.append(("PET3 with nip", nip, 2.5, "Rho"))
+    cases.append(("PET3 with nip, g", nip, 2.5, "g"))
     cells = []
     for label, case, factor, scale in cases:
         model = t.RollModel.from_case(case, scale)
