@@ -27,8 +27,8 @@ ends, and so had the 3D model the constants were fitted to). c_b, c_a
 (:data:`BASIN_FACTOR`, :data:`END_FACTOR`) are fitted to the 3D model on two rolls and
 validated on eight more rolls and two longer heads (docs/contact.md). The spread carries
 no factor of the web's CMD stiffness: a plate on a foundation would suggest
-(E_z/E_theta)^(1/4), but the 3D model with E_z = E_theta / 8 is as much stiffer than plane strain as with E_z = E_theta, and s(d)
-without a factor matches it (docs/contact.md).
+(E_z/E_theta)^(1/4), but the 3D model with E_z = E_theta / 8 is as much stiffer than
+plane strain as with E_z = E_theta, and s(d) without a factor matches it (docs/contact.md).
 
 Limits: s / L -> 0 (a head much longer than the basin) gives plane strain back; the
 stresses, the slip factor and the semi-contact width stay those of the 2D solution at the
