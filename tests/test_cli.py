@@ -322,3 +322,32 @@ def test_set_provenance_in_python():
     assert c.source_of("winding.tension") == "web form"
     assert c.winding.tension == ("force_per_length", pytest.approx(350.2536704929527, rel=1e-12))
     assert data["winding"]["tension"] == "26.7 N"  # the caller's table is left alone
+
+
+def test_run_json_loads_no_printing_or_pool_machinery():
+    """``woundroll run CASE --json`` (the command a sweep or a script calls thousands of
+    times) imports neither rich (~45 ms: nothing is printed through it), multiprocessing
+    and concurrent.futures (one roll has no pool), numba (the kernels load through
+    llvmlite) nor matplotlib (no plot asked): issue 23's start-up. A fresh interpreter:
+    the test process itself has imported everything."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, io, contextlib\n"
+        "sys.argv = ['woundroll', 'run', 'pet1-26.7N', '--json']\n"
+        "from woundroll.app.cli.entry import main\n"
+        "buf = io.StringIO()\n"
+        "try:\n"
+        "    with contextlib.redirect_stdout(buf):\n"
+        "        main()\n"
+        "except SystemExit as e:\n"
+        "    assert not e.code, e.code\n"
+        "assert '\"hardness\"' in buf.getvalue()\n"
+        "heavy = ('rich', 'multiprocessing', 'concurrent.futures.process', 'numba',"
+        " 'matplotlib', 'scipy.sparse')\n"
+        "print(','.join(m for m in heavy if m in sys.modules))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert out.stdout.strip() == "", out.stdout

@@ -34,7 +34,7 @@ import io
 import math
 import re
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -43,6 +43,7 @@ from numpy.typing import NDArray
 
 from woundroll.errors import InputError
 from woundroll.io.readings import DISPLAY_UNITS, Readings
+from woundroll.profile.stats import ProfileStats, profile_stats
 
 FloatArray = NDArray[np.float64]
 
@@ -196,20 +197,15 @@ def find_faults(
 
 
 @dataclass(frozen=True)
-class ProfileCheck:
-    """One roll's measured profile as a hardness profiler reports it (module docstring)."""
+class ProfileCheck(ProfileStats):
+    """One roll's measured profile as a hardness profiler reports it (module docstring): the
+    statistics of its per-position means (the fields of :class:`ProfileStats`, the same the
+    model's predicted profile is judged by) with the file's source, scale and ids, and the
+    fault list."""
 
     source: str
     scale: str
     ids: dict[str, str]
-    n: int
-    mean: float
-    sd: float
-    cov: float
-    min: float
-    max: float
-    peak_to_peak: float
-    band: str
     fault_band: float
     faults: tuple[Fault, ...]
     position_m: FloatArray = field(repr=False)
@@ -316,8 +312,6 @@ def check_profile(
     InputError
         Fewer than two positions, a mean reading of 0 (no CoV), or a band outside (0, 1).
     """
-    from woundroll.profile.stats import profile_stats
-
     where = readings.source or "readings"
     if readings.n_positions < 2:
         raise InputError(
@@ -330,14 +324,7 @@ def check_profile(
         source=readings.source,
         scale=readings.scale,
         ids=dict(ids or {}),
-        n=st.n,
-        mean=st.mean,
-        sd=st.sd,
-        cov=st.cov,
-        min=st.min,
-        max=st.max,
-        peak_to_peak=st.peak_to_peak,
-        band=st.band,
+        **asdict(st),
         fault_band=band,
         faults=tuple(faults),
         position_m=np.asarray(readings.position, dtype=float),

@@ -24,13 +24,16 @@ import signal
 import threading
 import weakref
 from collections.abc import Iterator
-from concurrent.futures import ProcessPoolExecutor
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    # imported when a pool is made: a single-roll run does not pay for multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
 
 #: Seconds between a worker's checks that its parent is alive.
 PARENT_POLL = 0.5
 
-_POOLS: weakref.WeakSet[ProcessPoolExecutor] = weakref.WeakSet()
+_POOLS: weakref.WeakSet[ProcessPoolExecutor] = weakref.WeakSet()  # the live pools
 
 
 class Interrupted(KeyboardInterrupt):
@@ -60,6 +63,7 @@ def process_pool(
 ) -> ProcessPoolExecutor:
     """A ``spawn`` process pool of ``workers`` processes that :func:`clean_stop` can stop."""
     import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
 
     pool = ProcessPoolExecutor(
         max_workers=workers,

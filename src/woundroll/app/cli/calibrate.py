@@ -13,6 +13,7 @@ from typing import Annotated, Any
 
 import typer
 
+from woundroll.app.cli.console import escape, table
 from woundroll.app.cli.options import JsonOpt
 from woundroll.errors import ConvergenceError, InputError
 
@@ -96,8 +97,6 @@ def calibrate_head_cmd(
     manual's 77 Rho. Prints the value, the block's reading before and after, and the
     [tester] line to paste; --write saves the instrument file with its source.
     """
-    from rich.markup import escape
-    from rich.table import Table
 
     from woundroll.app.cli.console import fail, out
     from woundroll.contact.block import calibrate_head_in_model
@@ -134,7 +133,7 @@ def calibrate_head_cmd(
     if as_json:
         sys.stdout.write(strict_json(versioned(d)) + "\n")
         return
-    t = Table(
+    t = table(
         "quantity",
         "value",
         title=escape(f"{inst.title or inst.name}: head calibrated in '{cal.block.model}'"),
@@ -210,8 +209,6 @@ def calibrate_cmd(
 ) -> None:
     """Calibrate the model on a mill's own rolls: fit what is unknown to readings of rolls of
     known winding settings, with standard errors and leave-one-out prediction errors."""
-    from rich.markup import escape
-    from rich.table import Table
 
     from woundroll.app.cli.console import err, fail, out
     from woundroll.inverse.site_calibration import calibrate_site
@@ -247,13 +244,13 @@ def calibrate_cmd(
         sys.stdout.write(strict_json(versioned(cal.to_dict())) + "\n")
         return
     u = cal.scale_name
-    t = Table("parameter", "fitted", "1 SE", title="site calibration")
+    t = table("parameter", "fitted", "1 SE", title="site calibration")
     for p, v, e in zip(cal.params, cal.values, cal.standard_errors, strict=True):
         k = 1e3 if p.unit == "m" else 1.0
         unit = " mm" if p.unit == "m" else ""
         t.add_row(escape(p.name), f"{v * k:.4g}{unit}", f"{e * k:.2g}{unit}")
     out.print(t)
-    r = Table(
+    r = table(
         "roll",
         "readings",
         f"measured [{u}]",

@@ -8,17 +8,57 @@ under :func:`with_progress`'s bars.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import typer
-from rich.console import Console
-from rich.markup import escape
+
+if TYPE_CHECKING:
+    from rich.console import Console
+    from rich.table import Table
 
 T = TypeVar("T")
 
+
+class _LazyConsole:
+    """A rich ``Console`` made on first use: rich (~45 ms of imports) is not loaded by a
+    command that never prints through it (``woundroll run --json`` writes to stdout)."""
+
+    def __init__(self, **kwargs: Any) -> None:
+        self._kwargs = kwargs
+        self._console: Console | None = None
+
+    def __getattr__(self, name: str) -> Any:
+        if self._console is None:
+            from rich.console import Console
+
+            self._console = Console(**self._kwargs)
+        return getattr(self._console, name)
+
+
 # emoji=False: ":x:" in a user file name or a CSV header stays text, never an emoji
-err = Console(stderr=True, emoji=False)
-out = Console(emoji=False)
+err: Console = _LazyConsole(stderr=True, emoji=False)  # type: ignore[assignment]
+out: Console = _LazyConsole(emoji=False)  # type: ignore[assignment]
+
+
+def console(**kwargs: Any) -> Console:
+    """A rich ``Console`` with the CLI's settings (no emoji) and ``kwargs``."""
+    from rich.console import Console
+
+    return Console(emoji=False, **kwargs)
+
+
+def escape(text: str) -> str:
+    """``text`` with rich markup escaped (a file name with brackets prints as written)."""
+    from rich.markup import escape as rich_escape
+
+    return rich_escape(text)
+
+
+def table(*columns: Any, **kwargs: Any) -> Table:
+    """A rich ``Table`` (rich is imported when a command prints one)."""
+    from rich.table import Table
+
+    return Table(*columns, **kwargs)
 
 
 def fail(exc: Exception, status: int) -> None:

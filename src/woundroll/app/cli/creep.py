@@ -8,6 +8,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from woundroll.app.cli.console import escape, table
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.pipeline.vocabulary import versioned
 from woundroll.util.output import strict_json
@@ -19,8 +20,6 @@ def fit_creep_cmd(
     """Fit the creep laws to the CSV (columns ``time`` and ``strain``: a creep test at a
     constant pressure; ``time`` and ``pressure``: a relaxation test at a constant strain;
     units in the header, ``time [h]``) and print the case-file lines."""
-    from rich.markup import escape
-    from rich.table import Table
 
     from woundroll.materials.creep_fit import fit_creep, fit_relaxation
     from woundroll.util.tables import parse_header, read_columns, read_header_row
@@ -56,7 +55,7 @@ def fit_creep_cmd(
     if as_json:
         sys.stdout.write(strict_json(versioned({k: f.to_dict() for k, f in fits.items()})) + "\n")
         return
-    t = Table("law", "test", "RMS rel. error", "max rel. error", "case-file key")
+    t = table("law", "test", "RMS rel. error", "max rel. error", "case-file key")
     for name, f in fits.items():
         t.add_row(
             name,

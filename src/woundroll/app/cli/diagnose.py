@@ -9,16 +9,18 @@ from __future__ import annotations
 import math
 import sys
 from pathlib import Path
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
-from rich.markup import escape
-from rich.table import Table
 
+from woundroll.app.cli.console import escape, table
 from woundroll.app.cli.options import CaseArg, JsonOpt, LaneWidthOpt, SetOpt, out_option
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.pipeline.vocabulary import SCHEMA_VERSION, versioned
 from woundroll.util.output import strict_json, write_result_files
+
+if TYPE_CHECKING:
+    from rich.table import Table
 
 
 def _length(text: str | None, field: str) -> float | None:
@@ -161,7 +163,7 @@ def _print_readings(r, check, unit: str | None, out_dir: Path | None) -> None:  
         else {k: v for k, v in check.ids.items() if not (k == "roll" and f"roll {v}" in r.source)}
     )
     ids = " (" + _ids_text(shown) + ")" if shown else ""
-    t = Table(
+    t = table(
         *(escape(c) for c in cols),
         escape(f"mean [{r.scale}]"),
         escape(f"SD [{r.scale}]"),
@@ -189,7 +191,7 @@ def _print_readings(r, check, unit: str | None, out_dir: Path | None) -> None:  
     )
     rows = check.fault_rows(u)
     if rows:
-        ft = Table(*(escape(k) for k in rows[0]), title="hard and soft bands")
+        ft = table(*(escape(k) for k in rows[0]), title="hard and soft bands")
         for row in rows:
             ft.add_row(*(escape(v) for v in row.values()))
         out.print(ft)
@@ -256,7 +258,7 @@ def _trend_table(tr: Any, checks: list[Any]) -> Table:
     whether its mean or CoV falls outside the X-mR chart limits."""
     s = tr.scale
     lots = any("lot" in c.ids for c in checks)
-    t = Table(title=f"roll-to-roll trend: {len(checks)} rolls, scale {s}")
+    t = table(title=f"roll-to-roll trend: {len(checks)} rolls, scale {s}")
     t.add_column("#", justify="right")
     t.add_column("roll", no_wrap=True)
     if lots:
@@ -448,7 +450,7 @@ def _print_diagnosis(title: str, d, defects, fit, written: list[Path]) -> None: 
 
     out.print(escape(d.sentence()), highlight=False, soft_wrap=True)
     # headers escaped: rich reads "[in]" and "[kPa]" as markup and drops them
-    t = Table(
+    t = table(
         escape("position [in]"),
         escape(f"reading [{d.curve.scale}]"),
         escape("wound-on tension [MPa]"),
@@ -470,7 +472,7 @@ def _print_diagnosis(title: str, d, defects, fit, written: list[Path]) -> None: 
         out.print(f"note: {escape(note)}", highlight=False)
     _print_defects(defects)
     if fit is not None:
-        tc = Table("rank", "cause", title="causes of the CMD profile (reduced axisymmetric model)")
+        tc = table("rank", "cause", title="causes of the CMD profile (reduced axisymmetric model)")
         for i, cz in enumerate(fit.causes, 1):
             tc.add_row(f"{i}", escape(cz["sentence"]))
         out.print(tc)
@@ -488,7 +490,7 @@ def _print_diagnosis(title: str, d, defects, fit, written: list[Path]) -> None: 
 def _print_defects(defects) -> None:  # type: ignore[no-untyped-def]
     from woundroll.app.cli.console import out
 
-    t = Table("criterion", "risk", "finding", title=f"defect risk: {defects.risk}")
+    t = table("criterion", "risk", "finding", title=f"defect risk: {defects.risk}")
     for name, risk, sentence in defects.summary():
         t.add_row(escape(name), escape(risk), escape(sentence))
     out.print(t)
@@ -579,7 +581,7 @@ def print_uncertainty(uq) -> None:  # type: ignore[no-untyped-def]
         return
     from woundroll.app.cli.console import out
 
-    t = Table("quantity", "value", title="uncertainty (Monte Carlo)")
+    t = table("quantity", "value", title="uncertainty (Monte Carlo)")
     for name, value in uq.summary():
         t.add_row(escape(name), escape(value))
     out.print(t)
@@ -705,7 +707,7 @@ def design_cmd(
     if as_json:
         sys.stdout.write(strict_json(versioned({"design": d.to_dict()})) + "\n")
         return
-    tb = Table("quantity", "value", title=escape(f"{c.display_title or case}: setpoint design"))
+    tb = table("quantity", "value", title=escape(f"{c.display_title or case}: setpoint design"))
     for name, value in d.summary():
         tb.add_row(escape(name), escape(value))
     out.print(tb)

@@ -14,7 +14,6 @@ import sys
 from typing import Annotated, Any
 
 import typer
-from rich.markup import escape
 
 from woundroll.app.cli import (
     calibrate,
@@ -27,7 +26,7 @@ from woundroll.app.cli import (
     study,
     sweep,
 )
-from woundroll.app.cli.console import err, out
+from woundroll.app.cli.console import err, escape, out
 
 
 class _Commands(typer.core.TyperGroup):

@@ -8,10 +8,8 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
-from rich.markup import escape
-from rich.table import Table
 
-from woundroll.app.cli.console import err, fail, out
+from woundroll.app.cli.console import err, escape, fail, out, table
 from woundroll.errors import ConvergenceError, InputError
 
 
@@ -19,7 +17,7 @@ def cases() -> None:
     """List the bundled cases."""
     from woundroll.case import bundled_cases
 
-    t = Table("name", "title")
+    t = table("name", "title")
     for name, title in bundled_cases().items():
         t.add_row(escape(name), escape(title))
     out.print(t)
@@ -29,12 +27,12 @@ def materials() -> None:
     """List the bundled web-material presets and their sources."""
     from woundroll.materials.presets import list_materials
 
-    t = Table("preset", "description", "source")
-    for name, table in list_materials().items():
+    t = table("preset", "description", "source")
+    for name, preset in list_materials().items():
         t.add_row(
             escape(name),
-            escape(str(table.get("description", ""))),
-            escape(str(table.get("source", ""))),
+            escape(str(preset.get("description", ""))),
+            escape(str(preset.get("source", ""))),
         )
     out.print(t)
 
@@ -114,7 +112,7 @@ def fit_stack_cmd(
     if as_json:
         sys.stdout.write(strict_json(versioned({k: f.to_dict() for k, f in fits.items()})) + "\n")
         return
-    t = Table("law", "R^2", "RMS rel. error", "max rel. error", "case-file table")
+    t = table("law", "R^2", "RMS rel. error", "max rel. error", "case-file table")
     for name, f in fits.items():
         t.add_row(
             name,

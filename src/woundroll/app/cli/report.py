@@ -11,6 +11,7 @@ from typing import Annotated, Any
 
 import typer
 
+from woundroll.app.cli.console import escape
 from woundroll.app.cli.options import CaseArg, LaneWidthOpt, SetOpt, out_option
 from woundroll.errors import ConvergenceError, InputError
 
@@ -124,7 +125,6 @@ def report_cmd(
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar.")] = False,
 ) -> None:
     """Run a case and write one self-contained HTML report (prints on A4 and Letter)."""
-    from rich.markup import escape
 
     from woundroll.app.cli.console import fail, out, with_progress
     from woundroll.app.report import write_report

@@ -7,11 +7,9 @@ import sys
 from typing import Annotated
 
 import typer
-from rich.markup import escape
-from rich.table import Table
 
 from woundroll.app.cli import diagnose
-from woundroll.app.cli.console import err, fail, out, warn, with_progress
+from woundroll.app.cli.console import err, escape, fail, out, table, warn, with_progress
 from woundroll.app.cli.options import CaseArg, JsonOpt, SetOpt, out_option
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.pipeline.summary import result_summary
@@ -130,7 +128,7 @@ def _json(result, uq, fields: str) -> str:  # type: ignore[no-untyped-def]
 def _inputs(case) -> None:  # type: ignore[no-untyped-def]
     """The inputs the run used as given, with their source (defaults counted, listed in
     result.json)."""
-    t = Table("input", "value", "source", title="inputs", show_header=True)
+    t = table("input", "value", "source", title="inputs", show_header=True)
     defaults = 0
     for v in case.inputs:
         if v.source == "default":
@@ -149,7 +147,7 @@ def _inputs(case) -> None:  # type: ignore[no-untyped-def]
 
 def _summary(result) -> None:  # type: ignore[no-untyped-def]
     _inputs(result.case)
-    t = Table(title=escape(result.case.display_title or "result"), show_header=True)
+    t = table(title=escape(result.case.display_title or "result"), show_header=True)
     t.add_column("quantity")
     t.add_column("value", justify="right")
     for name, value in result_summary(result):

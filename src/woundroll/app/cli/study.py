@@ -6,11 +6,8 @@ import sys
 from typing import Annotated
 
 import typer
-from rich.console import Console
-from rich.markup import escape
-from rich.table import Table
 
-from woundroll.app.cli.console import err, fail, out, with_progress
+from woundroll.app.cli.console import console, err, escape, fail, out, table, with_progress
 from woundroll.app.cli.options import out_option
 from woundroll.errors import ConvergenceError, InputError
 
@@ -68,9 +65,9 @@ def study(
     if as_json:
         sys.stdout.write(strict_json(versioned(result.to_dict())) + "\n")
         return
-    wide = out if out.is_terminal else Console(width=160, emoji=False)
+    wide = out if out.is_terminal else console(width=160)
     for title, header, rows in result.summary():
-        t = Table(*[escape(h) for h in header], title=escape(title))
+        t = table(*[escape(h) for h in header], title=escape(title))
         for row in rows:
             t.add_row(*[escape(str(c)) for c in row])
         wide.print(t)

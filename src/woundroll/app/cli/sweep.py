@@ -12,6 +12,7 @@ from typing import Annotated
 
 import typer
 
+from woundroll.app.cli.console import escape
 from woundroll.app.cli.options import CaseArg
 from woundroll.errors import InputError
 
@@ -58,7 +59,6 @@ def sweep_cmd(
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar.")] = False,
 ) -> None:
     """Run a case over a grid, random or Latin-hypercube design of inputs; write one table."""
-    from rich.markup import escape
 
     from woundroll.app.cli.console import err, fail, out
     from woundroll.app.sweep import run_sweep

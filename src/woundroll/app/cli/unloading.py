@@ -7,6 +7,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from woundroll.app.cli.console import escape, table
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.pipeline.vocabulary import versioned
 from woundroll.util.output import strict_json
@@ -17,8 +18,6 @@ def fit_cycle_cmd(
 ) -> None:
     """Fit :func:`woundroll.materials.unloading.fit_stack_cycle` and print the case-file
     tables (``radial_modulus`` and ``radial_unloading``) with the fit quality."""
-    from rich.markup import escape
-    from rich.table import Table
 
     from woundroll.materials.radial_modulus import read_stack_csv
     from woundroll.materials.unloading import fit_stack_cycle
@@ -35,7 +34,7 @@ def fit_cycle_cmd(
     if as_json:
         sys.stdout.write(strict_json(versioned(fit.to_dict())) + "\n")
         return
-    t = Table("branch", "points", "RMS rel. error", "case-file key")
+    t = table("branch", "points", "RMS rel. error", "case-file key")
     t.add_row(
         "loading (pfeiffer)",
         str(fit.n_loading),
