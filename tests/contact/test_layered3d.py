@@ -210,8 +210,7 @@ def test_layers_per_shell_refinement_converges() -> None:
     CMD slip too). Bounds: monotone, each step smaller than the last."""
     head = Head("cylinder", 0.00635, 0.0254)
     f = [
-        pet_roll(0.3, head, layers_per_shell=n, layered_depth=1.2e-3, n_steps=3)
-        for n in (4, 2, 1)
+        pet_roll(0.3, head, layers_per_shell=n, layered_depth=1.2e-3, n_steps=3) for n in (4, 2, 1)
     ]
     print("layers per shell 4, 2, 1:", f)
     assert f[0] > f[1] > f[2]
