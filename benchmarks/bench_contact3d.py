@@ -93,8 +93,71 @@ def ratio(case: str, variants: list[str]) -> None:
         )
 
 
+def profile(case: str, check: int) -> None:
+    """A CMD profile read with the 3D model (``[profile] contact = "anchored"``: plane
+    strain on every sector, 3D on a few) against the 10k-layer winding yardstick of the
+    same run (issue 23 item 4, bar 100x); with ``check`` > 0, that many of the sectors the
+    stage interpolated (spread over the CMD) solved fully in 3D in this process, and the
+    largest change of their shown reading (what the stage gave up there)."""
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from yardstick import wind_per_layer
+
+    c0 = time.process_time()
+    _, yard = wind_per_layer()
+    yard_cpu = time.process_time() - c0
+    load = os.getloadavg()[0]
+    wall, cpu, out = _run_3d(case, ["profile.contact=anchored"])
+    prof = out["profile"]
+    st = prof["contact_stage"]
+    print(
+        f"{case} profile, 3D anchored on plane strain: {st['n_solved']} of "
+        f"{len(st['solved'])} sectors solved in 3D, {st['check_rounds']} check rounds; wall "
+        f"{wall:.1f} s = {wall / yard:.1f}x the yardstick ({yard:.2f} s), CPU {cpu:.1f} s = "
+        f"{cpu / yard_cpu:.1f}x ({yard_cpu:.2f} s); load {load:.1f}"
+    )
+    if check <= 0:
+        return
+    import numpy as np
+
+    from woundroll.case import load_case
+    from woundroll.contact.heads import head_length_of
+    from woundroll.profile.hardness import ContactModel, FdReadout
+
+    c = load_case(case, ["contact.model='3d'"])
+    web, core = c.web.build(), c.core.build()
+    ins = c.tester_setup.instrument
+    model = ContactModel(
+        web, core, ins.head_radius, head_length_of(ins), c.profile.depth_max, instrument=ins,
+        model="3d", options3d=c.contact.contact3d_options(),
+    )  # fmt: skip
+    free = [j for j, s in enumerate(st["solved"]) if not s]
+    pick = [free[int(i)] for i in np.linspace(0, len(free) - 1, min(check, len(free)))]
+    # the sectors' stress profiles: the run's (r, z) winding again, in this process
+    from woundroll.pipeline import run
+
+    res = run(load_case(case, ["contact.model='3d'", "profile.contact='anchored'"]))
+    w = res.profile.winding
+    lo, hi = ins.reading_range
+    worst = 0.0
+    for j in pick:
+        r, s = w.sector_profile(j)
+        a, b = model(r, s)
+        pile = np.array([w.build_radius[j] - w.core_radius[j]])
+        exact = float(FdReadout(c.tester_setup, pile, web.density)(np.array([a]), np.array([b]))[0])
+        got = float(res.profile.rho[j])
+        change = abs(np.clip(exact, lo, hi) - np.clip(got, lo, hi))
+        worst = max(worst, change)
+        print(f"  sector {j}: anchored {got:.2f}, 3D {exact:.2f} (shown change {change:.3f})")
+    print(f"  largest change of a shown reading on {len(pick)} checked sectors: {worst:.3f}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
+    ap.add_argument("--profile", default=None, help="a profile case read with 3D, anchored")
+    ap.add_argument("--check", type=int, default=0, help="with --profile: sectors to check")
     ap.add_argument("--ratio", action="store_true", help="whole 3D run against the yardstick")
     ap.add_argument("--variant", action="append", default=[], help="name=key=value,...")
     ap.add_argument("--case", default="pet2-26.7N")
@@ -108,6 +171,9 @@ def main() -> None:
         help="n_fine of the mesh the solvers are compared on (10: the default mesh)",
     )
     args = ap.parse_args()
+    if args.profile:
+        profile(args.profile, args.check)
+        return
     if args.ratio:
         ratio(args.case, args.variant)
         return

@@ -17,6 +17,11 @@ layer: 2 N + 1 nodes; midpoint E_r iterated in every increment).
   ``scipy.linalg.solve_banded`` on the whole roll, iterated to the same tolerance); run for
   N <= ``--reference-max`` (default 10,000: it takes half a minute there).
 
+Every time is also given as a ratio to the yardstick (benchmarks/yardstick.py: the
+straightforward per-layer winding of the 10,000-layer roll, no compiled code) timed in the
+same run. ``--write-docs`` puts the table into docs/winding.md between
+``<!-- bench: winding -->`` and ``<!-- end bench -->`` (``make bench`` does).
+
 Also printed: element evaluations per increment (window, refreshes), a measure of the work
 that does not depend on the machine's load (O(log N) per increment for the default).
 
@@ -24,7 +29,7 @@ BLAS/OpenMP threads are pinned to 1 (set before NumPy is imported; override by e
 the variables). Timings: wall clock and process CPU time, best of N.
 
 Run: ``.venv/bin/python benchmarks/bench_winding.py [--layers 10000 30000 100000]
-[--repeat 3] [--exact-max 30000] [--reference-max 10000]``
+[--repeat 3] [--exact-max 30000] [--reference-max 10000] [--write-docs]``
 """
 
 from __future__ import annotations
@@ -36,10 +41,16 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMB
 
 import argparse  # noqa: E402
 import platform  # noqa: E402
+import re  # noqa: E402
+import sys  # noqa: E402
 import time  # noqa: E402
 from collections.abc import Callable  # noqa: E402
+from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from yardstick import wind_per_layer  # noqa: E402
 
 from woundroll.materials import Core, Pfeiffer, Web  # noqa: E402
 from woundroll.winding.hakiel import WindingOptions, wind, wind_reference  # noqa: E402
@@ -50,6 +61,8 @@ H = 12e-6
 WEB = Web(thickness=H, width=1.0, E_theta=5e9, radial_modulus=Pfeiffer(10e3, 100.0))
 CORE = Core(0.076)
 SCHED = TensionSchedule(1.5e6)
+PAGE = Path(__file__).resolve().parent.parent / "docs" / "winding.md"
+BEGIN, END = "<!-- bench: winding -->", "<!-- end bench -->"
 
 
 def timed(fn: Callable[[], WindingResult], repeat: int) -> tuple[WindingResult, float, float]:
@@ -76,51 +89,81 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3, help="timed runs of wind (best is kept)")
     ap.add_argument("--exact-max", type=int, default=30_000)
     ap.add_argument("--reference-max", type=int, default=10_000)
+    ap.add_argument("--write-docs", action="store_true", help="rewrite docs/winding.md's table")
     args = ap.parse_args()
 
     print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} CPUs")
-    if hasattr(os, "getloadavg"):
-        print(f"load average at start: {', '.join(f'{x:.2f}' for x in os.getloadavg())}")
+    load0 = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    print(f"load average at start: {load0:.2f}")
     threads = {v: os.environ[v] for v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS")}
     print(f"options {WindingOptions().to_dict()}; threads {threads}")
     wind(WEB, CORE, 0.076 + 50 * H, SCHED)  # warm-up: numba compile (or cache load)
     wind(WEB, CORE, 0.076 + 50 * H, SCHED, options=WindingOptions(window_layers=None))
+    yard = min(wind_per_layer()[1] for _ in range(2))
+    print(f"yardstick (per-layer banded winding, 10,000 layers, best of 2): {yard:.2f} s wall")
 
     header = (
-        f"{'layers':>8} {'solver':<28} {'wall [s]':>9} {'cpu [s]':>8} {'core p [Pa]':>12} "
-        f"{'max|dsr|/p_c':>12} {'evals/incr':>11}"
+        f"{'layers':>8} {'solver':<28} {'wall [s]':>9} {'cpu [s]':>8} {'x yard':>8} "
+        f"{'core p [Pa]':>12} {'max|dsr|/p_c':>12} {'evals/incr':>11}"
     )
     print(header)
     print("-" * len(header))
+    md = [
+        "| layers | solver | wall / yardstick | wall [s] | core pressure [Pa] "
+        "| max dsigma_r / p_c | evaluations / increment |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    speedups = []
     for n in args.layers:
         R = 0.076 + n * H
         fast, w_fast, c_fast = timed(lambda R=R: wind(WEB, CORE, R, SCHED), args.repeat)
         ev = (
             fast.stats["element_evaluations_window"] + fast.stats["element_evaluations_refresh"]
         ) / fast.stats["increments"]
-        rows = [("wind (default, levels)", fast, w_fast, c_fast, ev)]
+        rows = [("`wind` (default, levels)", fast, w_fast, c_fast, ev)]
         exact = None
         if n <= args.exact_max:
             opts = WindingOptions(window_layers=None)
             exact, w_ex, c_ex = timed(lambda R=R, o=opts: wind(WEB, CORE, R, SCHED, options=o), 1)
             ev_ex = exact.stats["element_evaluations_window"] / exact.stats["increments"]
-            rows.append(("wind(window_layers=None)", exact, w_ex, c_ex, ev_ex))
+            rows.append(("`wind(window_layers=None)` (exact)", exact, w_ex, c_ex, ev_ex))
         if n <= args.reference_max:
             ref, w_ref, c_ref = timed(lambda R=R: wind_reference(WEB, CORE, R, SCHED), 1)
-            rows.append(("wind_reference (NumPy+banded)", ref, w_ref, c_ref, float("nan")))
+            rows.append(("`wind_reference`", ref, w_ref, c_ref, float("nan")))
         for name, res, w, c, e in rows:
-            d = "-" if exact is None else f"{rel_diff(res, exact):.2e}"
+            d = "" if exact is None else f"{rel_diff(res, exact):.1e}"
+            ev_cell = "" if np.isnan(e) else f"{e:,.0f}"
             print(
-                f"{n:>8} {name:<28} {w:>9.3f} {c:>8.3f} {res.core_pressure:>12.1f} "
-                f"{d:>12} {e:>11.0f}"
+                f"{n:>8} {name:<28} {w:>9.3f} {c:>8.3f} {w / yard:>8.3f} "
+                f"{res.core_pressure:>12.1f} {d or '-':>12} {e:>11.0f}"
+            )
+            md.append(
+                f"| {n:,} | {name} | {w / yard:.3g} | {w:.3g} | {res.core_pressure:,.1f} | "
+                f"{d} | {ev_cell} |"
             )
         for name, _res, w, c, _e in rows[1:]:
-            print(
-                f"{'':>8} speed-up of the default against {name}: {w / w_fast:.0f}x wall, "
-                f"{c / c_fast:.0f}x cpu"
-            )
-    if hasattr(os, "getloadavg"):
-        print(f"load average at end: {', '.join(f'{x:.2f}' for x in os.getloadavg())}")
+            line = f"{w / w_fast:.0f}x against {name} at {n:,} layers"
+            print(f"{'':>8} speed-up of the default: {line} (wall; {c / c_fast:.0f}x cpu)")
+            speedups.append(line)
+    load1 = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    print(f"load average at end: {load1:.2f}")
+    if args.write_docs:
+        intro = (
+            f"`benchmarks/bench_winding.py --layers {' '.join(map(str, args.layers))} "
+            f"--exact-max {args.exact_max} --reference-max {args.reference_max}`: best of "
+            f"{args.repeat} for `wind`, one run of the others; python {sys.version.split()[0]}, "
+            f"{os.cpu_count()} cores, load average {load0:.1f} -> {load1:.1f}. The yardstick "
+            "(benchmarks/yardstick.py, the per-layer banded winding of the 10,000-layer roll) "
+            f"took {yard:.2f} s in the same run; wall times as multiples of it."
+        )
+        tail = "Speed-up of the default (wall): " + "; ".join(speedups) + "."
+        block = "\n".join([BEGIN, intro, "", *md, "", tail, END])
+        text = PAGE.read_text(encoding="utf-8")
+        pat = re.compile(re.escape(BEGIN) + ".*?" + re.escape(END), re.S)
+        if not pat.search(text):
+            raise SystemExit(f"{PAGE}: no {BEGIN} ... {END} block")
+        PAGE.write_text(pat.sub(lambda _m: block, text), encoding="utf-8")
+        print(f"wrote {PAGE}")
 
 
 if __name__ == "__main__":

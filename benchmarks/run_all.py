@@ -1,7 +1,7 @@
 """Run every benchmark script in this folder and print its report (make bench).
 
 ``bench_process.py`` also rewrites its table in docs/performance.md (against the tree before
-issue 23, ``BEFORE``)."""
+issue 23, ``BEFORE``), ``bench_winding.py`` its table in docs/winding.md."""
 
 import subprocess
 import sys
@@ -12,4 +12,5 @@ BEFORE = "0b425c8"
 for script in sorted(Path(__file__).parent.glob("bench_*.py")):
     print(f"=== {script.name}", flush=True)
     extra = ["--before", BEFORE, "--write-docs"] if script.name == "bench_process.py" else []
+    extra += ["--write-docs"] if script.name == "bench_winding.py" else []
     subprocess.run([sys.executable, str(script), *extra], check=False)

@@ -124,7 +124,10 @@ def test_round_trip_pet1_rho():
             "pet3-2.3MPa",
             ["winding.thickness_profile=''", "winding.nip_load='5 pli'", "winding.friction=0.2"],
             2.5,
-            "Rho",
+            # in g, the accelerometer's peak: PET3 with a nip reads beyond the Rho-meter's
+            # 0-100 scale with the calibrated 7.82 mm head at any tension (2.5x: 189 Rho,
+            # 0.5x: 127 Rho), which the readings reject as not a reading
+            "g",
         ),
     ],
 )

@@ -50,7 +50,8 @@ def test_inline_and_block_markers() -> None:
 
 
 #: The generator modules (docs/scripts/*.py with BLOCKS), one test each: a stale page names
-#: its module, and the 3D-heavy ones (instruments, trust, calibration) run apart.
+#: its module, and the 3D-heavy ones (instruments, trust, calibration, contact3d) and the
+#: layered readings (layered) run apart, each within ~10 CPU min.
 MODULES = sorted(
     p.stem
     for p in (ROOT / "docs" / "scripts").glob("*.py")

@@ -399,6 +399,357 @@ def head() -> str:
     return f"radius {1e3 * h['head_radius']:.3f} mm, length {1e2 * h['head_length']:.2f} cm"
 
 
+# ------------------------------------------------------- step control and verification
+
+
+@cache
+def _thin_stack(
+    k1: float, k2: float, eps_max: float, n: int, midpoint: bool
+) -> tuple[float, float]:
+    """The thin stack of tests/contact/test_contact.py::
+    test_hypoelastic_update_integrates_the_pfeiffer_law (1 mm wound on a 1 m rigid core,
+    outer surface pushed in radially through stiff springs, uniform steps to ``eps_max``),
+    driven by the same increment function as ``indent``: the largest error of P over the
+    elements against P = K1 (exp(K2 eps) - 1) at each element's strain, and the mean P."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from woundroll.contact import ContactOptions
+    from woundroll.materials import Pfeiffer
+    from woundroll.materials.web import Core, Web
+
+    t = _contact_tests()
+    web = Web(thickness=t.H, width=0.1524, E_theta=4950e6, radial_modulus=Pfeiffer(k1, k2))
+    R_in, th = 1.0, 1e-3
+    mesh = t.build_mesh(
+        R_in,
+        R_in + th,
+        surface_size=1e-4,
+        radial_growth=1.0,
+        tangential_size=0.2,
+        fine_halfwidth=0.2,
+        tangential_growth=1.0,
+    )
+    roll = t._Roll(
+        web,
+        Core(outer_radius=R_in),
+        np.array([R_in, R_in + th]),
+        np.zeros(2),
+        mesh,
+        ContactOptions(),
+    )
+    surf = roll.surface
+    k_pen = 1e6 * web.E_theta
+    spring = np.zeros(2 * mesh.n_nodes)
+    spring[2 * surf] = k_pen
+    roll.assembler = t.Assembler(roll.basis, roll.free, spring)
+    rows = roll.assembler.free_index[2 * surf]
+    u = np.zeros(2 * mesh.n_nodes)
+    sig = np.zeros((mesh.n_elements, 3))
+    delta = eps_max * th * np.arange(n + 1) / n
+    for k in range(1, n + 1):
+        df = np.zeros(roll.assembler.n_free)
+        df[rows] = -k_pen * (delta[k] - delta[k - 1])
+
+        def solve(mod: tuple, lu: Any, df: Any = df) -> SimpleNamespace:
+            du = np.zeros(2 * mesh.n_nodes)
+            du[roll.free] = lu.solve(df)
+            return SimpleNamespace(du=du, dsig=roll.stress_increment(mod, du))
+
+        step = t._hypoelastic_increment(roll, sig[:, 0], midpoint, solve)
+        u += step.du
+        sig += step.dsig
+    eps = -roll.strain_increment(u)[:, 0]
+    P = -sig[:, 0]
+    return float(np.max(np.abs(P / (k1 * np.expm1(k2 * eps)) - 1))), float(P.mean())
+
+
+#: Table 2's Pfeiffer constants of PET2 and PET1 (K1 [Pa], K2 [-]), as in the test
+PET2_LAW, PET1_LAW = (20270.0, 26.24), (4.62e3, 123.88)
+
+
+def thin_stack() -> str:
+    """The paragraph's errors: PET2 to eps 0.2, midpoint and forward Euler at 24/48/96
+    uniform steps; PET1 to eps 0.08, midpoint at 24-192."""
+    mid = [_thin_stack(*PET2_LAW, 0.2, n, True)[0] for n in (24, 48, 96)]
+    eul = [_thin_stack(*PET2_LAW, 0.2, n, False)[0] for n in (24, 48, 96)]
+    p1 = [_thin_stack(*PET1_LAW, 0.08, n, True)[0] for n in (24, 48, 96, 192)]
+
+    def pc(xs: list[float]) -> str:
+        return ", ".join(f"{100 * x:.2g} %" for x in xs)
+
+    return (
+        f"the largest error of P over the elements is {pc(mid)} for 24, 48, 96 midpoint "
+        f"steps (second order), {pc(eul)} for forward Euler (first order). With PET1's "
+        f"constants to eps = 0.08 (K2 eps = {PET1_LAW[1] * 0.08:.1f}) the midpoint errors are "
+        f"{pc(p1)} for 24 to 192 steps"
+    )
+
+
+def thin_stack_row() -> str:
+    """The verification table's cell."""
+    import math
+
+    mid = [_thin_stack(*PET2_LAW, 0.2, n, True)[0] for n in (24, 48, 96)]
+    eul = [_thin_stack(*PET2_LAW, 0.2, n, False)[0] for n in (48, 96)]
+    k1, k2 = PET2_LAW
+    mean = _thin_stack(*PET2_LAW, 0.2, 96, True)[1] / (k1 * math.expm1(k2 * 0.2)) - 1
+    return (
+        "midpoint " + ", ".join(f"{100 * x:.2g} %" for x in mid) + " at 24, 48, 96 steps; "
+        "Euler " + ", ".join(f"{100 * x:.2g} %" for x in eul) + " at 48, 96; the stack's mean "
+        f"P vs P(delta/t) at 96 steps: {100 * abs(mean):.2f} %"
+    )
+
+
+@cache
+def _pet(options: Any = None, **kw: Any) -> Any:
+    """The test's PET1 roll on the synthetic profile, R_h 10 mm, 2 cm, 1 mm."""
+    from woundroll.contact import indent
+
+    t = _contact_tests()
+    r, s = t.pet_profile()
+    return indent(t.PET1, t.RIGID, r, s, depth_max=1e-3, **t.HEAD, options=options)
+
+
+def _change(a: Any, b: Any, d: Any) -> float:
+    import numpy as np
+
+    return float(
+        np.max(np.abs(np.interp(d, a.delta, a.force) / np.interp(d, b.delta, b.force) - 1))
+    )
+
+
+def mesh_row() -> str:
+    """The mesh-refinement row (tests/contact/test_contact.py's refinement, 12 steps)."""
+    import math
+
+    import numpy as np
+
+    from woundroll.contact import ContactOptions
+
+    t = _contact_tests()
+    R_eff = 1 / (1 / t.HEAD["head_radius"] + 1 / t.R_OUT)
+    t_size = max(t.H / 4, math.sqrt(2 * R_eff * 1e-3) / 40)
+    default = ContactOptions(n_steps=12)
+    fine = ContactOptions(
+        n_steps=12,
+        surface_size=t.H / 2,
+        tangential_size=t_size / 2,
+        radial_growth=default.radial_growth**0.5,
+        tangential_growth=default.tangential_growth**0.5,
+    )
+    base, ref = _pet(default), _pet(fine)
+    d = np.linspace(0.2e-3, 1e-3, 9)
+    da = abs(ref.semi_contact_width / base.semi_contact_width - 1)
+    return (
+        f"mesh refinement (sizes / 2, growth ratios square-rooted: {base.n_elements} -> "
+        f"{ref.n_elements} elements), PET1, synthetic profile, R_h 10 mm, 1 mm | F(d) changes "
+        f"<= {100 * _change(ref, base, d):.2f} %, a by {100 * da:.1f} %"
+    )
+
+
+def fine_zone_row() -> str:
+    """The fine-zone row: the uniformly fine arc doubled."""
+    import math
+
+    import numpy as np
+
+    from woundroll.contact import ContactOptions
+
+    t = _contact_tests()
+    R_eff = 1 / (1 / t.HEAD["head_radius"] + 1 / t.R_OUT)
+    a_geo = math.sqrt(2 * R_eff * 1e-3)
+    base = _pet(ContactOptions(n_steps=12))
+    wide = _pet(ContactOptions(n_steps=12, fine_halfwidth=2 * a_geo))
+    d = np.linspace(0.2e-3, 1e-3, 9)
+    return f"F(d) changes <= {100 * _change(wide, base, d):.3f} %"
+
+
+def step_row() -> str:
+    """The step-refinement row: the default steps against three times as many, at the
+    default's own depths from 0.2 mm."""
+    import numpy as np
+
+    from woundroll.contact import ContactOptions
+
+    n0 = ContactOptions().n_steps
+    base, fine = _pet(ContactOptions()), _pet(ContactOptions(n_steps=3 * n0))
+    at = base.delta >= 0.2e-3 - 1e-12
+    ch = np.interp(base.delta[at], fine.delta, fine.force) / base.force[at] - 1
+    worst = 100 * float(np.max(np.abs(ch)))
+    return f"step refinement {n0} -> {3 * n0} increments | F(d) changes <= {worst:.2f} %"
+
+
+def synthetic_extremes() -> str:
+    """The largest radial pressure and E_r / E_t under the 10 mm head (inline)."""
+    a = _synthetic(0.01)
+    t = _contact_tests()
+    P = -float(a.sigma_r.min())
+    E_r = float(t.PET1.radial_modulus.modulus_at_pressure(P))
+    return f"P up to {P / 1e6:.0f} MPa, E_r = K2 P up to {E_r / t.PET1.E_theta:.1f} E_t"
+
+
+def _step_tests() -> Any:
+    return _test_module("test_step_control")
+
+
+def window() -> str:
+    """The slack-ramped Table 3 roll's reading (tests/contact/test_step_control.py, started
+    at the model's reach as the profile does for slack sectors) at 24, 48 and 192 steps."""
+    t = _step_tests()
+    roll = t.table3_roll(3e-3)
+    rho = [t.table3_rho(roll, float("inf"), f"n_steps={n}") for n in (24, 48, 192)]
+    return " / ".join(f"{x:.2f}" for x in rho) + " Rho at 24, 48 and 192 steps"
+
+
+def step_accuracy() -> str:
+    """The defaults against the references of tests/contact/test_step_control.py: the
+    Table 2 rolls against the 48-step explicit midpoint, the taut and slack Table 3 rolls
+    against 96 steps at step_tol 0.05 %."""
+    t = _step_tests()
+    t2 = []
+    for name in t.TABLE2:
+        rho = t.reading(name)[0]
+        ref = t.reading(name, "n_steps=48", "predictor=false")[0]
+        t2.append(abs(rho / ref - 1))
+    t3 = []
+    for slack, start in ((None, 1e-3), (3e-3, float("inf"))):
+        roll = t.table3_roll(slack)
+        t3.append(abs(t.table3_rho(roll, start) / t.table3_rho(roll, start, *t.REFERENCE) - 1))
+    return (
+        f"the seven Table 2 rolls read within {100 * max(t2):.2g} % of the 48-step explicit "
+        f"midpoint; the test's taut and slack Table 3 rolls within {100 * t3[0]:.2g} % and "
+        f"{100 * t3[1]:.2g} % of 96 steps at `step_tol` 0.05 %"
+    )
+
+
+# ------------------------------------------------------------------ 2D slip emulation
+
+
+def _slip_tests() -> Any:
+    """tests/contact/test_slip2d.py (PET2 53.4 N, Rho-meter head, 1.5 mm)."""
+    return _test_module("test_slip2d")
+
+
+@cache
+def _slip(friction: float = 0.3, **options: Any) -> Any:
+    from woundroll.contact import ContactOptions
+
+    kw = {"slip": "reduced-shear", **options}
+    if kw["slip"] == "none":
+        kw.pop("slip")
+    return _slip_tests().solve(ContactOptions(**kw), friction=friction)
+
+
+def slip_steps() -> str:
+    """F at the test's depth with the slipping share, 12 / 24 / 48 / 96 steps (inline)."""
+    t = _slip_tests()
+    f = [float(_slip(n_steps=n).force[-1]) for n in (12, 24, 48, 96)]
+    return (
+        f"F at {1e3 * t.DEPTH:g} mm on PET2 53.4 N: "
+        + ", ".join(f"{x:.1f}" for x in f)
+        + " N at 12, 24, 48, 96 steps"
+    )
+
+
+def slip_cost() -> str:
+    """Passes and factorisations of the default slip solve (inline)."""
+    from woundroll.contact import ContactOptions
+
+    res = _slip()
+    n = len(res.delta) - 1
+    return (
+        f"{res.slip_passes / n:.1f} passes per increment on average instead of one "
+        f"(PET2 53.4 N to {1e3 * _slip_tests().DEPTH:g} mm, {ContactOptions().n_steps} "
+        f"increments: {res.slip_passes} passes, {res.factorisations} factorisations)"
+    )
+
+
+def slip_checks() -> str:
+    """The slow tests' measurements: slip / no slip at every depth (8 steps), the largest
+    SF outside the zone, the step and surface-ring refinements of the default curve."""
+    import numpy as np
+
+    from woundroll.contact import ContactOptions
+
+    t = _slip_tests()
+    plain = _slip(slip="none", n_steps=8)
+    soft = _slip(n_steps=8)
+    ratio = np.asarray(soft.force[1:]) / np.asarray(plain.force[1:])
+    sf = np.asarray(soft.slip_factor)[~np.asarray(soft.slipped)]
+    base = _slip()
+    d = np.linspace(0.2, 1.0, 9) * t.DEPTH
+    n0 = ContactOptions().n_steps
+
+    def change(fine: Any) -> float:
+        f = np.interp(d, fine.delta, fine.force) / np.interp(d, base.delta, base.force)
+        return 100 * float(np.max(np.abs(f - 1)))
+
+    steps = change(_slip(n_steps=3 * n0))
+    ring = change(_slip(surface_size=t.real_roll("pet2-53.4N")[0].thickness / 4))
+    return (
+        f"F(d) with slip is below F(d) without at every depth ({ratio.min():.2f}-"
+        f"{ratio.max():.2f} of it on PET2 53.4 N, 8 steps) and falls with the fraction "
+        f"(0.1 > 0.01) and with mu (0.6 > 0.3); no element outside the converged zone has "
+        f"SF >= 1 (max {sf.max():.3f}); 1 pass per increment raises ConvergenceError; `slow`: "
+        f"{n0} -> {3 * n0} steps moves F(d) by {steps:.1f} %, the surface ring halved by "
+        f"{ring:.1f} %"
+    )
+
+
+def locking() -> str:
+    """The curved element with the full hoop integration against the default (assumed hoop
+    strain): F at depth_max on PET2 26.7 N, the study's case (inline)."""
+    from woundroll.contact import ContactOptions
+
+    t = _tests()
+    name = "pet2-26.7N"
+    full = _solve(name, ContactOptions(assumed_hoop=False))
+    base = _solve(name, ContactOptions())
+    return (
+        f"`assumed_hoop=False`: {full.force[-1]:.1f} N instead of {base.force[-1]:.1f} N, "
+        f"{name} at {1e3 * t.CASES[name]:g} mm"
+    )
+
+
+def semi_width_reading() -> str:
+    """PET1 26.7 N read with the model's semi-contact width and with the paper's accepted
+    a = 0.6 cm (the pipeline, bundled case; inline)."""
+    import woundroll
+
+    runs = []
+    for over in ([], ["tester.semi_contact_width='6 mm'"]):
+        res = woundroll.run(woundroll.load_case("pet1-26.7N", over))
+        runs.append(res)
+    a, b = (r.hardness.to_dict() for r in runs)
+    return (
+        f"PET1 26.7 N reads {a['rho_fd']:.1f} Rho (FD) with the model's a of "
+        f"{1e3 * runs[0].contact.semi_contact_width:.2f} mm at the impact depth, and "
+        f"{b['rho_fd']:.1f} Rho with a = 0.6 cm, m_r = {1e3 * b['effective_mass_kg']:.1f} g: "
+        f"the FD reading does depend on a, through the active mass; the energy model has no "
+        f"mass and reads {a['rho_energy']:.1f} and {b['rho_energy']:.1f}"
+    )
+
+
+def fine_zone_margin() -> str:
+    """The contact half-width at the deepest depth solved against a_geo on the study's
+    Table 2 rolls (tests/contact/test_real_profiles.py's cases; inline)."""
+    import math
+
+    from woundroll.contact import ContactOptions
+
+    t = _tests()
+    out = {}
+    for name, depth in (t.CASES | t.MORE_CASES).items():
+        res = _solve(name, ContactOptions())
+        r_eff = 1.0 / (1.0 / t.rho_meter_head()["head_radius"] + 1.0 / res.outer_radius)
+        frac = res.half_width[-1] / math.sqrt(2.0 * r_eff * depth)
+        mat = name.split("-")[0].upper()
+        out[mat] = max(out.get(mat, 0.0), frac)
+    return " and ".join(f"{v:.2f} a_geo on the {k} rolls" for k, v in sorted(out.items()))
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
     "head": head,
     "synthetic": synthetic,
@@ -414,4 +765,24 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "refinement": refinement,
     "width": width,
     "width_default": width_default,
+    "thin_stack": thin_stack,
+    "thin_stack_row": thin_stack_row,
+    "mesh_row": mesh_row,
+    "fine_zone_row": fine_zone_row,
+    "step_row": step_row,
+    "synthetic_extremes": synthetic_extremes,
+    "window": window,
+    "step_accuracy": step_accuracy,
+    "slip_steps": slip_steps,
+    "slip_cost": slip_cost,
+    "slip_checks": slip_checks,
+    "locking": locking,
+    "semi_width_reading": semi_width_reading,
+    "fine_zone_margin": fine_zone_margin,
 }
+
+if __name__ == "__main__":
+    import sys
+
+    for name in sys.argv[1:] or list(BLOCKS):
+        print(f"--- {name}\n{BLOCKS[name]()}", flush=True)

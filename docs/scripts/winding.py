@@ -301,6 +301,290 @@ def lazy() -> str:
     return "\n".join(lines)
 
 
+# ---------------------------------------------------------------- after winding, modes, air
+# whole runs of the bundled PET1 26.7 N case (woundroll.run, the Rho-meter, default roll
+# model) with the case keys the page names, as ``woundroll run pet1-26.7N --set ...`` does
+
+
+@cache
+def _run(*overrides: str) -> Any:
+    import woundroll
+
+    return woundroll.run(woundroll.load_case("pet1-26.7N", list(overrides)))
+
+
+def _pressures(res: Any) -> tuple[float, float, float]:
+    """Core pressure, P at r = 6.7 cm and P 1 mm below the surface [kPa]."""
+    import numpy as np
+
+    w = res.winding
+    r, p = w.radius, -w.sigma_r
+    return (
+        w.core_pressure / 1e3,
+        float(np.interp(0.067, r, p)) / 1e3,
+        float(np.interp(r[-1] - 1e-3, r, p)) / 1e3,
+    )
+
+
+_COOLED = ("storage.temperature_change=-20 K", "core.thermal_expansion=1.2e-5")
+
+
+def storage_cooled() -> str:
+    """PET1 26.7 N on a steel core cooled by 20 K: pressures and Rho before and after."""
+    a, b = _run(), _run(*_COOLED)
+    (c0, m0, s0), (c1, m1, s1) = _pressures(a), _pressures(b)
+    return (
+        f"the core pressure rises {c0:.1f} -> {c1:.1f} kPa (the PET's MD contracts more than "
+        f"the steel core and grips it) while the body loosens, {m0:.1f} -> {m1:.1f} kPa at "
+        f"r = 6.7 cm and {s0:.1f} -> {s1:.1f} kPa 1 mm below the surface (the stack contracts "
+        f"more through its thickness than along the MD); Rho {a.hardness.shown:.1f} -> "
+        f"{b.hardness.shown:.1f}. {b.winding.storage['iterations']} Picard iterations"
+    )
+
+
+_POWER = 'storage.radial_creep={law="power", n=0.2, tau="60 d"}'
+_PRONY = 'storage.radial_creep={law="prony", c=[0.1, 0.2, 0.3], tau=["1 h", "1 d", "10 d"]}'
+
+
+def creep() -> str:
+    """PET1 26.7 N as wound and after 1, 30 and 365 days with the two example creep laws."""
+    lines = [
+        "| storage | core pressure [kPa] | P at r = 6.7 cm [kPa] | P 1 mm below the surface "
+        "[kPa] | Rho |",
+        "|---|---|---|---|---|",
+    ]
+
+    def row(label: str, res: Any) -> str:
+        c, m, s = _pressures(res)
+        return f"| {label} | {c:.1f} | {m:.1f} | {s:.1f} | {res.hardness.shown:.1f} |"
+
+    lines.append(row("as wound", _run()))
+    for law, name in (
+        (_POWER, "power n = 0.2, tau = 60 d"),
+        (_PRONY, "Prony c = 0.1, 0.2, 0.3 at 1 h, 1 d, 10 d"),
+    ):
+        for i, t in enumerate(("1 d", "30 d", "365 d")):
+            label = f"{name}: {t}" if i == 0 else t
+            lines.append(row(label, _run(law, f"storage.time={t}")))
+    return "\n".join(lines)
+
+
+_SURFACE = ("winding.friction=0.2", "winding.drum_friction=0.3", "winding.nip_saturation=1 kN/m")
+
+
+def _reading(res: Any) -> str:
+    """The reading, beyond the scale as the model gives it (marked), not clipped."""
+    h = res.hardness
+    off = " (off the scale)" if res.flags.get("reading_outside_range") else ""
+    return f"{h.reading:.1f}{off}"
+
+
+def _mode_cells(res: Any) -> str:
+    w = res.winding
+    return f"{w.wot[-1] / 1e6:.2f} | {w.core_pressure / 1e3:.0f} | {_reading(res)}"
+
+
+def modes() -> str:
+    """Centre and surface winding of PET1 26.7 N against the nip load."""
+    lines = [
+        "| nip load [N/m] | centre: WOT [MPa] | core p [kPa] | Rho | surface: WOT [MPa] "
+        "| core p [kPa] | Rho |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for n in (250, 500, 1000, 2000, 4000):
+        nip = f"winding.nip_load={n} N/m"
+        centre = _run(nip, "winding.friction=0.2")
+        surface = _run(nip, "winding.mode=surface", *_SURFACE)
+        lines.append(f"| {n} | {_mode_cells(centre)} | {_mode_cells(surface)} |")
+    return "\n".join(lines)
+
+
+def centre_surface() -> str:
+    """Centre-surface winding at 500 N/m: differentials of 20, 100 and 1000 N/m, the last
+    beyond the drum's hold (capped, with the drum_slip flag)."""
+    import numpy as np
+
+    from woundroll.case import load_case
+
+    cells = {dt: _centre_surface_cells(dt) for dt in (20.0, 100.0, 1000.0)}
+    res = cells[1000.0][0]
+    case = load_case(
+        "pet1-26.7N",
+        [
+            "winding.mode=center-surface",
+            "winding.nip_load=500 N/m",
+            "winding.tension_differential=20 N/m",
+            *_SURFACE,
+        ],
+    )
+    web = case.web.build()
+    sched = case.winding.schedule(web)
+    line = float(np.atleast_1d(sched.web_stress)[0]) * web.thickness
+    hold = float(np.atleast_1d(sched.drum_limit(line))[0])
+    beta = float(np.degrees(sched.drum_wrap))
+    capped = "capped" if res.flags.get("drum_slip") else "NOT capped"
+    return (
+        f"a differential of 20 N/m gives WOT {cells[20.0][1]}, 100 N/m {cells[100.0][1]}; "
+        f"1000 N/m exceeds the drum's hold ({hold:.1f} N/m at beta = {beta:.0f} deg) and is "
+        f"{capped}: {cells[1000.0][1]}, with the warning"
+    )
+
+
+def _centre_surface_cells(dt: float) -> tuple[Any, str]:
+    res = _run(
+        "winding.mode=center-surface",
+        "winding.nip_load=500 N/m",
+        f"winding.tension_differential={dt:g} N/m",
+        *_SURFACE,
+    )
+    w = res.winding
+    return res, (
+        f"{w.wot[-1] / 1e6:.2f} MPa (core {w.core_pressure / 1e3:.0f} kPa, Rho "
+        f"{res.hardness.shown:.1f})"
+    )
+
+
+def _g(x: float) -> str:
+    """Three significant figures, without an exponent for the page's ranges."""
+    return f"{x:.3g}" if x >= 0.1 else f"{x:.2g}"
+
+
+def air() -> str:
+    """PET1 26.7 N (roughness 0.1 um) wound at speed, with and without a nip: the film at
+    lay-on, the air kept per layer, the outer diameter and the core pressure without air,
+    at winding and after the air has left, the leakage time and the 90 % leaving time."""
+    lines = [
+        "| nip | U | film | air per layer | D [mm] | core pressure [kPa] | tau / t_90 |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for nip, u in ((0, 1), (0, 5), (300, 2), (300, 5), (300, 10), (1000, 10)):
+        res = _run(f"winding.speed={u} m/s", "web.roughness=0.1 um", f"winding.nip_load={nip} N/m")
+        a = res.winding.air
+        kept = a["entrained_air_m"]
+        d = [a[f"outer_diameter_{k}_m"] * 1e3 for k in ("no_air", "at_winding", "after")]
+        p = [a[f"core_pressure_{k}_Pa"] / 1e3 for k in ("no_air", "at_winding", "after")]
+        if kept == 0:
+            dd, pp, times = f"{d[0]:.1f} (unchanged)", f"{p[0]:.1f} (unchanged)", "-"
+        else:
+            dd = " / ".join(f"{x:.1f}" for x in d)
+            loose = " (loose)" if res.flags.get("air_loose") else ""
+            pp = " / ".join(f"{abs(x):.1f}" for x in p) + loose  # abs: no "-0.0"
+            times = f"{_g(a['air_leakage_time_s'])} / {_g(a['air_leaves_90_s'])} s"
+        lines.append(
+            f"| {'none' if nip == 0 else f'{nip} N/m'} | {u} m/s | "
+            f"{_g(a['film_at_lay_on_m'] * 1e6)} um | "
+            f"{'0' if kept == 0 else _g(kept * 1e6) + ' um'} | {dd} | {pp} | {times} |"
+        )
+    return "\n".join(lines)
+
+
+def frozen_period() -> str:
+    """test_default_deep_part_is_close_to_the_exact_solve's film (2,000 layers): the default
+    and a finer setting (window 256 layers, flush interval 2) against the exact solve."""
+    from woundroll.materials.web import Core
+    from woundroll.winding.hakiel import WindingOptions, wind
+    from woundroll.winding.tension import TensionSchedule
+
+    t = _hakiel_tests()
+    core, R, sched = Core(0.076), 0.076 + 2000 * 12e-6, TensionSchedule(1.5e6)
+    exact = wind(t._film(), core, R, sched, options=WindingOptions(window_layers=None))
+    d = WindingOptions()
+    out = []
+    for w, f in ((d.window_layers, d.flush_interval), (8, 2), (8, 4), (256, 2)):
+        res = wind(
+            t._film(), core, R, sched, options=WindingOptions(window_layers=w, flush_interval=f)
+        )
+        label = f"window {w}, flush interval {f}" + (
+            " (default)" if (w, f) == (d.window_layers, d.flush_interval) else ""
+        )
+        out.append(f"{label}: {100 * _profile_diff(res, exact):.2g} %")
+    return "; ".join(out)
+
+
+def work() -> str:
+    """Element evaluations per increment of the default on the benchmark film."""
+    from woundroll.materials.web import Core
+    from woundroll.winding.hakiel import wind
+    from woundroll.winding.tension import TensionSchedule
+
+    t = _hakiel_tests()
+    cells = []
+    for n in (500, 2000, 8000, 100_000):
+        res = wind(t._film(), Core(0.076), 0.076 + n * 12e-6, TensionSchedule(1.5e6))
+        st = res.stats
+        ev = (st["element_evaluations_window"] + st["element_evaluations_refresh"]) / st[
+            "increments"
+        ]
+        cells.append(f"{ev:.0f} at {n:,} layers")
+    return "per increment " + ", ".join(cells)
+
+
+# ---------------------------------------------------------------- docs/assumptions.md's
+# sentences (the same problems as the tables above, as percentages)
+
+
+def rules_prose() -> str:
+    """One step per layer, explicit and end-of-increment rules against the midpoint
+    reference (64 substeps), PET1 26.7 N."""
+    from woundroll.winding.hakiel import WindingOptions, wind
+
+    web, core, r_out, ten = _roll()
+
+    def p(rule: str, n: int) -> float:
+        opts = replace(WindingOptions(), modulus_update=rule, load_substeps=n)
+        return float(wind(web, core, r_out, ten, options=opts).core_pressure)
+
+    ref = p("midpoint", 64)
+    return (
+        f"explicit {100 * (p('explicit', 1) / ref - 1):+.1f} %, end-of-increment "
+        f"{100 * (p('end', 1) / ref - 1):+.1f} %"
+    )
+
+
+def new_layer_prose() -> str:
+    """Core pressure, elastic against laid-on new layer, the Table 2 rolls."""
+    from woundroll.winding.hakiel import WindingOptions, wind
+
+    out: dict[str, list[tuple[str, float]]] = {}
+    for name in TABLE2:
+        web, core, r_out, ten = _bundled(name)
+        pa, pb = (
+            float(
+                wind(
+                    web, core, r_out, ten, options=replace(WindingOptions(), new_layer=v)
+                ).core_pressure
+            )
+            for v in ("laid_on", "elastic")
+        )
+        out.setdefault(name.split("-")[0].upper(), []).append(
+            (name.split("-")[1].replace("N", ""), 100 * (pb / pa - 1))
+        )
+    return "; ".join(
+        f"{m} {' / '.join(t for t, _ in v)} N: {' / '.join(f'{d:.1f}' for _, d in v)} %"
+        for m, v in out.items()
+    )
+
+
+def layer_thickness_prose() -> str:
+    """PET1 26.7 N, the layer thickness halved three times: elastic against laid on."""
+    from woundroll.winding.hakiel import WindingOptions, wind
+
+    web, core, r_out, ten = _bundled(CASE)
+    cells = []
+    for k in range(4):
+        w = replace(web, thickness=web.thickness / 2**k)
+        pa, pb = (
+            float(
+                wind(
+                    w, core, r_out, ten, options=replace(WindingOptions(), new_layer=v)
+                ).core_pressure
+            )
+            for v in ("laid_on", "elastic")
+        )
+        cells.append(f"{abs(100 * (pb / pa - 1)):.1f} % at {1e6 * w.thickness:g} um")
+    return ", ".join(cells)
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
     "lazy": lazy,
     "new_layer": new_layer,
@@ -310,4 +594,14 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "elements": elements,
     "k1_zero": k1_zero,
     "lumping": lumping,
+    "storage_cooled": storage_cooled,
+    "creep": creep,
+    "modes": modes,
+    "centre_surface": centre_surface,
+    "air": air,
+    "frozen_period": frozen_period,
+    "work": work,
+    "rules_prose": rules_prose,
+    "new_layer_prose": new_layer_prose,
+    "layer_thickness_prose": layer_thickness_prose,
 }

@@ -173,7 +173,8 @@ def test_orthotropic_ring_under_external_pressure(ratio: float) -> None:
 
     With C12 = 0 (nu = 0), equilibrium gives u = A r^k + B r^-k, k = sqrt(C22 / C11).
     This checks the cylindrically orthotropic polar formulation (hoop term u_r / r) on the
-    default tangential grading (growth 1.1, far elements spanning ~17 deg): the exact-sector
+    default tangential grading (``ContactOptions().tangential_growth``, 1.15 today: far
+    elements up to ~24 deg; docs/contact.md generates both): the exact-sector
     element represents any axisymmetric field exactly in theta, so only the radial
     discretisation of r^k (k up to 100) is left."""
     E_r = 5e6

@@ -194,14 +194,23 @@ def test_plane_strain_slab_is_the_2d_model() -> None:
     """A head as long as the roll on a slab with u_z = 0 faces is plane strain: the 3D model
     must give the 2D model's force per length. Same increments and the same midpoint rule
     (trial predictor) in both, PET1 with the hypoelastic update; the 3D mesh is coarser
-    than the 2D default in the hoop (a_y / 10), hence 2 % (the issue's bar)."""
+    than the 2D default in the hoop (a_y / 10), hence 2 % (the issue's bar). The formulation
+    is checked on a finer grading (1.3: 0.3 % at 1 mm, bar 1 %); the default grading (1.6)
+    meets the 2 % bar at every depth (measured 1.3 % at 1 mm)."""
     r, s = pet_profile()
     web = PET1
+    grow = {"radial_growth": 1.3, "tangential_growth": 1.3, "axial_growth": 1.3}
     opts = Contact3DOptions(
-        n_steps=6, predictor="trial", cmd_edges="fixed", axial_size=web.width / 6
+        n_steps=6, predictor="trial", cmd_edges="fixed", axial_size=web.width / 6, **grow
     )
     head = Head("cylinder", 0.01, 2 * web.width)
     r3 = indent3d(web, RIGID, r, s, head=head, depth_max=1e-3, options=opts)
+    default = indent3d(
+        web, RIGID, r, s, head=head, depth_max=1e-3,
+        options=Contact3DOptions(
+            n_steps=6, predictor="trial", cmd_edges="fixed", axial_size=web.width / 6
+        ),
+    )  # fmt: skip
     from woundroll.contact import ContactOptions
 
     r2 = indent(
@@ -217,6 +226,7 @@ def test_plane_strain_slab_is_the_2d_model() -> None:
     np.testing.assert_allclose(r3.delta, r2.delta, rtol=1e-12)
     assert np.max(np.abs(r3.force[2:] / r2.force[2:] - 1)) < 0.02
     assert r3.force[-1] / r2.force[-1] == pytest.approx(1.0, abs=0.01)
+    assert np.max(np.abs(default.force[2:] / r2.force[2:] - 1)) < 0.02
 
 
 def test_update_stiffens_and_no_update_is_softer() -> None:

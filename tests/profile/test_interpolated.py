@@ -137,6 +137,65 @@ def test_bad_stage_and_tolerance_name_their_field() -> None:
         assert e.value.field == "profile.contact_tolerance"
 
 
+# ------------------------------------------------------------------------- anchored stage
+def _anchored(profiles: list, factor, tol: float = DEFAULT_TOLERANCE):
+    """The anchored stage on synthetic sectors: the cheap spring is :func:`spring`, the
+    expensive one ``factor(x_sector) *`` it (alpha and beta alike); returns the record,
+    its readings, the exact readings and the expensive solves made."""
+    x = descriptors(profiles).mean(axis=1)
+    cheap = np.array([spring(*p) for p in profiles])
+    dear = cheap * np.asarray([factor(v) for v in x])[:, None]
+    index = {id(p): j for j, p in enumerate(profiles)}
+    calls: list[int] = []
+
+    def solve(f, p):
+        calls.append(len(p))
+        ab = np.array([dear[index[id(pi)]] for pi in p])
+        return ab[:, 0], ab[:, 1]
+
+    res = interpolated_springs(
+        [spring] * len(profiles), profiles, solve, lambda a, b, sel: reading(a, b),
+        tolerance=tol, base=(cheap[:, 0], cheap[:, 1]),
+    )  # fmt: skip
+    return res, reading(res.alpha, res.beta), reading(*dear.T), sum(calls)
+
+
+def test_anchored_stage_is_exact_when_the_correction_is_linear_in_the_descriptor() -> None:
+    """A correction (expensive over cheap spring) linear in x is interpolated exactly: the
+    readings equal the expensive model's on every sector to rounding (1e-9 Rho: log and
+    products of O(1e9) numbers). The error estimates act on the reading's correction, here
+    20 ln f(x), whose curvature they see: two check rounds of two sectors find no change
+    and stop (5 first nodes + 4 checks of 12 sectors)."""
+    profiles = [sector(p0, shape) for p0 in (5e3, 1e4, 2e4, 4e4) for shape in (0.7, 1.0, 1.6)]
+    res, got, exact, solves = _anchored(profiles, lambda v: 1.5 + 0.05 * v)
+    assert np.max(np.abs(got - exact)) < 1e-9
+    assert solves <= 5 + 2 * 2
+
+
+def test_anchored_stage_carries_what_the_plain_interpolation_cannot() -> None:
+    """Sectors whose spring is not a function of x alone (pressure shifted deeper: the
+    plain interpolation needs many full solves) but whose correction is constant: the
+    anchored stage reads every sector exactly with the first nodes only, the plain one
+    needs more full solves for the same tolerance."""
+    profiles = [sector(p0, shape) for p0 in np.geomspace(4e3, 5e4, 8) for shape in (0.5, 2.0)]
+    res, got, exact, solves = _anchored(profiles, lambda v: 2.0)
+    assert np.max(np.abs(got - exact)) < 1e-9
+    _, plain_got, plain_exact, plain_solves = run(profiles)
+    assert solves < plain_solves
+    assert np.max(np.abs(plain_got - plain_exact)) <= DEFAULT_TOLERANCE + 1e-9
+
+
+def test_anchored_stage_checks_a_correction_that_is_not_smooth() -> None:
+    """A correction with a step in x (the interpolation cannot carry it): the checks find
+    the sectors it moves by more than the tolerance and solve them; every reading ends
+    within the tolerance of the expensive model's."""
+    profiles = [sector(p0) for p0 in np.geomspace(3e3, 6e4, 21)]
+    x_mid = float(np.median(descriptors(profiles).mean(axis=1)))
+    res, got, exact, solves = _anchored(profiles, lambda v: 1.5 if v < x_mid else 1.8)
+    assert np.max(np.abs(got - exact)) <= DEFAULT_TOLERANCE
+    assert 5 < solves < 21
+
+
 def _case(tmp_path: Path, extra: str) -> Path:
     import woundroll.data
 
@@ -210,3 +269,39 @@ def test_interpolated_profile_equals_every_sector_on_table3() -> None:
     assert abs(a.rho_stats.cov - b.rho_stats.cov) < 1e-4
     solved = b.contact_stage.solved
     assert solved.sum() < a.rho.size and np.array_equal(a.rho[solved], b.rho[solved])
+
+
+def test_cli_reads_a_profile_with_the_3d_model_anchored(tmp_path: Path) -> None:
+    """`woundroll run CASE --set contact.model=3d --set profile.contact=anchored`: a
+    profile read with the 3D model (refused for every sector: too slow), plane strain on
+    every sector, 3D on the nodes. Three sectors are all nodes, so each reading is the 3D
+    model's on that sector: equal (1e-9 relative, the same solves) to the API's profile
+    with the 3D model on every sector. A coarse 3D mesh keeps the test short."""
+    coarse = {"n_fine": 4, "n_steps": 8, "radial_growth": 2.0, "tangential_growth": 2.0,
+              "axial_growth": 2.0}  # fmt: skip
+    sets = [x for k, v in coarse.items() for x in ("--set", f"contact.options3d.{k}={v}")]
+    path = _case(tmp_path, "")
+    refused = CliRunner().invoke(app, ["run", str(path), "--set", "contact.model=3d", *sets])
+    assert refused.exit_code == 2 and "anchored" in refused.output
+    args = ["run", str(path), "--set", "contact.model=3d", "--set", "profile.contact=anchored"]
+    res = CliRunner().invoke(app, [*args, *sets, "--json"])
+    assert res.exit_code == 0, res.output
+    prof = json.loads(res.stdout)["profile"]
+    assert prof["contact_stage"]["stage"] == "anchored"
+    assert prof["contact_stage"]["n_solved"] == 3
+    assert prof["roll_model"] == "3d"
+
+    from woundroll.case import load_case
+    from woundroll.contact.solid3d.options import Contact3DOptions
+    from woundroll.profile.hardness import ContactModel
+
+    c = load_case(str(path))
+    web, core, ins = c.web.build(), c.core.build(), c.tester_setup.instrument
+    every = predict_profile(
+        web, core, c.winding.schedule(web), c.thickness_profile,
+        outer_radius=c.winding.final_radius(web, core), instrument=ins, n_sectors=3,
+        n_groups=30, workers=1,
+        contact=ContactModel(web, core, ins.head_radius, ins.head_length, 1e-3,
+                             instrument=ins, model="3d", options3d=Contact3DOptions(**coarse)),
+    )  # fmt: skip
+    np.testing.assert_allclose(prof["reading_model"], every.rho, rtol=1e-9)

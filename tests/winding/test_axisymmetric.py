@@ -134,8 +134,9 @@ def test_uniform_thickness_reproduces_the_1d_hakiel_model(T: float) -> None:
     # the issue's check: uniform thickness within 2 % of the 1D model (woundroll.winding.hakiel,
     # layer by layer), pointwise. The 1D model is plane stress (sigma_z = 0), so the
     # comparison of the discretisation is made without the axial Poisson coupling
-    # (nu_z_r = nu_theta_z = 0; 5 sectors, default graded grouping). Measured at 2.3 / 3.45 MPa:
-    # max over the roll 0.6 / 0.3 % of P_core, outer 5 mm pointwise 1.0 / 1.1 %.
+    # (nu_z_r = nu_theta_z = 0; 5 sectors, default grouping). The measured deviations are
+    # generated in docs/profile.md section 6 (``profile.hakiel_row``: 0.13 / 0.09 % of P_core
+    # over the roll, 0.06 / 0.13 % pointwise in the outer 5 mm on 2026-11-26's defaults).
     hakiel = pytest.importorskip("woundroll.winding.hakiel")
     web = plane_web()
     ten = TensionSchedule(web_stress=T)
@@ -179,9 +180,10 @@ def _deviation_from_1d(case_name: str, n_sectors: int) -> tuple[float, float]:
 
 
 # one bundled roll per material, the softest tension (its grouping error is the largest),
-# default options (choose_groups: 449 / 449 / 400 groups; measured pointwise 0.39 / 0.36 /
-# 0.21 %; 4.5 / 6.3 / 0.4 % and core pressure 7.4 / 13.9 / 2.4 % low with the former 200
-# groups read at the first group's centre). Tolerance: the issue's 1 %.
+# default options (choose_groups: 449 / 449 / 400 groups). The deviations on every bundled
+# roll are generated in docs/profile.md section 6 (``profile.grouping``, 1 sector: 0.37 /
+# 0.35 / 0.16 % pointwise on 2026-11-26's defaults); the former 200 groups were several per
+# cent off (docs/history.md). Tolerance: the issue's 1 %.
 @pytest.mark.parametrize("case_name", ["pet1-26.7N", "pet2-26.7N", "pet3-2.3MPa"])
 def test_default_grouping_equals_the_1d_model_within_1_percent(case_name: str) -> None:
     whole, core = _deviation_from_1d(case_name, 3)
@@ -212,9 +214,10 @@ def test_default_grouping_equals_the_1d_model_on_every_bundled_roll(case_name: s
 
 
 def test_default_grouping_is_coarse_only_where_converged() -> None:
-    # choose_groups: the soft pet2-80N roll (200 groups: 4.7 % off the fine grouping) keeps
-    # groups of at most 2 layers; the stiffer pet3-3.45MPa roll takes 200 groups (measured
-    # 0.21 % off); every grouping tried is reported with its deviation
+    # choose_groups: the soft pet2-80N roll (200 groups several per cent off the fine
+    # grouping) keeps groups of at most 2 layers; the stiffer pet3-3.45MPa roll takes 200
+    # groups (within GROUPING_TOL); every grouping tried is reported with its deviation. The
+    # measured deviations are generated in docs/profile.md (``profile.choice``)
     from woundroll.winding.axisymmetric import GROUPING_TOL, choose_groups, default_groups
 
     for name, coarse in (("pet2-80N", False), ("pet3-3.45MPa", True)):
@@ -248,10 +251,12 @@ def test_table3_poisson_coupling_against_the_1d_model() -> None:
     # wide roll are tied axially by tau_rz (shear-lag length ~ depth x sqrt(E_z / G_rz), of
     # the order of the width): at mid-width the roll is nearer plane strain in z than plane
     # stress, sigma_z reaches ~1.6 MPa at the core, and sigma_r departs from the plane-stress
-    # 1D model by ~7 % of P_core near the core (a physical difference, not a discretisation
-    # error: it vanishes without the coupling, test above). Near the surface, where the
-    # tester reads, mid-width sigma_r stays within 3 % pointwise (measured 2.5 %) and within
-    # 0.2 % of P_core. Bands: regression guards on these measured values.
+    # 1D model by several per cent of P_core near the core (a physical difference, not a
+    # discretisation error: it vanishes without the coupling, test above). Near the surface,
+    # where the tester reads, mid-width sigma_r stays within 3 % pointwise and within 0.2 %
+    # of P_core. Measured (generated in docs/profile.md section 6, ``profile.poisson_row``,
+    # 2026-11-26's defaults): 6.5 % of P_core; near the surface 1.6 % pointwise and 0.06 % of
+    # P_core; sigma_z +1.63 MPa. Bands: regression guards around these values.
     hakiel = pytest.importorskip("woundroll.winding.hakiel")
     web = table3_web()
     ten = TensionSchedule(web_stress=2.3e6)

@@ -553,10 +553,11 @@ def _profile_contact(case: Case, web: Web, core: Core, instrument: Any, notes: l
 
     spec = case.profile
     entry = case.contact.roll_model(instrument.head_shape)
-    if not entry.per_sector:
+    if not entry.per_sector and spec.contact != "anchored":
         raise InputError(
             f"the {entry.name!r} roll model is too slow to solve once per CMD sector "
-            f"({spec.sectors} sectors): use '2d' or '2d+cmd-spread' for a profile",
+            f"({spec.sectors} sectors): use '2d' or '2d+cmd-spread', or [profile] contact = "
+            '"anchored" (plane strain on every sector, this model on a few)',
             "contact.model",
         )
     notes += _calibration_notes(instrument, entry.name)
@@ -569,6 +570,7 @@ def _profile_contact(case: Case, web: Web, core: Core, instrument: Any, notes: l
         instrument=instrument,
         options=case.contact.contact_options(),
         model=entry.name,
+        options3d=case.contact.contact3d_options() if entry.name == "3d" else None,
     )
 
 

@@ -399,8 +399,11 @@ _TERMS: tuple[Term, ...] = (
     _t("contact_fraction", "", "share of the width the nip touches"),
     _t("peak_to_mean", "", "peak over mean nip load"),
     _t("foundation_depth_m", "m", "depth of the nip's foundation"),
-    _o("contact_stage", "how the sectors' roll springs were found (every sector or interpolated)"),
-    _s("stage", "the contact stage: every-sector or interpolated"),
+    _o(
+        "contact_stage",
+        "how the sectors' roll springs were found (every sector, interpolated or anchored)",
+    ),
+    _s("stage", "the contact stage: every-sector, interpolated or anchored"),
     _r("contact_tolerance", "readout", "largest reading change the interpolation's check accepts"),
     _b("solved", "a sector whose contact was solved fully (not interpolated)"),
     _i("n_solved", "sectors whose contact was solved fully"),

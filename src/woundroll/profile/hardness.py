@@ -94,6 +94,8 @@ class ContactModel:
     instrument : Instrument, optional
         Striker (head and reach).
     options : ContactOptions, optional
+    options3d : Contact3DOptions, optional
+        The 3D models' mesh and steps (with ``model = "3d"``; None: their defaults).
     """
 
     web: Web
@@ -106,6 +108,7 @@ class ContactModel:
     #: the roll model of the instrument's spring (:func:`woundroll.contact.roll_stiffness`,
     #: a name in :data:`woundroll.contact.models.ROLL_MODELS`); None: the registry's default
     model: str | None = None
+    options3d: Any = None
 
     def __call__(self, radius: FloatArray, sigma_r: FloatArray) -> tuple[float, float]:
         from woundroll.contact import fit_roll_spring, indent, roll_stiffness
@@ -121,6 +124,7 @@ class ContactModel:
                 options=self.options,
                 field="profile",
                 model=self.model,
+                options3d=self.options3d,
             )
             return rs.alpha, rs.beta
         res = indent(
@@ -817,13 +821,21 @@ def _predict_profile(
     profiles = [w.sector_profile(j) for j in range(w.z.size)]
     fns = sector_contacts(contact, w.slack)
     contact_stage = None
+    if stage_name == "anchored" and _anchors_itself(contact):
+        stage_name = "every-sector"  # plane strain anchored on plane strain: every sector
     if stage_name == "every-sector":
         alpha, beta = map_sectors(
             fns, profiles, workers=workers, progress=stage("contact"), pool=pool
         )
     else:
+        base = None
+        if stage_name == "anchored":
+            base = map_sectors(
+                sector_contacts(_cheap_contact(contact), w.slack), profiles,
+                workers=workers, progress=stage("contact (plane strain)"), pool=pool,
+            )  # fmt: skip
         contact_stage = _interpolated_contact(
-            fns, profiles, readout, w, web, pool, workers, tolerance, stage("contact")
+            fns, profiles, readout, w, web, pool, workers, tolerance, stage("contact"), base
         )
         alpha, beta = contact_stage.alpha, contact_stage.beta
     timings["contact"] = time.perf_counter() - t2
@@ -867,10 +879,11 @@ def _interpolated_contact(
     workers: int,
     tolerance: float,
     progress: Callable[[int, int], None] | None,
+    base: tuple[FloatArray, FloatArray] | None = None,
 ) -> InterpolatedContact:
     """The springs by :func:`woundroll.profile.interpolated.interpolated_springs`: full
     solves by :func:`map_sectors` on the pool, readings of the checked sectors with their
-    own pile heights."""
+    own pile heights; anchored on the cheap model's springs ``base`` when given."""
     pile = w.build_radius - w.core_radius
     scale = None
     if isinstance(readout, InstrumentReadout):
@@ -898,7 +911,40 @@ def _interpolated_contact(
         batch=2 * workers,
         scale=scale,
         progress=progress,
+        base=base,
     )
+
+
+#: The cheap model of the anchored contact stage (``[profile] contact = "anchored"``): the
+#: paper's plane-strain ring, solved on every sector.
+ANCHOR_MODEL = "2d"
+
+
+def _cheap_contact(contact: ContactFn) -> ContactModel:
+    """The anchored stage's cheap contact callable: ``contact`` with the plane-strain roll
+    model (:data:`ANCHOR_MODEL`); a custom callable cannot be anchored."""
+    if not (isinstance(contact, ContactModel) and contact.instrument is not None):
+        raise InputError(
+            "the anchored contact stage needs the default contact model with an instrument",
+            "profile.contact",
+        )
+    if contact.instrument.head_shape not in ("cylinder",):
+        raise InputError(
+            f"the anchored contact stage reads a cylindrical head in plane strain, not a "
+            f"{contact.instrument.head_shape}",
+            "profile.contact",
+        )
+    return replace(contact, model=ANCHOR_MODEL)
+
+
+def _anchors_itself(contact: ContactFn) -> bool:
+    """The contact model is the anchored stage's cheap model itself (the stage is then
+    every sector: nothing to anchor)."""
+    from woundroll.contact.models import resolve_model
+
+    if not (isinstance(contact, ContactModel) and contact.instrument is not None):
+        return False
+    return resolve_model(contact.model, contact.instrument.head_shape).name == ANCHOR_MODEL
 
 
 def _sector_readings(

@@ -31,6 +31,18 @@ striker, and the roll spring {3} of a sector is a smooth function of it. So inst
    than its estimate shows the scale's end whatever the error: it is not checked (its
    model value beyond the scale is interpolated; ``solved`` tells which sectors were).
 
+**Anchored on a cheaper model** (``"anchored"``, for an expensive roll model such as
+``contact.model = "3d"``): the cheap model (plane strain, ``"2d"``) is solved on every
+sector, the expensive one on the nodes and checks above; what is interpolated in ``x`` is
+the expensive model's spring *relative to the cheap one's* (``alpha / alpha_2d``, ``beta /
+beta_2d``; a cheap coefficient of 0 divided as :data:`ANCHOR_FLOOR` of its median), and
+the error estimates and checks act on the reading's correction (expensive minus cheap
+reading), which varies far more slowly across the sectors than the reading itself: the
+cheap model carries each sector's own pressure profile, the interpolation only the
+3D-to-plane-strain correction. Assumption
+(named): the correction depends on the sector only through ``x`` between nodes (checked
+like the plain interpolation; measured against 3D on every sector in docs/profile.md).
+
 Assumptions (named): the spring depends on the sector's pressure profile only through
 ``x`` between neighbouring nodes (the mismatch term of the estimate flags a sector where
 it does not); the check's largest estimate finds the largest error (verified against the
@@ -58,12 +70,14 @@ SolveFn = Callable[
 ]
 
 #: The contact stage of a profile: ``"every-sector"`` (one full contact solve per sector,
-#: exact) or ``"interpolated"`` (solved on a few sectors, checked). The one default of every
+#: exact), ``"interpolated"`` (solved on a few sectors, checked) or ``"anchored"`` (the
+#: plane-strain model on every sector, the case's roll model on a few, its correction
+#: interpolated and checked; for an expensive model such as 3D). The one default of every
 #: entry point (``[profile] contact`` of a case, :func:`predict_profile`): every sector,
 #: because on the bundled Table 3 cases the check still solves 46-61 of the 61 sectors in
 #: 10-13 rounds, and the rounds cost more wall time than the skipped solves save
 #: (docs/profile.md section 7).
-CONTACT_STAGES = ("every-sector", "interpolated")
+CONTACT_STAGES = ("every-sector", "interpolated", "anchored")
 DEFAULT_CONTACT_STAGE = "every-sector"
 #: Largest change of a checked sector's reading the interpolation may make (the
 #: instrument's reading units: 0.2 Rho, below the 1-Rho display resolution of a Rho-meter
@@ -88,6 +102,10 @@ FIRST_NODES = 5
 #: sectors count as one roll: one solve, copied (a uniform web's sectors agree to 1e-7,
 #: docs/profile.md section 6; a 1e-6 pressure change moves a reading by ~1e-6 of it).
 SAME_DESCRIPTOR = 1e-6
+#: Anchored stage: a cheap spring coefficient of 0 is divided as this fraction of the
+#: coefficient's median over the sectors (a ratio needs a denominator; the spring made
+#: from it stays >= 0, and the check judges its reading like any other).
+ANCHOR_FLOOR = 1e-3
 
 
 @dataclass(frozen=True)
@@ -150,8 +168,8 @@ def descriptors(profiles: Sequence[tuple[FloatArray, FloatArray]]) -> FloatArray
 def _interpolate(
     x: FloatArray, nodes: list[int], a: FloatArray, b: FloatArray, members: NDArray[np.intp]
 ) -> None:
-    """alpha, beta of the group's ``members`` linear in x between its ``nodes`` (in place;
-    nodes at one x averaged)."""
+    """alpha, beta (or, anchored, their relation to the cheap model's) of the group's
+    ``members`` linear in x between its ``nodes`` (in place; nodes at one x averaged)."""
     xn = x[nodes]
     order = np.argsort(xn, kind="stable")
     xs, idx = np.unique(xn[order], return_inverse=True)
@@ -245,13 +263,15 @@ def _candidates(
     cached: Callable[[NDArray[np.intp]], FloatArray],
     calibration: float,
     scale: tuple[float, float] | None,
+    offset: FloatArray,
 ) -> list[tuple[float, int, int, int]]:
     """(error estimate, group, interval, sector) of every interpolated sector whose shown
-    reading the error could change, largest first."""
+    reading the error could change, largest first. The estimates act on ``reading -
+    offset`` (anchored: the correction to the cheap model's reading; else offset 0)."""
     cand: list[tuple[float, int, int, int]] = []
     for k, m in live.items():
         nodes = [int(j) for j in m if solved[j]]
-        est = _estimates(x, x_all, nodes, reading, m)
+        est = _estimates(x, x_all, nodes, reading - offset, m)
         if not est:
             continue
         js = np.asarray(list(est), dtype=np.intp)
@@ -259,7 +279,7 @@ def _candidates(
             e, i, lin = est[int(j)]
             # the springs interpolated against the readings interpolated: two
             # approximations of one order whose difference is of the order of the error
-            e = max(e, abs(r - lin))
+            e = max(e, abs(r - offset[j] - lin))
             ce = calibration * e
             if scale is not None and (r - ce > scale[1] or r + ce < scale[0]):
                 continue  # shows the scale's end whatever the error
@@ -284,6 +304,54 @@ def _pick(cand: list[tuple[float, int, int, int]], batch: int) -> list[int]:
     return pick
 
 
+@dataclass
+class _Anchor:
+    """The anchored stage's bookkeeping: the cheap model's springs ``base`` and the
+    relation of each solved sector's spring to them, per coefficient a ratio (``alpha /
+    alpha_base``). A cheap coefficient fitted to 0 (the fit keeps alpha, beta >= 0) is
+    divided as :data:`ANCHOR_FLOOR` of the coefficient's median instead, so every ratio is
+    finite and >= 0 and so is every spring made from one. Without a base it is the
+    identity (the plain interpolation)."""
+
+    denominators: tuple[FloatArray, FloatArray]
+    rel: tuple[FloatArray, FloatArray]
+    active: bool
+
+    @classmethod
+    def of(cls, base: tuple[FloatArray, FloatArray] | None, n: int) -> _Anchor:
+        if base is None:
+            z = np.zeros(n)
+            return cls((z, z), (z, z), False)
+        b = [np.asarray(c, dtype=float).reshape(-1) for c in base]
+        if any(c.shape != (n,) or not np.all(np.isfinite(c)) or np.any(c < 0) for c in b):
+            raise InputError(
+                "the anchored stage needs one finite cheap spring >= 0 per sector",
+                "profile.contact",
+            )
+        den = []
+        for c in b:
+            pos = c[c > 0]
+            floor = ANCHOR_FLOOR * float(np.median(pos)) if pos.size else 1.0
+            den.append(np.maximum(c, floor))
+        return cls((den[0], den[1]), (np.zeros(n), np.zeros(n)), True)
+
+    def relate(self, alpha: FloatArray, beta: FloatArray, sel: NDArray[np.intp]) -> None:
+        """Record the solved sectors' relation to the base."""
+        if self.active:
+            for c, full, rel in zip(self.denominators, (alpha, beta), self.rel, strict=True):
+                rel[sel] = full[sel] / c[sel]
+
+    def interpolated(self, alpha: FloatArray, beta: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """The arrays interpolated in x: the relations (anchored) or the springs."""
+        return self.rel if self.active else (alpha, beta)
+
+    def apply(self, alpha: FloatArray, beta: FloatArray, rest: NDArray[np.intp]) -> None:
+        """The interpolated sectors' springs from their interpolated relations."""
+        if self.active and rest.size:
+            for c, full, rel in zip(self.denominators, (alpha, beta), self.rel, strict=True):
+                full[rest] = c[rest] * rel[rest]
+
+
 def interpolated_springs(
     fns: Sequence[ContactFn],
     profiles: Sequence[tuple[FloatArray, FloatArray]],
@@ -294,6 +362,7 @@ def interpolated_springs(
     batch: int = 2,
     scale: tuple[float, float] | None = None,
     progress: Callable[[int, int], None] | None = None,
+    base: tuple[FloatArray, FloatArray] | None = None,
 ) -> InterpolatedContact:
     """The roll spring of every sector from full contact solves on a few (module docstring).
 
@@ -310,6 +379,9 @@ def interpolated_springs(
     scale : (lo, hi), optional
         The instrument's scale: a sector interpolated beyond it by more than its estimate
         is not checked (it shows the scale's end).
+    base : (alpha, beta) per sector, optional
+        Anchored (module docstring): a cheaper model's springs on every sector; what is
+        interpolated is the full solves' spring relative to these.
     """
     n = len(profiles)
     x_all = descriptors(profiles)
@@ -318,6 +390,10 @@ def interpolated_springs(
     solved = np.zeros(n, dtype=bool)
     reading = np.full(n, np.nan)  # readings of solved sectors
     groups = _groups(fns)
+    anchor = _Anchor.of(base, n)
+    offset = np.zeros(n)  # anchored: the cheap springs' readings (what the checks correct)
+    if base is not None:
+        offset = readings(*(np.asarray(c, dtype=float) for c in base), np.arange(n))
 
     def full(idx: list[int]) -> None:
         idx = [j for j in idx if not solved[j]]
@@ -326,6 +402,7 @@ def interpolated_springs(
         a, b = solve([fns[j] for j in idx], [profiles[j] for j in idx])
         sel = np.asarray(idx, dtype=np.intp)
         alpha[sel], beta[sel] = a, b
+        anchor.relate(alpha, beta, sel)
         solved[sel] = True
         reading[sel] = readings(alpha[sel], beta[sel], sel)
         if progress is not None:
@@ -352,10 +429,15 @@ def interpolated_springs(
                 memo[int(j)] = (float(alpha[j]), float(beta[j]), float(r))
         return np.array([memo[int(j)][2] for j in js])
 
-    while True:
+    def interpolate() -> None:
         for m in live.values():
-            _interpolate(x, [int(j) for j in m if solved[j]], alpha, beta, m)
-        cand = _candidates(x, x_all, live, solved, reading, cached, calibration, scale)
+            nodes = [int(j) for j in m if solved[j]]
+            _interpolate(x, nodes, *anchor.interpolated(alpha, beta), m)
+            anchor.apply(alpha, beta, np.setdiff1d(m, nodes))
+
+    while True:
+        interpolate()
+        cand = _candidates(x, x_all, live, solved, reading, cached, calibration, scale, offset)
         if not cand:
             break
         pick = _pick(cand, batch)
@@ -375,8 +457,7 @@ def interpolated_springs(
         rest = [e for e, _, _, j in cand if j not in pick]
         if largest_check <= tolerance and (not rest or calibration * max(rest) <= tolerance):
             break
-    for m in live.values():
-        _interpolate(x, [int(j) for j in m if solved[j]], alpha, beta, m)
+    interpolate()
     return InterpolatedContact(
         alpha=alpha,
         beta=beta,
