@@ -435,16 +435,38 @@ class ContactSpec(_Section):
     shear_ratio: Q("dimensionless") | None = None
     #: G_r_theta kept at its pre-impact value while E_r stiffens under the head
     shear_frozen: bool = False
-    # -- the layered roll (contact.model = "layered"; docs/contact.md "The layered roll") --
+    # -- the layered roll (contact.model = "layered" or "layered-3d"; docs/contact.md "The
+    # layered roll", "The layered roll in 3D") --
     #: depth of the layered zone under the surface (unset: 1.0 a_geo)
     layered_depth: Q("length") | None = None
-    #: web layers per element shell in the layered zone
-    layers_per_shell: int = 1
+    #: web layers per element shell in the layered zone (unset: 1 in 2D; in 3D, the 3D
+    #: model's surface ring)
+    layers_per_shell: int | None = None
 
     def model_options(self) -> Any:
         """The options of the roll model this section names: :meth:`layered_options` for
         ``"layered"``, else :meth:`contact_options`."""
+        if self.model == "layered-3d":
+            return self.layered3d_options()
         return self.layered_options() if self.model == "layered" else self.contact_options()
+
+    def layered3d_options(self) -> Any:
+        """The :class:`~woundroll.contact.layered.roll3d.Layered3DOptions` of this section:
+        the 3D options (``options3d``) and the zone's keys."""
+        from woundroll.contact.layered.roll3d import Layered3DOptions
+
+        for key, unset in (("shear_ratio", None), ("shear_frozen", False)):
+            if getattr(self, key) != unset:
+                raise InputError("is taken by the '2d' and 'layered' models only", f"contact.{key}")
+        base = self.contact3d_options()
+        try:
+            return Layered3DOptions(
+                base=base,
+                layered_depth=self.layered_depth,
+                layers_per_shell=self.layers_per_shell,
+            )
+        except InputError as exc:
+            raise exc.at("contact") from None
 
     def layered_options(self) -> Any:
         """The :class:`~woundroll.contact.layered.solver.LayeredOptions` of this section:
@@ -457,7 +479,9 @@ class ContactSpec(_Section):
         base = replace(self.contact_options(layered=True), newton=False)
         try:
             return LayeredOptions(
-                base=base, layered_depth=self.layered_depth, layers_per_shell=self.layers_per_shell
+                base=base,
+                layered_depth=self.layered_depth,
+                layers_per_shell=1 if self.layers_per_shell is None else self.layers_per_shell,
             )
         except InputError as exc:
             raise exc.at("contact") from None
@@ -553,10 +577,13 @@ class ContactSpec(_Section):
         ``layered``: for the layered model (its zone keys are refused otherwise)."""
         from woundroll.contact import ContactOptions
 
-        if not layered and self.model != "layered":
-            for key, unset in (("layered_depth", None), ("layers_per_shell", 1)):
+        if not layered and self.model not in ("layered", "layered-3d"):
+            for key, unset in (("layered_depth", None), ("layers_per_shell", None)):
                 if getattr(self, key) != unset:
-                    raise InputError("is used by contact.model = 'layered' only", f"contact.{key}")
+                    raise InputError(
+                        "is used by contact.model = 'layered' or 'layered-3d' only",
+                        f"contact.{key}",
+                    )
 
         known = set(ContactOptions.__dataclass_fields__)
         unknown = sorted(set(self.options) - known)

@@ -109,6 +109,29 @@ def _layered(web: Any, core: Any, r: Any, sigma_r: Any, instrument: Any, **kw: A
     return res, None
 
 
+def _layered3d(web: Any, core: Any, r: Any, sigma_r: Any, instrument: Any, **kw: Any) -> Any:
+    """The layered roll in 3D (:func:`woundroll.contact.layered.roll3d.indent_layered3d`):
+    sheets with isotropic Coulomb friction (``friction``) in a layered zone under the head,
+    the 3D continuum below; ``options`` a Layered3DOptions (the case's keys) or None, the 3D
+    options carry the mesh and step settings. (result, None)."""
+    import dataclasses
+
+    from woundroll.contact.heads import Head
+    from woundroll.contact.layered.roll3d import Layered3DOptions, indent_layered3d
+
+    options = kw.pop("options", None)
+    options3d = kw.pop("options3d", None)
+    if not isinstance(options, Layered3DOptions):
+        _refuse_shear_options(options, "layered-3d")
+        options = Layered3DOptions()
+    if options3d is not None:
+        options = dataclasses.replace(options, base=options3d)
+    res = indent_layered3d(
+        web, core, r, sigma_r, head=Head.from_instrument(instrument), options=options, **kw
+    )
+    return res, None
+
+
 @dataclass(frozen=True)
 class RollModelEntry:
     """One roll model of the registry.
@@ -196,6 +219,16 @@ ROLL_MODELS: dict[str, RollModelEntry] = {
             "layers-per-shell refinement (docs/contact.md, 'The layered roll')",
             _layered,
             True,
+        ),
+        RollModelEntry(
+            "layered-3d",
+            "3D, layered: sheets with isotropic Coulomb friction under the head",
+            ("cylinder", "sphere", "punch"),
+            False,
+            "equals the 3D continuum on its mesh when every interface sticks; layers-per-shell "
+            "refinement (docs/contact.md, 'The layered roll in 3D')",
+            _layered3d,
+            False,
         ),
     )
 }
