@@ -339,10 +339,14 @@ def _assumptions(result: RunResult) -> list[str]:
 
         entry = ROLL_MODELS.get(result.contact.model)
         title = entry.title if entry is not None else result.contact.model
+        slip = (
+            "interlayer Coulomb friction between the sheets near the head (stick and slip)"
+            if result.contact.model.startswith("layered")
+            else "no interlayer slip in the solution (the slip factor {23} only flags it)"
+        )
         out.append(
             f"Roll model {result.contact.model!r} ({title}): frictionless rigid head, "
-            "quasi-static F(d), no interlayer slip in the solution (the slip factor {23} "
-            "only flags it); docs/trust.md says how far to trust it."
+            f"quasi-static F(d), {slip}; docs/trust.md says how far to trust it."
         )
     if result.hardness is not None:
         out.append(
