@@ -366,7 +366,8 @@ def test_plots_hoop_stress_smooth_and_impact_from_contact(client):
         y = np.asarray(y)
         return float(np.median(np.abs(np.diff(y, 2))) / (y.max() - y.min()))
 
-    # the node values saw-tooth with the layer period (10 % of the range per node here: docs/web.md, generated)
+    # the node values saw-tooth with the layer period (10 % of the range per node here,
+    # generated in docs/web.md)
     assert roughness(w.sigma_theta) > 1e-2
     st = plots["plot-sigma-t"]["series"][0]
     rm, mean = w.layer_mean_hoop_stress()
