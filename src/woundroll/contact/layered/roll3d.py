@@ -49,7 +49,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from woundroll.contact.heads import Head
-from woundroll.contact.layered.solver import LAYERED_DEPTH, layered_radii
+from woundroll.contact.layered.solver import LAYERED_DEPTH, layered_radii, zone_shells
 from woundroll.contact.solid3d.fem import Assembler3D, stresses
 from woundroll.contact.solid3d.linsolve import make_solver
 from woundroll.contact.solid3d.mesh import RollMesh3D
@@ -550,19 +550,7 @@ def layered_mesh3d(
         n_layers = max(1, round(float(mesh.r[-1] - mesh.r[-2]) / web.thickness))
     shell = n_layers * web.thickness
     depth = lopts.layered_depth if lopts.layered_depth is not None else LAYERED_DEPTH * a_y
-    if depth >= r_out - r_in:
-        raise InputError(
-            f"the layered zone ({depth * 1e3:.4g} mm) must be shallower than the wound "
-            f"thickness ({(r_out - r_in) * 1e3:.4g} mm)",
-            "layered_depth",
-        )
-    n_shells = max(1, round(depth / shell))
-    if n_shells * shell >= 0.9 * (r_out - r_in):
-        raise InputError(
-            f"the layered zone ({n_shells * shell * 1e3:.4g} mm) must leave a continuum below "
-            f"it (wound thickness {(r_out - r_in) * 1e3:.4g} mm)",
-            "layered_depth",
-        )
+    n_shells = zone_shells(depth, shell, r_in, r_out)
     r = layered_radii(r_in, r_out, shell, n_shells, base.radial_growth)
     cut = r.size - 1 - np.arange(1, n_shells + 1)
     return RollMesh3D(r=r, theta=mesh.theta, z=mesh.z), cut, n_shells, n_layers

@@ -238,6 +238,27 @@ class LayeredMesh(RollMesh):
         return (self.n_r - 1 - self.n_cut) * (self.n_theta - 1)  # type: ignore[attr-defined]
 
 
+def zone_shells(depth: float, shell: float, r_in: float, r_out: float) -> int:
+    """Shells of thickness ``shell`` [m] in a layered zone ``depth`` [m] deep on a roll wound
+    from ``r_in`` to ``r_out`` (2D and 3D layered models alike); the zone must be shallower
+    than the wound thickness and leave a continuum below it (one-line errors naming
+    ``layered_depth``)."""
+    if depth >= r_out - r_in:
+        raise InputError(
+            f"the layered zone ({depth * 1e3:.4g} mm) must be shallower than the wound "
+            f"thickness ({(r_out - r_in) * 1e3:.4g} mm)",
+            "layered_depth",
+        )
+    n_shells = max(1, round(depth / shell))
+    if n_shells * shell >= 0.9 * (r_out - r_in):
+        raise InputError(
+            f"the layered zone ({n_shells * shell * 1e3:.4g} mm) must leave a continuum below "
+            f"it (wound thickness {(r_out - r_in) * 1e3:.4g} mm)",
+            "layered_depth",
+        )
+    return n_shells
+
+
 def layered_radii(
     r_in: float, r_out: float, shell: float, n_shells: int, growth: float
 ) -> FloatArray:
@@ -584,19 +605,7 @@ def layered_mesh_inputs(
     a_geo = math.sqrt(2.0 * R_eff * depth_max)
     shell = lopts.layers_per_shell * web.thickness
     depth = lopts.layered_depth if lopts.layered_depth is not None else LAYERED_DEPTH * a_geo
-    if depth >= r_out - r_in:
-        raise InputError(
-            f"the layered zone ({depth * 1e3:.4g} mm) must be shallower than the wound "
-            f"thickness ({(r_out - r_in) * 1e3:.4g} mm)",
-            "layered_depth",
-        )
-    n_shells = max(1, round(depth / shell))
-    if n_shells * shell >= 0.9 * (r_out - r_in):
-        raise InputError(
-            f"the layered zone ({n_shells * shell * 1e3:.4g} mm) must leave a continuum below "
-            f"it (wound thickness {(r_out - r_in) * 1e3:.4g} mm)",
-            "layered_depth",
-        )
+    n_shells = zone_shells(depth, shell, r_in, r_out)
     r = layered_radii(r_in, r_out, shell, n_shells, base.radial_growth)
     t_size = (
         base.tangential_size
