@@ -411,58 +411,8 @@ def _thin_stack(
     outer surface pushed in radially through stiff springs, uniform steps to ``eps_max``),
     driven by the same increment function as ``indent``: the largest error of P over the
     elements against P = K1 (exp(K2 eps) - 1) at each element's strain, and the mean P."""
-    from types import SimpleNamespace
-
-    import numpy as np
-
-    from woundroll.contact import ContactOptions
-    from woundroll.materials import Pfeiffer
-    from woundroll.materials.web import Core, Web
-
-    t = _contact_tests()
-    web = Web(thickness=t.H, width=0.1524, E_theta=4950e6, radial_modulus=Pfeiffer(k1, k2))
-    R_in, th = 1.0, 1e-3
-    mesh = t.build_mesh(
-        R_in,
-        R_in + th,
-        surface_size=1e-4,
-        radial_growth=1.0,
-        tangential_size=0.2,
-        fine_halfwidth=0.2,
-        tangential_growth=1.0,
-    )
-    roll = t._Roll(
-        web,
-        Core(outer_radius=R_in),
-        np.array([R_in, R_in + th]),
-        np.zeros(2),
-        mesh,
-        ContactOptions(),
-    )
-    surf = roll.surface
-    k_pen = 1e6 * web.E_theta
-    spring = np.zeros(2 * mesh.n_nodes)
-    spring[2 * surf] = k_pen
-    roll.assembler = t.Assembler(roll.basis, roll.free, spring)
-    rows = roll.assembler.free_index[2 * surf]
-    u = np.zeros(2 * mesh.n_nodes)
-    sig = np.zeros((mesh.n_elements, 3))
-    delta = eps_max * th * np.arange(n + 1) / n
-    for k in range(1, n + 1):
-        df = np.zeros(roll.assembler.n_free)
-        df[rows] = -k_pen * (delta[k] - delta[k - 1])
-
-        def solve(mod: tuple, lu: Any, df: Any = df) -> SimpleNamespace:
-            du = np.zeros(2 * mesh.n_nodes)
-            du[roll.free] = lu.solve(df)
-            return SimpleNamespace(du=du, dsig=roll.stress_increment(mod, du))
-
-        step = t._hypoelastic_increment(roll, sig[:, 0], midpoint, solve)
-        u += step.du
-        sig += step.dsig
-    eps = -roll.strain_increment(u)[:, 0]
-    P = -sig[:, 0]
-    return float(np.max(np.abs(P / (k1 * np.expm1(k2 * eps)) - 1))), float(P.mean())
+    err, p_mean, _eps = _contact_tests().thin_stack_run(k1, k2, eps_max, n, midpoint)
+    return err, p_mean
 
 
 #: Table 2's Pfeiffer constants of PET2 and PET1 (K1 [Pa], K2 [-]), as in the test

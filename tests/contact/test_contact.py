@@ -521,6 +521,60 @@ def test_slip_factor_vanishes_on_the_axis(pet_default: ContactResult) -> None:
     np.testing.assert_allclose(sf_half.slip_factor[near], 0.5 * res.slip_factor[near], rtol=1e-9)
 
 
+def thin_stack_run(
+    k1: float, k2: float, eps_max: float, n: int, midpoint: bool
+) -> tuple[float, float, np.ndarray]:
+    """A thin stack (1 mm wound on a 1 m rigid core, Pfeiffer K1 = ``k1``, K2 = ``k2``),
+    its outer surface pushed in radially through stiff springs in ``n`` uniform steps to
+    the strain ``eps_max``, driven by the increment function of :func:`indent`
+    (``_hypoelastic_increment``, midpoint or forward Euler): the largest error of P over the
+    elements against P = K1 (exp(K2 eps) - 1) at each element's strain, the mean P [Pa] and
+    the elements' strains (docs/scripts/contact.py reads the same runs)."""
+    web = Web(thickness=H, width=0.1524, E_theta=4950e6, radial_modulus=Pfeiffer(k1, k2))
+    R_in, t = 1.0, 1e-3
+    mesh = build_mesh(
+        R_in,
+        R_in + t,
+        surface_size=1e-4,
+        radial_growth=1.0,
+        tangential_size=0.2,
+        fine_halfwidth=0.2,
+        tangential_growth=1.0,
+    )
+    roll = _Roll(
+        web,
+        Core(outer_radius=R_in),
+        np.array([R_in, R_in + t]),
+        np.zeros(2),
+        mesh,
+        ContactOptions(),
+    )
+    surf = roll.surface
+    k_pen = 1e6 * web.E_theta
+    spring = np.zeros(2 * mesh.n_nodes)
+    spring[2 * surf] = k_pen
+    roll.assembler = Assembler(roll.basis, roll.free, spring)
+    rows = roll.assembler.free_index[2 * surf]
+    u = np.zeros(2 * mesh.n_nodes)
+    sig = np.zeros((mesh.n_elements, 3))
+    delta = eps_max * t * np.arange(n + 1) / n
+    for k in range(1, n + 1):
+        df = np.zeros(roll.assembler.n_free)
+        df[rows] = -k_pen * (delta[k] - delta[k - 1])
+
+        def solve(mod: tuple, lu: object, df: np.ndarray = df) -> SimpleNamespace:
+            du = np.zeros(2 * mesh.n_nodes)
+            du[roll.free] = lu.solve(df)
+            return SimpleNamespace(du=du, dsig=roll.stress_increment(mod, du))
+
+        step = _hypoelastic_increment(roll, sig[:, 0], midpoint, solve)
+        u += step.du
+        sig += step.dsig
+    eps = -roll.strain_increment(u)[:, 0]
+    P = -sig[:, 0]
+    return float(np.max(np.abs(P / (k1 * np.expm1(k2 * eps)) - 1))), float(P.mean()), eps
+
+
 def test_hypoelastic_update_integrates_the_pfeiffer_law() -> None:
     """The incremental modulus update against the integrated law, in a thin-stack limit.
 
@@ -540,54 +594,13 @@ def test_hypoelastic_update_integrates_the_pfeiffer_law() -> None:
     eps = 0.2 (PET2's K1, K2: the strain the stack reaches under a Rho-meter head).
     """
     K1, K2 = 20270.0, 26.24  # PET2, Table 2
-    web = Web(thickness=H, width=0.1524, E_theta=4950e6, radial_modulus=Pfeiffer(K1, K2))
-    R_in, t, eps_max = 1.0, 1e-3, 0.2
-    mesh = build_mesh(
-        R_in,
-        R_in + t,
-        surface_size=1e-4,
-        radial_growth=1.0,
-        tangential_size=0.2,
-        fine_halfwidth=0.2,
-        tangential_growth=1.0,
-    )
+    eps_max = 0.2
 
     def run(n: int, midpoint: bool) -> tuple[float, float]:
-        roll = _Roll(
-            web,
-            Core(outer_radius=R_in),
-            np.array([R_in, R_in + t]),
-            np.zeros(2),
-            mesh,
-            ContactOptions(),
-        )
-        surf = roll.surface
-        k_pen = 1e6 * web.E_theta
-        spring = np.zeros(2 * mesh.n_nodes)
-        spring[2 * surf] = k_pen
-        roll.assembler = Assembler(roll.basis, roll.free, spring)
-        rows = roll.assembler.free_index[2 * surf]
-        u = np.zeros(2 * mesh.n_nodes)
-        sig = np.zeros((mesh.n_elements, 3))
-        delta = eps_max * t * np.arange(n + 1) / n
-
-        for k in range(1, n + 1):
-            df = np.zeros(roll.assembler.n_free)
-            df[rows] = -k_pen * (delta[k] - delta[k - 1])
-
-            def solve(mod: tuple, lu: object, df: np.ndarray = df) -> SimpleNamespace:
-                du = np.zeros(2 * mesh.n_nodes)
-                du[roll.free] = lu.solve(df)
-                return SimpleNamespace(du=du, dsig=roll.stress_increment(mod, du))
-
-            step = _hypoelastic_increment(roll, sig[:, 0], midpoint, solve)
-            u += step.du
-            sig += step.dsig
-        eps = -roll.strain_increment(u)[:, 0]
-        P = -sig[:, 0]
+        err, p_mean, eps = thin_stack_run(K1, K2, eps_max, n, midpoint)
         # the thin-stack limit: uniform strain delta / t (1e-3: t / R)
         assert np.max(np.abs(eps / eps_max - 1)) < 1e-3
-        return float(np.max(np.abs(P / (K1 * np.expm1(K2 * eps)) - 1))), float(P.mean())
+        return err, p_mean
 
     runs = {n: run(n, True) for n in (24, 48, 96)}
     mid = {n: r[0] for n, r in runs.items()}
