@@ -32,15 +32,26 @@ def sentence() -> str:
     )
 
 
-@cache
-def _tests() -> Any:
-    """tests/test_diagnosis.py as a module: the page shows the tests' own problems."""
-    path = ROOT / "tests" / "test_diagnosis.py"
-    spec = importlib.util.spec_from_file_location("docs_test_diagnosis", path)
+def _test_module(name: str) -> Any:
+    """tests/<name>.py as a module: the page shows the tests' own problems."""
+    path = ROOT / "tests" / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(f"docs_{name}", path)
     assert spec is not None and spec.loader is not None
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
     return mod
+
+
+@cache
+def _tests() -> Any:
+    """tests/test_diagnosis.py as a module."""
+    return _test_module("test_diagnosis")
+
+
+@cache
+def _causes_tests() -> Any:
+    """tests/test_causes.py as a module."""
+    return _test_module("test_causes")
 
 
 def midpoints() -> str:
@@ -175,24 +186,7 @@ def causes_round_trip() -> str:
     the recovered tension and the thickness error."""
     import numpy as np
 
-    from woundroll.case import load_case
-    from woundroll.inverse.causes import ProfileModel, fit_causes
-    from woundroll.inverse.diagnosis import RollModel, forward_curve
-    from woundroll.io.readings import readings_from_arrays
-
-    case = load_case("pet2-53.4N", ["web.width='24 in'"])
-    roll = RollModel.from_case(case)
-    curve = forward_curve(roll, [15, 40])
-    pos = np.linspace(0, case.web.width, 241)
-    m = ProfileModel(roll, curve, pos, np.full(pos.size, roll.web.thickness), 6, 31, False)
-    theta = np.zeros(7)
-    theta[0], theta[3], theta[5] = np.log(1.1), 0.012, -0.008
-    x = np.linspace(1, 23, 12) * 0.0254
-    truth = m.readings(theta, x)
-    rng = np.random.default_rng(0)
-    xs = np.repeat(x, 3)
-    r = readings_from_arrays(xs, np.repeat(truth, 3) + 0.4 * rng.standard_normal(xs.size))
-    fit = fit_causes(case, r, n_bands=6)
+    roll, m, theta, fit = _causes_tests().band_round_trip()
     zz, hf, _ = fit.thickness_profile()
     ht = m.thickness(theta[1:], zz)
     err = np.max(np.abs(hf - ht)) / roll.web.thickness
