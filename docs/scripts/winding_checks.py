@@ -47,28 +47,9 @@ def _orders(errs: list[float]) -> str:
 def storage_closed_form() -> str:
     """test_linear_roll_after_storage_matches_the_closed_form: relative error of the storage
     change on the winding's own mesh."""
-    import numpy as np
-
-    from woundroll.winding.storage import StorageChange, apply_storage, closed_form_linear
-
     t = _test_module("test_storage")
     web, core, w = _fixture(t.linear_roll)()
-    change = StorageChange(temperature_change=t.DT, moisture_change=0.01)
-    res = apply_storage(w, web, core, change)
-    eps_r, eps_theta = change.free_strains(web)
-    c = closed_form_linear(
-        w.radius,
-        w.radius[0],
-        w.radius[-1],
-        2e8,
-        5e9,
-        0.01,
-        eps_r,
-        eps_theta,
-        core.stiffness,
-        1.2e-5 * t.DT,
-    )
-    err = np.max(np.abs(res.delta_sigma_r - c)) / np.max(np.abs(c))
+    _res, _c, err = t.storage_against_closed_form(web, core, w)
     return (
         f"A {w.n_layers}-layer roll with a constant E_r of 200 MPa, cooled by 20 K and wetted "
         f"by 1 %, matches it to {_e(err)}"
