@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: demo test test-all lint bench docs clean
+.PHONY: demo test test-all lint bench docs records clean
 
 $(BIN)/python:
 	$(PY) -m venv $(VENV)
@@ -32,6 +32,11 @@ lint: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/run_all.py
+
+# the expensive studies' records (docs/data/*.json; hours on 2 cores), then the pages
+records: $(STAMP)
+	MPLBACKEND=Agg $(BIN)/python docs/scripts/records.py --all
+	MPLBACKEND=Agg $(BIN)/python docs/scripts/regenerate.py
 
 docs: $(STAMP)
 	MPLBACKEND=Agg $(BIN)/python docs/scripts/regenerate.py

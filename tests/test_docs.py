@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import importlib.util
 import re
+import sys
 from pathlib import Path
 
 import pytest
@@ -63,3 +64,75 @@ MODULES = sorted(
 @pytest.mark.parametrize("module", MODULES)
 def test_generated_blocks_are_current(module: str) -> None:
     assert _regenerate().regenerate({module}, check=True) == []
+
+
+# ---------------------------------------------------------------------------------------
+# measured records (docs/scripts/records.py): the expensive studies' numbers
+
+
+def _records():  # type: ignore[no-untyped-def]
+    # imported by its name, as the generator modules import it (one module object)
+    if str(ROOT / "docs" / "scripts") not in sys.path:
+        sys.path.insert(0, str(ROOT / "docs" / "scripts"))
+    import records
+
+    return records
+
+
+RECORDS = sorted(_records().measurements())
+
+
+@pytest.mark.parametrize("name", RECORDS)
+def test_record_matches_todays_inputs(name: str) -> None:
+    # a preset, a default case key or a model's numerical default changed since the record
+    # was measured: re-measure it (docs/scripts/records.py NAME) and regenerate its page
+    assert _records().stale_reasons(name) == []
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", RECORDS)
+def test_record_spot_runs_reproduce(name: str) -> None:
+    # the models' code still gives the stored numbers on the record's cheapest runs, within
+    # the tolerance the measurement states (its ``reason``)
+    assert _records().spot_check(name) == []
+
+
+def test_record_machinery(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # measure, resume, go stale on changed inputs, spot-check: on a measurement that only
+    # loads cases (no solve)
+    rec = _records()
+    calls: list[str] = []
+
+    def runs():  # type: ignore[no-untyped-def]
+        return [rec.Run("a", "pet1-26.7N"), rec.Run("b", "pet2-53.4N", ("winding.tension=50 N",))]
+
+    def measure(run):  # type: ignore[no-untyped-def]
+        calls.append(run.id)
+        return {"n": float(len(run.case)), "label": run.case}
+
+    m = rec.Measurement("synthetic", runs, measure, spot=("a",), rtol=1e-9, reason="exact")
+    monkeypatch.setattr(rec, "DATA", tmp_path)
+    monkeypatch.setattr(rec, "measurements", lambda: {"x.y": m})
+    assert rec.stale_reasons("x.y") == ["x.y: no record (run docs/scripts/records.py x.y)"]
+    out = rec.measure("x.y")
+    assert calls == ["a", "b"] and out["runs"]["b"] == {"n": 10.0, "label": "pet2-53.4N"}
+    assert rec.stale_reasons("x.y") == [] and rec.results("x.y")["a"]["n"] == 10.0
+    rec.measure("x.y")  # nothing to do: both runs stored on today's inputs
+    assert calls == ["a", "b"]
+    assert rec.spot_check("x.y") == [] and calls == ["a", "b", "a"]
+
+    def runs2():  # type: ignore[no-untyped-def]
+        return [rec.Run("a", "pet1-26.7N"), rec.Run("b", "pet2-53.4N", ("winding.tension=60 N",))]
+
+    m2 = rec.Measurement("synthetic", runs2, measure, spot=("a",), rtol=1e-9, reason="exact")
+    monkeypatch.setattr(rec, "measurements", lambda: {"x.y": m2})
+    assert rec.stale_reasons("x.y") == ["x.y: inputs of run 'b' changed"]
+    rec.measure("x.y")  # resumes: only the stale run
+    assert calls == ["a", "b", "a", "b"] and rec.stale_reasons("x.y") == []
+
+    def drift(run):  # type: ignore[no-untyped-def]
+        return {"n": 10.5, "label": run.case}
+
+    m3 = rec.Measurement("synthetic", runs2, drift, spot=("a",), rtol=0.01, reason="test")
+    monkeypatch.setattr(rec, "measurements", lambda: {"x.y": m3})
+    assert rec.spot_check("x.y") == ["x.y: a.n stored 10.0, now 10.5"]

@@ -41,12 +41,16 @@ MARKER = re.compile(
 def generators() -> dict[str, Callable[[], str]]:
     """Every ``module.block`` generator of docs/scripts/*.py (their ``BLOCKS``)."""
     found: dict[str, Callable[[], str]] = {}
+    if str(HERE) not in sys.path:  # generator modules ``import records`` (records.py)
+        sys.path.insert(0, str(HERE))
     for path in sorted(HERE.glob("*.py")):
-        if path.name == Path(__file__).name:
+        if path.name in (Path(__file__).name, "records.py"):
             continue
-        spec = importlib.util.spec_from_file_location(f"docs_scripts_{path.stem}", path)
+        name = f"docs_scripts_{path.stem}"
+        spec = importlib.util.spec_from_file_location(name, path)
         assert spec is not None and spec.loader is not None
         mod = importlib.util.module_from_spec(spec)
+        sys.modules[name] = mod  # dataclasses look their module up
         spec.loader.exec_module(mod)
         for name, fn in getattr(mod, "BLOCKS", {}).items():
             found[f"{path.stem}.{name}"] = fn

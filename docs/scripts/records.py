@@ -1,0 +1,337 @@
+"""Measured records: the numbers of the studies too slow to re-run on every docs check.
+
+A 3D dynamic impact or the 88 runs of the layered study cost minutes to an hour, beyond what
+``make docs`` and the slow currency test can re-run. Their numbers still come from a script:
+a generator module of docs/scripts declares each such study as a :class:`Measurement` in its
+``MEASUREMENTS``; this script runs it and stores what it measured, with the inputs it ran on,
+in ``docs/data/<module>.<name>.json`` (a *record*); the page's generated blocks render the
+record (cheap, so the ordinary currency check covers them). A record cannot go stale
+silently:
+
+* **inputs** (default suite, tests/test_docs.py): every run's case inputs (the resolved case,
+  defaults included, as result.json records them) and the numerical defaults of every contact
+  and winding model (their option dataclasses) are stored as a hash; a change to a preset, a
+  default key or a mesh setting makes the test fail and name the record to re-measure;
+* **code** (slow suite): the record's ``spot`` runs (its cheapest) are measured again and must
+  agree with the record within the measurement's stated tolerance, so that a change in the
+  models' code that moves the numbers is caught too.
+
+A generator module reads a record with ``import records`` (docs/scripts is on the path of
+regenerate.py and of this script) and ``records.results("module.name")``. Run::
+
+    .venv/bin/python docs/scripts/records.py                      # list the records, state
+    .venv/bin/python docs/scripts/records.py layered.study         # measure (resumable)
+    .venv/bin/python docs/scripts/records.py layered.study --runs a,b   # only these runs
+    .venv/bin/python docs/scripts/records.py --check               # inputs of every record
+    .venv/bin/python docs/scripts/records.py --all                 # every stale run (make records)
+
+then ``docs/scripts/regenerate.py MODULE`` to rewrite the pages. A measurement saves after
+each run and skips runs already stored on today's inputs, so an interrupted one resumes
+(``--fresh`` re-measures every run).
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import datetime as _dt
+import hashlib
+import importlib.util
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+DATA = HERE.parent / "data"
+FORMAT = 1  # the record file's layout
+
+
+@dataclass(frozen=True)
+class Run:
+    """One measured run: an ``id`` unique in its measurement, the bundled case and its
+    ``--set`` overrides (what the inputs hash is taken of), and ``params``: anything else
+    the measurement's function reads (JSON-able; hashed too)."""
+
+    id: str
+    case: str
+    overrides: tuple[str, ...] = ()
+    params: tuple[tuple[str, Any], ...] = ()
+
+    def param(self, key: str, default: Any = None) -> Any:
+        return dict(self.params).get(key, default)
+
+
+@dataclass(frozen=True)
+class Measurement:
+    """An expensive study whose numbers a page shows.
+
+    ``runs()`` lists the runs (cheap: no solve); ``measure(run)`` returns the run's numbers
+    as a flat dict of floats, strings or lists (JSON-able, finite); ``spot`` names the runs
+    the slow test measures again, ``rtol`` the relative tolerance it allows and ``reason``
+    why that tolerance (the numbers are deterministic on one machine; the tolerance covers
+    BLAS and platform rounding of iterative solves). ``about`` is the one-line description
+    the page and this script print."""
+
+    about: str
+    runs: Callable[[], Sequence[Run]]
+    measure: Callable[[Run], dict[str, Any]]
+    spot: tuple[str, ...]
+    rtol: float
+    reason: str
+    cost: str = ""
+    extra: dict[str, Any] = field(default_factory=dict)
+
+
+# ---------------------------------------------------------------------------------------
+# the inputs a record depends on
+
+
+@cache
+def model_defaults() -> dict[str, Any]:
+    """The numerical defaults of every model (their option dataclasses, as dicts)."""
+    from woundroll.contact.dynamic.plane_strain import DynamicOptions
+    from woundroll.contact.dynamic.solid3d import Dynamic3DOptions
+    from woundroll.contact.layered.roll3d import Layered3DOptions
+    from woundroll.contact.layered.solver import LayeredOptions
+    from woundroll.contact.plane_strain.solver import ContactOptions
+    from woundroll.contact.solid3d.options import Contact3DOptions
+    from woundroll.winding.hakiel import WindingOptions
+
+    out: dict[str, Any] = {}
+    for cls in (
+        WindingOptions,
+        ContactOptions,
+        Contact3DOptions,
+        LayeredOptions,
+        Layered3DOptions,
+        DynamicOptions,
+        Dynamic3DOptions,
+    ):
+        out[cls.__name__] = json.loads(json.dumps(dataclasses.asdict(cls()), default=repr))
+    return out
+
+
+def _digest(obj: Any) -> str:
+    text = json.dumps(obj, sort_keys=True, default=repr, allow_nan=True)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def run_inputs(run: Run) -> str:
+    """Hash of what ``run`` is computed from: its case resolved today (every input value
+    with its default) and its params."""
+    from woundroll.case import load_case
+
+    case = load_case(run.case, list(run.overrides))
+    values = {v["key"]: v["value"] for v in case.record()["inputs"]}
+    return _digest({"inputs": values, "params": [list(p) for p in run.params]})
+
+
+# ---------------------------------------------------------------------------------------
+# the registry (every docs/scripts module's MEASUREMENTS)
+
+
+def _load(stem: str) -> Any:
+    name = f"docs_records_{stem}"
+    spec = importlib.util.spec_from_file_location(name, HERE / f"{stem}.py")
+    assert spec is not None and spec.loader is not None
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules[name] = mod  # dataclasses look their module up
+    spec.loader.exec_module(mod)
+    return mod
+
+
+@cache
+def measurements() -> dict[str, Measurement]:
+    """``{"module.name": Measurement}`` over docs/scripts/*.py."""
+    found: dict[str, Measurement] = {}
+    for path in sorted(HERE.glob("*.py")):
+        if path.stem in ("regenerate", "records") or "MEASUREMENTS" not in path.read_text():
+            continue
+        for name, m in getattr(_load(path.stem), "MEASUREMENTS", {}).items():
+            found[f"{path.stem}.{name}"] = m
+    return found
+
+
+def path_of(name: str) -> Path:
+    return DATA / f"{name}.json"
+
+
+def load(name: str) -> dict[str, Any]:
+    """The stored record ``module.name`` (what a generator renders): ``{"runs": {id:
+    numbers}, "measured": date, ...}``. A missing record is an error naming the command."""
+    p = path_of(name)
+    if not p.exists():
+        raise SystemExit(f"no record {p.relative_to(ROOT)}: run docs/scripts/records.py {name}")
+    return json.loads(p.read_text())
+
+
+def results(name: str) -> dict[str, dict[str, Any]]:
+    """``{run id: numbers}`` of record ``name``, in the measurement's run order."""
+    return load(name)["runs"]
+
+
+def stale_reasons(name: str, m: Measurement | None = None) -> list[str]:
+    """Why record ``name`` no longer matches today's inputs ([] when it does)."""
+    m = m or measurements()[name]
+    p = path_of(name)
+    if not p.exists():
+        return [f"{name}: no record (run docs/scripts/records.py {name})"]
+    rec = json.loads(p.read_text())
+    out: list[str] = []
+    defaults = model_defaults()
+    for cls, opts in defaults.items():
+        if rec["model_defaults"].get(cls) != opts:
+            old = rec["model_defaults"].get(cls, {})
+            keys = sorted(k for k in set(opts) | set(old) if opts.get(k) != old.get(k))
+            out.append(f"{name}: default {cls} changed ({', '.join(keys)})")
+    want = [r.id for r in m.runs()]
+    if list(rec["runs"]) != want:
+        out.append(f"{name}: runs changed (stored {len(rec['runs'])}, listed {len(want)})")
+    for r in m.runs():
+        if r.id in rec["inputs"] and rec["inputs"][r.id] != run_inputs(r):
+            out.append(f"{name}: inputs of run {r.id!r} changed")
+    return out
+
+
+# ---------------------------------------------------------------------------------------
+# measuring
+
+
+def _check_numbers(name: str, run: Run, numbers: dict[str, Any]) -> None:
+    def bad(v: Any) -> bool:
+        if isinstance(v, float):
+            return not math.isfinite(v)
+        if isinstance(v, list):
+            return any(bad(x) for x in v)
+        return False
+
+    wrong = [k for k, v in numbers.items() if bad(v)]
+    if wrong:
+        raise SystemExit(f"{name}: run {run.id!r} measured non-finite {', '.join(wrong)}")
+
+
+def _commit() -> str:
+    try:
+        out = subprocess.run(
+            ["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
+            capture_output=True,
+            text=True,
+            check=True,
+        )
+        return out.stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return ""
+
+
+def measure(name: str, only: Sequence[str] = (), fresh: bool = False) -> dict[str, Any]:
+    """Measure record ``name`` (the runs in ``only``, else every run not already stored on
+    today's inputs), saving after each run; return the record."""
+    m = measurements()[name]
+    runs = list(m.runs())
+    ids = [r.id for r in runs]
+    unknown = [i for i in only if i not in ids]
+    if unknown:
+        raise SystemExit(f"{name}: no run {', '.join(unknown)} (runs: {', '.join(ids)})")
+    p = path_of(name)
+    old = json.loads(p.read_text()) if p.exists() and not fresh else None
+    if old is not None and old.get("model_defaults") != model_defaults():
+        old = None  # every run is stale
+    stored: dict[str, Any] = dict(old["runs"]) if old else {}
+    hashes: dict[str, str] = dict(old["inputs"]) if old else {}
+    cpu: dict[str, float] = dict(old.get("cpu_s", {})) if old else {}
+    rec: dict[str, Any] = {}
+
+    def save() -> None:
+        rec.update(
+            {
+                "format": FORMAT,
+                "record": name,
+                "about": m.about,
+                "measured": _dt.date.today().isoformat(),
+                "commit": _commit(),
+                "command": f"docs/scripts/records.py {name}",
+                "load_1min": round(os.getloadavg()[0], 1),
+                "model_defaults": model_defaults(),
+                "inputs": {i: hashes[i] for i in ids if i in hashes},
+                "cpu_s": {i: cpu[i] for i in ids if i in cpu},
+                "runs": {i: stored[i] for i in ids if i in stored},
+            }
+        )
+        DATA.mkdir(exist_ok=True)
+        p.write_text(json.dumps(rec, indent=1, allow_nan=False) + "\n")
+
+    for k, run in enumerate(runs):
+        h = run_inputs(run)
+        if only and run.id not in only:
+            continue
+        if not only and run.id in stored and hashes.get(run.id) == h:
+            continue
+        print(f"[{k + 1}/{len(runs)}] {name}: {run.id} ...", file=sys.stderr, flush=True)
+        t0 = time.process_time()
+        numbers = m.measure(run)
+        _check_numbers(name, run, numbers)
+        cpu[run.id] = round(time.process_time() - t0, 1)
+        stored[run.id], hashes[run.id] = numbers, h
+        save()
+    save()
+    return rec
+
+
+def spot_check(name: str) -> list[str]:
+    """Measure the record's spot runs again; the numbers outside ``rtol`` ([] if none)."""
+    m = measurements()[name]
+    stored = results(name)
+    by_id = {r.id: r for r in m.runs()}
+    out: list[str] = []
+    for rid in m.spot:
+        now = m.measure(by_id[rid])
+        for key, was in stored[rid].items():
+            is_ = now.get(key)
+            if isinstance(was, (int, float)) and not isinstance(was, bool):
+                if not isinstance(is_, (int, float)) or not math.isclose(
+                    is_, was, rel_tol=m.rtol, abs_tol=1e-12
+                ):
+                    out.append(f"{name}: {rid}.{key} stored {was!r}, now {is_!r}")
+            elif is_ != was:
+                out.append(f"{name}: {rid}.{key} stored {was!r}, now {is_!r}")
+    return out
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("records", nargs="*", help="module.name (default: list them)")
+    ap.add_argument("--runs", default="", help="comma-separated run ids to (re)measure")
+    ap.add_argument("--fresh", action="store_true", help="re-measure every run")
+    ap.add_argument("--check", action="store_true", help="only check the inputs; exit 1 if stale")
+    ap.add_argument("--all", action="store_true", help="measure every record's stale runs")
+    opts = ap.parse_args()
+    allm = measurements()
+    if opts.all:
+        opts.records = list(allm)
+    names = opts.records or list(allm)
+    unknown = [n for n in names if n not in allm]
+    if unknown:
+        raise SystemExit(f"no measurement {', '.join(unknown)} (known: {', '.join(allm)})")
+    if opts.check or not opts.records:
+        stale = [s for n in names for s in stale_reasons(n)]
+        for n in names:
+            print(f"{n}: {allm[n].about} ({allm[n].cost})")
+        for s in stale:
+            print("stale: " + s)
+        sys.exit(1 if stale and opts.check else 0)
+    only = [s for s in opts.runs.split(",") if s]
+    for n in names:
+        measure(n, only, opts.fresh)
+
+
+if __name__ == "__main__":
+    main()
