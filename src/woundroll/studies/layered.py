@@ -190,6 +190,63 @@ def _job(case: str, overrides: tuple[str, ...]) -> dict[str, Any]:
     }
 
 
+@dataclass(frozen=True)
+class StudyJob:
+    """One run of the study: ``case`` (bundled) with ``overrides``, its roll's ``series``
+    ("table2" or "pile-height"), ``pile_height_m`` (the wound-to height of a pile-height run,
+    None for a Table 2 roll) and the ``model`` column it fills (``"2d"``,
+    ``"layered_mu<mu>"`` or a key of :data:`EXPLANATIONS`)."""
+
+    case: str
+    series: str
+    pile_height_m: float | None
+    model: str
+    overrides: tuple[str, ...]
+
+
+def study_models(
+    frictions: Sequence[float] = FRICTIONS, explanations: Sequence[str] = tuple(EXPLANATIONS)
+) -> list[tuple[str, tuple[str, ...]]]:
+    """The model columns: ``(name, overrides)`` of 2d, layered per mu, each explanation."""
+    models = [("2d", ("contact.model='2d'",))] + [
+        (f"layered_mu{m:g}", ("contact.model='layered'", f"contact.friction={m!r}"))
+        for m in frictions
+    ]
+    return models + [(e, EXPLANATIONS[e][1]) for e in explanations]
+
+
+def study_rolls(
+    cases: Sequence[str] = TABLE2, pile_heights: Sequence[float] = DEFAULT_PILE_HEIGHTS
+) -> list[tuple[str, str, float | None, tuple[str, ...]]]:
+    """The rolls: ``(case, series, pile height or None, overrides)``, the Table 2 rolls then
+    :data:`PILE_CASE` wound to core radius + each of ``pile_heights`` [m]."""
+    from woundroll.case import load_case
+
+    r_core = load_case(PILE_CASE).core.build().outer_radius
+    rolls: list[tuple[str, str, float | None, tuple[str, ...]]] = [
+        (c, "table2", None, ()) for c in cases
+    ]
+    rolls += [
+        (PILE_CASE, "pile-height", h, (_PILE_OVERRIDE.format(r=r_core + h),)) for h in pile_heights
+    ]
+    return rolls
+
+
+def study_jobs(
+    cases: Sequence[str] = TABLE2,
+    pile_heights: Sequence[float] = DEFAULT_PILE_HEIGHTS,
+    frictions: Sequence[float] = FRICTIONS,
+    explanations: Sequence[str] = tuple(EXPLANATIONS),
+) -> list[StudyJob]:
+    """Every run of :func:`layered_study` (roll-major: each roll's models in
+    :func:`study_models` order); docs/scripts/layered_study.py measures the same list."""
+    return [
+        StudyJob(case, series, h, name, (*over, "contact.no_update=false", *m_over))
+        for case, series, h, over in study_rolls(cases, pile_heights)
+        for name, m_over in study_models(frictions, explanations)
+    ]
+
+
 def layered_study(
     cases: Sequence[str] = TABLE2,
     pile_heights: Sequence[float] = DEFAULT_PILE_HEIGHTS,
@@ -202,28 +259,18 @@ def layered_study(
     """Rho by ``"2d"``, ``"layered"`` (each mu of ``frictions``) and the ``explanations``
     (keys of :data:`EXPLANATIONS`) for ``cases`` and for :data:`PILE_CASE` wound to core
     radius + each of ``pile_heights`` [m]."""
-    from woundroll.case import load_case
-
-    models = [("2d", ("contact.model='2d'",))] + [
-        (f"layered_mu{m:g}", ("contact.model='layered'", f"contact.friction={m!r}"))
-        for m in frictions
-    ]
-    models += [(e, EXPLANATIONS[e][1]) for e in explanations]
-    r_core = load_case(PILE_CASE).core.build().outer_radius
-    rolls: list[tuple[str, str, tuple[str, ...]]] = [(c, "table2", ()) for c in cases]
-    rolls += [
-        (PILE_CASE, "pile-height", (_PILE_OVERRIDE.format(r=r_core + h),)) for h in pile_heights
-    ]
-    jobs = [
-        (case, (*over, "contact.no_update=false", *m_over))
-        for case, _, over in rolls
-        for _, m_over in models
-    ]
+    jobs = study_jobs(cases, pile_heights, frictions, explanations)
+    models = study_models(frictions, explanations)
+    rolls = study_rolls(cases, pile_heights)
     out = _map(
-        _job, jobs, workers=workers, progress=progress, label=lambda i: f"{jobs[i][0]} ({i + 1})"
+        _job,
+        [(j.case, j.overrides) for j in jobs],
+        workers=workers,
+        progress=progress,
+        label=lambda i: f"{jobs[i].case} ({i + 1})",
     )
     rows = []
-    for k, (case, series, _) in enumerate(rolls):
+    for k, (case, series, _, _) in enumerate(rolls):
         got = out[k * len(models) : (k + 1) * len(models)]
         row: dict[str, Any] = {
             "case": case,
