@@ -4,9 +4,16 @@ continuum"): the table of `woundroll study layered` and the bullets under it.
 The 88 runs of the study (``woundroll.studies.layered.study_jobs``: the same list the
 command runs) and the uniform PET3 roll are too slow for ``make docs`` (about 15 CPU min);
 they are a measured record (docs/scripts/records.py ``layered_study.table``,
-docs/data/layered_study.table.json) that the blocks here render. Re-measure with::
+docs/data/layered_study.table.json) that the blocks here render. So are the bullets' other
+runs (``checks``: the zone deepened, the paper's slip fraction, the reduced-shear fraction
+fitted to the layered roll by bisection) and the layered roll in 3D (``roll3d``: readings on
+the coarse 3D mesh; ``head3d``: the pressure under the head and the CMD spread; ``lps3d``:
+finer shells). The 2d readings at G = 0.8 E_r (three 2d runs, ~5 CPU s) are live.
+Re-measure with::
 
     PYTHONPATH=src .venv/bin/python docs/scripts/records.py layered_study.table
+    PYTHONPATH=src .venv/bin/python docs/scripts/records.py layered_study.checks  # after table
+    PYTHONPATH=src .venv/bin/python docs/scripts/records.py layered_study.roll3d  # and the rest
     .venv/bin/python docs/scripts/regenerate.py layered_study
 """
 
@@ -360,7 +367,7 @@ MEASUREMENTS: dict[str, Measurement] = {
             "deterministic solves; 1e-3 covers platform rounding of the contact Newton "
             "iterations and the FD step control, and is below the 0.1 Rho the page shows"
         ),
-        cost="about 15 CPU min on a quiet 2-core machine; the layered runs 10-90 s each",
+        cost="about 14 CPU min: 2d runs ~1 CPU s, layered 9-31 CPU s (measured at load 5-7)",
     ),
     "checks": Measurement(
         about=(
@@ -375,7 +382,7 @@ MEASUREMENTS: dict[str, Measurement] = {
             "deterministic solves (as the table); a fit's fraction moves only if a reading "
             "crosses its target at a bisection step, a change of code the check should catch"
         ),
-        cost="about 10 CPU min: five deep-zone layered runs (1-3 min each), ~25 2d runs",
+        cost="about 6 CPU min: five deep-zone layered runs (30-75 CPU s), two fits of 12 2d runs",
     ),
     "roll3d": Measurement(
         about="the layered roll in 3D beside 3d (coarse 3D mesh, mu 0.3), Rho FD",
@@ -728,7 +735,10 @@ def fit() -> str:
     paper = c["paper_fraction/pet2-53.4N"]["rho_fd"]
     h_lo, h_hi = _heights()
     z = _by("checks")
-    deeper_lowers = z[f"zone/pet2-53.4N/{ZONE_DEPTHS_MM[0]:g}mm"] < f2["target_rho_fd"]
+    deeper_lowers = (
+        z[f"zone/pet2-53.4N/{ZONE_DEPTHS_MM[0]:g}mm"] < f2["target_rho_fd"]
+        and z[f"zone/pet1-26.7N/{ZONE_DEPTHS_MM[0]:g}mm"] < f1["target_rho_fd"]
+    )
     text = (
         "- **The reduced-shear emulation carries the layered answer"
         + (", per material.**" if per_material else ".**")
