@@ -394,7 +394,7 @@ MEASUREMENTS: dict[str, Measurement] = {
             "deterministic solves (as the table); the 3D head contact's gap tolerance moves "
             "a force by ~4e-4 between two runs of the same equations (docs/contact.md)"
         ),
-        cost="about 6 CPU min: layered-3d 30-100 s a roll, 3d 5-13 s",
+        cost="about 5 CPU min: layered-3d 37-107 CPU s a roll, 3d 4-12 CPU s",
     ),
     "head3d": Measurement(
         about=(
@@ -406,7 +406,7 @@ MEASUREMENTS: dict[str, Measurement] = {
         spot=("pet2-53.4N/3d@1.4mm",),
         rtol=1e-3,
         reason="as roll3d: the head contact's gap tolerance (~4e-4) under the 1e-3",
-        cost="about 2 CPU min",
+        cost="about 1 CPU min (layered-3d 50 CPU s)",
     ),
     "lps3d": Measurement(
         about=f"PET2 53.4 N in layered-3d with {LPS_FINE} sheets a shell (coarse mesh, mu 0.3)",
@@ -415,7 +415,7 @@ MEASUREMENTS: dict[str, Measurement] = {
         spot=(),
         rtol=1e-3,
         reason="no spot run: each run costs ~5 CPU min, beyond the slow suite's budget",
-        cost="about 10 CPU min (each run ~26x a 3d solve)",
+        cost="about 11 CPU min: 273-358 CPU s a run, ~25x a 3d solve",
     ),
 }
 
