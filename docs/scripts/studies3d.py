@@ -420,6 +420,12 @@ def _span(values: list[float], fmt: str = ".1f", sep: str = "-") -> str:
     return lo if lo == hi else f"{lo}{sep}{hi}"
 
 
+def _rel(x: float, digits: int = 1) -> str:
+    """A relative difference in %, signed, without a "-0.0"."""
+    text = f"{100 * x:+.{digits}f}"
+    return ("+" + text[1:] if float(text) == 0 else text) + " %"
+
+
 def _pct(x: float, signed: bool = False) -> str:
     return f"{100 * x:+.0f} %" if signed else f"{100 * x:.0f} %"
 
@@ -429,7 +435,7 @@ def _cpu_text(name: str, ids: list[str] | None = None) -> str:
     cpu = [v for k, v in rec["cpu_s"].items() if ids is None or k in ids]
     lo, hi = min(cpu), max(cpu)
     if hi >= 120:
-        return _span([lo / 60, hi / 60], ".0f") + " CPU min"
+        return _span([lo / 60, hi / 60], ".1f" if hi < 600 else ".0f") + " CPU min"
     return _span([lo, hi], ".0f") + " CPU s"
 
 
@@ -437,12 +443,26 @@ def _cpu_text(name: str, ids: list[str] | None = None) -> str:
 # docs/studies.md: the pile-height study in 3D
 
 
+def _computed_by_studies(name: str) -> Any:
+    """The result of docs/scripts/studies.py's cached ``name`` (``_pile``, ``_slip``: the
+    same 2D study) when regenerate.py has already computed it for studies.md's tables
+    above, else None (then this module runs it, serially)."""
+    import sys
+
+    gen = sys.modules.get("docs_scripts_studies")
+    fn = getattr(gen, name, None)
+    if fn is None or not hasattr(fn, "cache_info") or fn.cache_info().currsize == 0:
+        return None
+    return fn()
+
+
 @cache
 def _pile2d() -> list[dict[str, Any]]:
-    """The plane-strain pile-height study (live, ~10 CPU s)."""
+    """The plane-strain pile-height study (live, ~10 CPU s; studies.py's when loaded)."""
     from woundroll.studies.pile_height import pile_height_study
 
-    return pile_height_study(model="2d").rolls
+    done = _computed_by_studies("_pile")
+    return list((done or pile_height_study(model="2d")).rolls)
 
 
 @cache
@@ -592,10 +612,12 @@ def pile_deep_share() -> str:
 
 @cache
 def _slip2d() -> dict[str, dict[str, Any]]:
-    """The plane-strain slip study's emulation rows (live, ~30 CPU s)."""
+    """The plane-strain slip study's emulation rows (live, 1-3 CPU min; studies.py's when
+    loaded)."""
     from woundroll.studies.slip import slip_factor_study
 
-    res = slip_factor_study(emulation_cases=TABLE2, model="2d")
+    res = _computed_by_studies("_slip") or slip_factor_study(emulation_cases=TABLE2, model="2d")
+    assert res.emulation_model == "2d"
     return {r["case"]: r for r in res.emulation}
 
 
@@ -744,8 +766,16 @@ SENSITIVITY = (
 
 @cache
 def _sensitivity(case: str, fraction: float | None, mu: float) -> float:
-    """Rho FD of ``case`` in 2D with the slip emulation at ``fraction`` and ``mu`` (live)."""
+    """Rho FD of ``case`` in 2D with the slip emulation at ``fraction`` and ``mu`` (live;
+    the study's default pair and no slip from its emulation rows)."""
     from woundroll.studies._common import _measure
+
+    base = _slip_base()
+    default = (float(base[0].split("=")[1]), float(base[3].split("=")[1]))
+    if fraction is None and mu == default[0]:
+        return float(_slip2d()[case]["rho_fd"])
+    if (mu, fraction) == default:
+        return float(_slip2d()[case]["rho_fd_slip"])
 
     over = [f"contact.friction={mu!r}", "contact.no_update=false", "contact.model='2d'"]
     if fraction is not None:
@@ -754,7 +784,7 @@ def _sensitivity(case: str, fraction: float | None, mu: float) -> float:
 
 
 def slip_sensitivity() -> str:
-    """The 2D slip emulation against its two numbers, fraction and mu (live, ~20 CPU s)."""
+    """The 2D slip emulation against its two numbers, fraction and mu (live, 8 2D runs)."""
     lines = [
         "| | " + " | ".join(v[0] for v in SENSITIVITY) + " |",
         "|---|" + "---|" * len(SENSITIVITY),
@@ -811,7 +841,7 @@ def _dyn2d(case: str) -> dict[str, Any]:
     """The 2D dynamic study's row of ``case`` with an elastic stack (live, ~15 CPU s)."""
     from woundroll.studies.dynamic import dynamic_study
 
-    return dynamic_study([case], block=False, overrides=(ELASTIC,)).rows[0]
+    return dynamic_study([case], block=False, overrides=(ELASTIC,)).rolls[0]
 
 
 def _gap(row: dict[str, Any]) -> float:
@@ -983,8 +1013,8 @@ def checks_stamp() -> str:
 def check_hertz() -> str:
     h = _checks()["hertz"]
     return (
-        f"d_max {100 * (h['max_depth_m'] / h['hertz_max_depth_m'] - 1):+.1f} %, t_c "
-        f"{100 * (h['contact_time_s'] / h['hertz_contact_time_s'] - 1):+.1f} %, e = "
+        f"d_max {_rel(h['max_depth_m'] / h['hertz_max_depth_m'] - 1)}, t_c "
+        f"{_rel(h['contact_time_s'] / h['hertz_contact_time_s'] - 1)}, e = "
         f"{h['restitution']:.3f}; {h['factorisations']:.0f} factorisation"
         + ("s" if h["factorisations"] != 1 else "")
     )
