@@ -5,8 +5,12 @@ The 3D solves cost minutes, so they are measured records (docs/scripts/records.p
 ``MEASUREMENTS`` entry runs the study's own function (``woundroll.studies``) or the test's
 own problem (tests/contact/test_dynamic3d.py) and stores its numbers in
 ``docs/data/studies3d.<name>.json``; the blocks below render the records (cheap) and add the
-live 2D numbers they are compared with. Re-measure with ``docs/scripts/records.py
-studies3d.NAME`` (the costs are in each measurement's ``cost``).
+live 2D numbers they are compared with: the plane-strain pile-height and slip studies (the
+same runs as docs/scripts/studies.py's tables, taken from it when regenerate.py has already
+computed them), eight 2D slip-sensitivity runs and one 2D dynamic roll. Cost of the blocks:
+about 4 CPU min run alone (the 2D slip study most of it), about 1 CPU min after studies.py.
+Re-measure a record with ``docs/scripts/records.py studies3d.NAME`` (the costs are in each
+measurement's ``cost``; all five: about 20 CPU min).
 """
 
 from __future__ import annotations
@@ -567,8 +571,15 @@ def pile_locality() -> str:
 
     H = [100 * r["pile_height_m"] for r in r3]
     check = max(abs(r["axis_approach_m"] / r["axis_depth_m"] - 1) for r in r3)
+    r3d, r2d = rise(r3, "rho_fd"), rise(r2, "rho_fd")
+    if r3d < 0.05:
+        verdict = "The reading is close to independent of H in 3D"
+    elif r3d < r2d:
+        verdict = "The reading is more local than in 2D but still not independent of H"
+    else:
+        verdict = "The reading is no more local than in 2D"
     return (
-        f"over H = {H[0]:g}-{H[-1]:g} cm it falls from {r3[0]['rho_fd']:.1f} to "
+        f"{verdict}: over H = {H[0]:g}-{H[-1]:g} cm it falls from {r3[0]['rho_fd']:.1f} to "
         f"{r3[-1]['rho_fd']:.1f} Rho ({_pct(rise(r3, 'rho_fd'))} higher for the thinnest roll, "
         f"2D: {_pct(rise(r2, 'rho_fd'))}); with the same active mass for all rolls "
         f"{r3[0]['rho_fd_ref_mass']:.1f} to {r3[-1]['rho_fd_ref_mass']:.1f} "
@@ -603,7 +614,12 @@ def pile_pressure() -> str:
 
 def pile_deep_share() -> str:
     """The deep layers' share of the approach on the Table 2 roll, 3D (inline)."""
-    return f"{_pct(_pile3d()[-1]['approach_share_deeper_1cm'])} of the approach"
+    share = _pile3d()[-1]["approach_share_deeper_1cm"]
+    most = "mostly" if share < 0.5 else "only in part"
+    return (
+        f"So the reading is set {most} by the outer centimetre, but the deeper layers' "
+        f"compliance still counts for {_pct(share)} of the approach on the Table 2 roll"
+    )
 
 
 # =======================================================================================
