@@ -5,6 +5,7 @@ studies and the model-choice table, a few minutes; ``make docs`` rewrites them).
 from __future__ import annotations
 
 import importlib.util
+import json
 import re
 import sys
 from pathlib import Path
@@ -130,9 +131,44 @@ def test_record_machinery(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> No
     rec.measure("x.y")  # resumes: only the stale run
     assert calls == ["a", "b", "a", "b"] and rec.stale_reasons("x.y") == []
 
+    # a change of the hash function itself: rehash stores today's hashes, measures nothing
+    stored = json.loads((tmp_path / "x.y.json").read_text())
+    stored["inputs"]["a"] = "0" * 16
+    (tmp_path / "x.y.json").write_text(json.dumps(stored))
+    assert rec.stale_reasons("x.y") == ["x.y: inputs of run 'a' changed"]
+    assert rec.rehash("x.y") == ["a", "b"] and rec.stale_reasons("x.y") == []
+    assert calls == ["a", "b", "a", "b"] and rec.results("x.y") == stored["runs"]
+
     def drift(run):  # type: ignore[no-untyped-def]
         return {"n": 10.5, "label": run.case}
 
     m3 = rec.Measurement("synthetic", runs2, drift, spot=("a",), rtol=0.01, reason="test")
     monkeypatch.setattr(rec, "measurements", lambda: {"x.y": m3})
     assert rec.spot_check("x.y") == ["x.y: a.n stored 10.0, now 10.5"]
+
+
+def test_every_bench_block_is_written_by_make_bench() -> None:
+    # a timing table in docs/ (<!-- bench: NAME -->) is rewritten by a benchmark that
+    # make bench (benchmarks/run_all.py) runs with --write-docs: none is left hand-written
+    bench = ROOT / "benchmarks"
+    blocks = {
+        (page.name, m)
+        for page in [*(ROOT / "docs").glob("*.md"), ROOT / "README.md"]
+        for m in re.findall(r"(?<!`)<!-- bench: ([\w-]+) -->", page.read_text())
+    }
+    assert len(blocks) >= 5
+    run_all = (bench / "run_all.py").read_text()
+    writers = {}
+    for script in bench.glob("bench_*.py"):
+        for name in re.findall(r'write_block\(.*?,\s*"([\w-]+)",', script.read_text(), re.S):
+            writers[name] = script.name
+    assert sorted(n for _, n in blocks if n not in writers) == []
+    assert (
+        sorted({writers[n] for _, n in blocks} - set(re.findall(r'"(bench_\w+\.py)"', run_all)))
+        == []
+    )
+    for page in [*(ROOT / "docs").glob("*.md")]:
+        text = page.read_text()
+        # a marker quoted in backticks (prose about the markers) is not one
+        opened = len(re.findall(r"(?<!`)<!-- bench: ", text))
+        assert opened == len(re.findall(r"(?<!`)<!-- end bench -->", text)), page.name
