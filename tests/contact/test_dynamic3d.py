@@ -198,14 +198,19 @@ def test_modified_newton_equals_a_factorisation_per_step(runs: dict) -> None:
 
 @pytest.mark.slow
 def test_time_step_convergence(runs: dict) -> None:
-    """Rho and impulse converge with the time step: successive differences shrink and the
-    last (100 -> 200 steps per contact) is below 1 % in Rho, 0.5 % in impulse. Measured:
-    Rho 108.57, 109.80, 110.27 (last step 0.43 %); impulse 0.2514, 0.2526, 0.2529 N s."""
+    """Rho and impulse converge with the time step: successive differences shrink by a
+    ratio below 0.7 (an observed order above 0.5; the contact's onset and release fall
+    between steps, first order at best) and the last (100 -> 200 steps per contact) is
+    below 1.5 % in Rho, 0.5 % in impulse. Measured with the bundled head (7.820 mm, since
+    2026-11-25; docs/dynamic.md renders the record studies3d.checks): Rho 105.66, 107.71,
+    108.85 (ratio 0.56, order 0.85, last step 1.06 %: the extrapolated limit is 110.3, the
+    default 400 steps about 0.6 % below it); impulse 0.2514, 0.2526, 0.2528 N s. (With the
+    6.565 mm Hertz head the bound was set on: 108.57, 109.80, 110.27, last step 0.43 %.)"""
     seq = [runs[50], runs[100], _pet1(200)]
     rho = [d.rho for d in seq]
     imp = [d.impulse for d in seq]
-    assert abs(rho[2] - rho[1]) < abs(rho[1] - rho[0])
-    assert abs(rho[2] - rho[1]) < 1e-2 * rho[2]
+    assert abs(rho[2] - rho[1]) < 0.7 * abs(rho[1] - rho[0])
+    assert abs(rho[2] - rho[1]) < 1.5e-2 * rho[2]
     assert abs(imp[2] - imp[1]) < 5e-3 * imp[2]
 
 
