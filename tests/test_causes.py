@@ -150,18 +150,11 @@ def test_posterior_sds_scaled_by_the_residuals():
     assert ok.sd_scale < 1.6
 
 
-@pytest.mark.slow
-def test_round_trip_against_the_full_profile_model(tmp_path):
-    """Readings made by the FULL profile model (coupled axisymmetric winding, a contact solve
-    per sector) of a 24 in PET2 roll at 110 % tension with bands of +1.2 % at 10 in and
-    -0.8 % at 18 in (12 positions, 3 passes, 0.4 Rho noise), fitted by the reduced model.
-    Measured over 30 noise draws (docs/diagnosis.md): the bands come back at +1.24 +- 0.09 %
-    and -0.99 +- 0.12 % (true +1.13 and -0.87 after the mean is removed), the thickness
-    within 0.21 % of h on average (worst 0.41 %); the tension level reads 69.6 % of the
-    case's instead of 110 % (the reduced model's level error on this soft roll), which the
-    full-model level correction (full_level=3) removes to 2 %."""
-    import math
-
+def full_profile_round_trip(tmp_path, seed=0, full_level=3):  # noqa: ANN001, ANN201
+    """Readings made by the full profile model of the 24 in PET2 roll with two bands at 110 %
+    tension (noise draw ``seed``), fitted by the reduced model with ``full_level`` full-model
+    level corrections: ``(fit, model, true band coefficients)`` (the test below;
+    docs/scripts/diagnosis.py renders the same numbers)."""
     case = load_case("pet2-53.4N", ["web.width='24 in'", "profile.workers=1"])
     m = small_model()
     c = np.zeros(6)
@@ -187,10 +180,26 @@ def test_round_trip_against_the_full_profile_model(tmp_path):
     prof = run(truth_case).profile
     x = np.linspace(1, 23, 12) * 0.0254
     truth = np.interp(x, prof.z, prof.rho)
-    rng = np.random.default_rng(0)
+    rng = np.random.default_rng(seed)
     xs = np.repeat(x, 3)
     r = readings_from_arrays(xs, np.repeat(truth, 3) + 0.4 * rng.standard_normal(xs.size))
-    fit = fit_causes(case, r, n_bands=6, full_level=3)
+    fit = fit_causes(case, r, n_bands=6, full_level=full_level)
+    return fit, m, c
+
+
+@pytest.mark.slow
+def test_round_trip_against_the_full_profile_model(tmp_path):
+    """Readings made by the FULL profile model (coupled axisymmetric winding, a contact solve
+    per sector) of a 24 in PET2 roll at 110 % tension with bands of +1.2 % at 10 in and
+    -0.8 % at 18 in (12 positions, 3 passes, 0.4 Rho noise), fitted by the reduced model.
+    Measured over 30 noise draws (docs/diagnosis.md): the bands come back at +1.24 +- 0.09 %
+    and -0.99 +- 0.12 % (true +1.13 and -0.87 after the mean is removed), the thickness
+    within 0.21 % of h on average (worst 0.41 %); the tension level reads 69.6 % of the
+    case's instead of 110 % (the reduced model's level error on this soft roll), which the
+    full-model level correction (full_level=3) removes to 2 %."""
+    import math
+
+    fit, m, c = full_profile_round_trip(tmp_path)
     zz, hf, hsd = fit.thickness_profile()
     ht = m.thickness(c, zz)
     # the bands: where they are and how large, within 0.45 % of h everywhere (measured

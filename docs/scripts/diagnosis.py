@@ -357,6 +357,42 @@ def _uncertainty_measure(run: Any) -> dict[str, Any]:
     return out
 
 
+#: the causes round trip against the full profile model (tests/test_causes.py)
+CAUSES_SETS = ("web.width='24 in'", "profile.workers=1")
+
+
+def _causes_runs() -> list[Any]:
+    return [_records().Run("draw0", "pet2-53.4N", CAUSES_SETS, (("seed", 0),))]
+
+
+def _causes_measure(run: Any) -> dict[str, Any]:
+    """test_round_trip_against_the_full_profile_model: its fit, the level's path through the
+    full-model corrections, the thickness error and the contact check."""
+    import math
+    import tempfile
+
+    import numpy as np
+
+    with tempfile.TemporaryDirectory() as tmp:
+        fit, m, c = _causes_tests().full_profile_round_trip(Path(tmp), seed=run.param("seed"))
+    zz, hf, _ = fit.thickness_profile()
+    err = float(np.max(np.abs(hf - m.thickness(c, zz))) / m.base_thickness[0])
+    level = fit.verification["full_level"]
+    out: dict[str, Any] = {
+        f"level_{k}": 100 * math.exp(v) for k, v in enumerate(level["ln_s_levels"])
+    }
+    out |= {
+        "levels": float(len(level["ln_s_levels"])),
+        "thickness_error": 100 * err,
+        "sd_scale": float(fit.sd_scale),
+        "level_sd": 100 * float(fit.sd[0]),
+        "contact_check": float(fit.verification["max_abs_error"]),
+        "cause_0": fit.causes[0]["sentence"],
+        "cause_1": fit.causes[1]["sentence"],
+    }
+    return out
+
+
 def _measured(name: str) -> str:
     """'measured DATE by `docs/scripts/records.py NAME` (load L on 2 cores)' of a record."""
     rec = _records().load(name)
@@ -436,6 +472,38 @@ def design_table() -> str:
         f"{cell('pet3_table', True)}: {pet3_cmp} |",
     ]
     return "\n".join(rows)
+
+
+def causes_level() -> str:
+    """The full-model level correction on the first noise draw (record causes_full)."""
+    import math
+
+    rec = _records().load("diagnosis.causes_full")
+    r = rec["runs"]["draw0"]
+    lv = [r[f"level_{k}"] for k in range(int(r["levels"]))]
+
+    def err(x: float) -> str:
+        return f"{100 * abs(math.log(x / 110)):.1f} %"
+
+    path = " -> ".join(f"{x:.0f} %" for x in lv[:-1]) + f" -> **{lv[-1]:.1f} %**"
+    two = f"; with two runs {lv[2]:.0f} %, {err(lv[2])}" if len(lv) > 3 else ""
+    cpu = rec.get("cpu_s", {}).get("draw0")
+    cost = (
+        f"; the whole round trip, the truth's and three correcting full runs and the fit, "
+        f"{cpu:.0f} s CPU"
+        if cpu
+        else ""
+    )
+    return (
+        f"{path} (truth 110 %: the level error from {err(lv[0])} down to {err(lv[-1])} in "
+        f"ln s{two}{cost}; {_measured('diagnosis.causes_full')})"
+    )
+
+
+def causes_check() -> str:
+    """The contact check at three sectors in the full-model round trip (record)."""
+    r = _records().results("diagnosis.causes_full")["draw0"]
+    return f"{r['contact_check']:.2f} Rho"
 
 
 def stack_covariance() -> str:
@@ -565,6 +633,20 @@ MEASUREMENTS: dict[str, Any] = {
         ),
         cost="a 1D Monte Carlo check, 60 reduced profile runs, 6 full profile runs at 5 sectors",
     ),
+    "causes_full": _records().Measurement(
+        about="the causes fit against readings of the full profile model, with the level "
+        "corrected by full runs (tests/test_causes.py)",
+        runs=_causes_runs,
+        measure=_causes_measure,
+        spot=(),
+        rtol=0.01,
+        reason=(
+            "no spot run: the one run is four 31-sector profile runs and a causes fit, several "
+            "CPU minutes (the slow test test_round_trip_against_the_full_profile_model checks "
+            "the same problem against its bounds)"
+        ),
+        cost="four 31-sector full profile runs and a causes fit, 3-6 CPU min",
+    ),
 }
 
 
@@ -581,4 +663,6 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "surrogate_check": surrogate_check,
     "profile_brute": profile_brute,
     "sensitivity_table": sensitivity_table,
+    "causes_level": causes_level,
+    "causes_check": causes_check,
 }
