@@ -198,6 +198,82 @@ def causes_round_trip() -> str:
 
 
 # ---------------------------------------------------------------------------------------
+# negative hoop stress on the PET rolls (live: a dozen 1D windings)
+
+
+def _wind(name: str, sets: tuple[str, ...] = ()) -> Any:
+    """The case's 1D winding (as ``woundroll run`` winds it), with its web."""
+    from woundroll.case import load_case
+    from woundroll.winding.hakiel import WindingOptions, wind
+
+    case = load_case(name, list(sets))
+    web, core = case.web.build(), case.core.build()
+    w = wind(
+        web,
+        core,
+        case.winding.final_radius(web, core),
+        case.winding.schedule(web),
+        options=WindingOptions.from_dict(case.winding.options, "winding.options"),
+    )
+    return w, web
+
+
+def _hoop_min(name: str, sets: tuple[str, ...] = ()) -> float:
+    """The smallest layer-mean hoop stress [Pa]."""
+    return float(_wind(name, sets)[0].layer_mean_hoop_stress()[1].min())
+
+
+def _taper(kind: str, fraction: float) -> tuple[str, ...]:
+    return (f"winding.taper.kind='{kind}'", f"winding.taper.fraction={fraction}")
+
+
+def negative_hoop() -> str:
+    """The first paragraph's numbers: PET1 26.7 N untapered, refined, elastic new layer,
+    tapered; PET2 53.4 N."""
+    import numpy as np
+
+    w, web = _wind("pet1-26.7N")
+    r, hoop = w.layer_mean_hoop_stress()
+    k = int(np.argmin(hoop))
+    neg = r[hoop < 0]
+    wot = float(w.wot[-1])
+    p = -np.asarray(w.sigma_r)
+    law = web.radial_modulus
+    e_r = np.asarray(law.modulus_at_pressure(np.clip(p, 0, None)))
+    fine = _hoop_min("pet1-26.7N", ("winding.options.subdivisions=4",))
+    elastic = _hoop_min("pet1-26.7N", ("winding.options.new_layer='elastic'",))
+    lin90 = _hoop_min("pet1-26.7N", _taper("linear", 0.9))
+    lin60 = _hoop_min("pet1-26.7N", _taper("linear", 0.6))
+    pet2 = _hoop_min("pet2-53.4N")
+    pet2h = _hoop_min("pet2-53.4N", _taper("hyperbolic", 0.9))
+    return (
+        f"{hoop[k] / 1e3:.1f} kPa at its lowest (r = {100 * r[k]:.1f} cm), negative on r = "
+        f"{100 * neg.min():.1f}-{100 * neg.max():.1f} cm, against a wound-on tension of "
+        f"{wot / 1e6:.2f} MPa ({100 * abs(hoop[k]) / wot:.1f} %). It is not numerical: 2 and 4 "
+        f"sub-layer elements give {hoop[k] / 1e3:.2f} and {fine / 1e3:.2f} kPa. It is what "
+        "Hakiel's model does with a radial modulus far below the hoop one (E_r = K2 (K1 + P) is "
+        f"{e_r.min() / 1e6:.2g}-{e_r.max() / 1e6:.2g} MPa here, E_theta "
+        f"{web.E_theta / 1e9:.2g} GPa): each later layer compresses the pile, the layers beneath "
+        "move inward and lose the strain they were wound with. Its size depends on how a new "
+        "layer enters the model (the `new_layer` assumption, docs/assumptions.md: "
+        f"{hoop[k] / 1e3:.0f} kPa laid on, {elastic / 1e3:.0f} kPa as Hakiel's elastic boundary "
+        f"condition). A strong taper reduces it: at the case's tension a linear taper of 90 % "
+        f"leaves {lin90 / 1e3:+.1f} kPa, 60 % {lin60 / 1e3:+.1f} kPa (PET2 53.4 N: "
+        f"{pet2 / 1e3:.0f} kPa untapered, {pet2h / 1e3:+.1f} kPa with a hyperbolic 90 % taper)"
+    )
+
+
+def buckling() -> str:
+    """The buckling estimate against the compression on PET1 26.7 N (the defects report)."""
+    from woundroll.assess.defects import defect_report
+    from woundroll.case import load_case
+
+    rep = defect_report(load_case("pet1-26.7N"))
+    b = next(c for c in rep.roll if c.name == "buckling")
+    return f"{-abs(b.demand) / 1e3:.0f} kPa against a critical {b.capacity / 1e6:.0f} MPa"
+
+
+# ---------------------------------------------------------------------------------------
 # measured records (docs/scripts/records.py): the studies too slow for every docs check
 
 
@@ -658,6 +734,8 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "coverage": coverage,
     "causes_round_trip": causes_round_trip,
     "stack_covariance": stack_covariance,
+    "negative_hoop": negative_hoop,
+    "buckling": buckling,
     # rendered from the measured records (MEASUREMENTS; docs/scripts/records.py)
     "design_table": design_table,
     "surrogate_check": surrogate_check,
