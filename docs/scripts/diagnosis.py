@@ -227,6 +227,23 @@ def _taper(kind: str, fraction: float) -> tuple[str, ...]:
     return (f"winding.taper.kind='{kind}'", f"winding.taper.fraction={fraction}")
 
 
+def parotester_readout() -> str:
+    """The Rho-meter's striker read out as a Parotester L on PET1 26.7 N at 1/4-4 times the
+    tension: the curve the inversion refuses (not monotone)."""
+    import numpy as np
+
+    from woundroll.case import load_case
+    from woundroll.inverse.diagnosis import RollModel
+
+    model = RollModel.from_case(load_case("pet1-26.7N", ["tester.readout='parotester-l'"]))
+    ls = np.array([model.evaluate(f * model.tension).reading for f in (0.25, 0.5, 1, 2, 4)])
+    mono = bool(np.all(np.diff(ls) > 0) or np.all(np.diff(ls) < 0))
+    return (
+        f"L stays at {ls.mean():.0f} +- {np.ptp(ls) / 2:.1g} over 1/4 ... 4 times the tension"
+        f"{'' if not mono else ' (monotone on these five points)'}"
+    )
+
+
 def negative_hoop() -> str:
     """The first paragraph's numbers: PET1 26.7 N untapered, refined, elastic new layer,
     tapered; PET2 53.4 N."""
@@ -735,6 +752,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "causes_round_trip": causes_round_trip,
     "stack_covariance": stack_covariance,
     "negative_hoop": negative_hoop,
+    "parotester_readout": parotester_readout,
     "buckling": buckling,
     # rendered from the measured records (MEASUREMENTS; docs/scripts/records.py)
     "design_table": design_table,
