@@ -486,6 +486,56 @@ def _causes_measure(run: Any) -> dict[str, Any]:
     return out
 
 
+def _reduced_runs() -> list[Any]:
+    return [_records().Run("table3", "pet3-2.3MPa", ("profile.sectors=31",))]
+
+
+def _reduced_measure(run: Any) -> dict[str, Any]:
+    """The reduced profile model's near-surface pressures (uncoupled sectors) against the
+    coupled (r, z) winding's on the bundled Table 3 profile, and their wall times."""
+    import time
+
+    import numpy as np
+
+    from woundroll.assess.uncertainty import reduced_profile
+    from woundroll.case import load_case
+    from woundroll.inverse.diagnosis import RollModel
+
+    case = load_case(run.case, list(run.overrides))
+    model = RollModel.from_case(case)
+    n = case.profile.sectors
+    t0 = time.perf_counter()
+    _, red = reduced_profile(case, model, None, {}, {}, n, pressure=True)
+    t1 = time.perf_counter()
+    _, cpl = reduced_profile(case, model, None, {}, {}, n, pressure=True, coupled=True)
+    t2 = time.perf_counter()
+    k = int(np.argmax(red))
+    return {
+        "sectors": float(n),
+        "correlation": float(np.corrcoef(red, cpl)[0, 1]),
+        "rms_rel": float(np.sqrt(np.mean((red - cpl) ** 2)) / np.mean(cpl)),
+        "min_kPa": float(min(red.min(), cpl.min()) / 1e3),
+        "max_kPa": float(max(red.max(), cpl.max()) / 1e3),
+        "peak_reduced_kPa": float(red[k] / 1e3),
+        "peak_coupled_kPa": float(cpl[k] / 1e3),
+        "_wall_ratio": (t2 - t1) / (t1 - t0),
+    }
+
+
+def reduced_check() -> str:
+    """The reduced model against the coupled winding on Table 3 (record reduced_model)."""
+    r = _records().results("diagnosis.reduced_model")["table3"]
+    return (
+        f"the sector-to-sector pattern of `P_s` correlates at {r['correlation']:.3f} with the "
+        f"coupled (r, z) model's, the RMS difference is {100 * r['rms_rel']:.0f} % of the mean "
+        f"over a profile that runs from {r['min_kPa']:.0f} to {r['max_kPa']:.0f} kPa (at the "
+        f"reduced model's highest sector {r['peak_reduced_kPa']:.0f} kPa against "
+        f"{r['peak_coupled_kPa']:.0f} kPa coupled); the coupled winding took "
+        f"{r['_wall_ratio']:.0f} times as long in the same run "
+        f"({_measured('diagnosis.reduced_model')})"
+    )
+
+
 def _measured(name: str) -> str:
     """'measured DATE by `docs/scripts/records.py NAME` (load L on 2 cores)' of a record."""
     rec = _records().load(name)
@@ -726,6 +776,16 @@ MEASUREMENTS: dict[str, Any] = {
         ),
         cost="a 1D Monte Carlo check, 60 reduced profile runs, 6 full profile runs at 5 sectors",
     ),
+    "reduced_model": _records().Measurement(
+        about="the reduced profile model's near-surface pressures against the coupled "
+        "winding's on the Table 3 profile (docs/diagnosis.md)",
+        runs=_reduced_runs,
+        measure=_reduced_measure,
+        spot=("table3",),
+        rtol=1e-3,
+        reason="deterministic windings; 1e-3 covers platform rounding of their iterations",
+        cost="two 31-sector axisymmetric windings, under a CPU minute",
+    ),
     "causes_full": _records().Measurement(
         about="the causes fit against readings of the full profile model, with the level "
         "corrected by full runs (tests/test_causes.py)",
@@ -761,4 +821,5 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "sensitivity_table": sensitivity_table,
     "causes_level": causes_level,
     "causes_check": causes_check,
+    "reduced_check": reduced_check,
 }
