@@ -49,7 +49,27 @@ def winding_estimate() -> str:
     return f"{', '.join(cells[:-1])} and {cells[-1]} increments"
 
 
+def long_runs() -> str:
+    """The other `long run:` warnings of ``woundroll.limits`` (their fixed constants)."""
+    from woundroll.limits import (
+        LONG_RUN_SECONDS,
+        PROFILE_REFERENCE_SECONDS,
+        THIN_WEB_CONTACT,
+        fmt_seconds,
+    )
+
+    return (
+        f"runs of the contact model on webs thinner than {THIN_WEB_CONTACT * 1e6:g} um (the "
+        "contact mesh follows the web thickness; the warning quotes the times measured when "
+        "the threshold was set) and CMD profiles estimated above "
+        f"{fmt_seconds(LONG_RUN_SECONDS)} (the bundled pet3 case's "
+        f"{fmt_seconds(PROFILE_REFERENCE_SECONDS)} for 61 sectors on 2 workers, a fixed "
+        "reference in `woundroll.limits`, scaled by `profile.sectors` and `profile.workers`)"
+    )
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
     "sweep_surrogate": sweep_surrogate,
     "winding_estimate": winding_estimate,
+    "long_runs": long_runs,
 }
