@@ -733,9 +733,10 @@ def core_tube() -> str:
     rigid = t.max_change(solve(dataclasses.replace(core, stiffness=float("inf"))), base, depth)
     return (
         f"{e_strain / 1e9:.1f} GPa instead of {core.stiffness / 1e9:.1f} GPa for the bundled "
-        f"steel core (radii {1e3 * a:.1f}/{1e3 * b:.1f} mm). Under the head it does not matter: "
-        f"that change moves F by {_e1(strain)} (PET1 26.7 N, Rho-meter head, {1e3 * depth:g} mm), "
-        f"a rigid core by {_e1(rigid)} (the core is {1e3 * (radius[-1] - b):.0f} mm below the surface)"
+        f"steel core (radii {1e3 * a:.1f}/{1e3 * b:.1f} mm). Under the head it does not "
+        f"matter: that change moves F by {_e1(strain)} (PET1 26.7 N, Rho-meter head, "
+        f"{1e3 * depth:g} mm), a rigid core by {_e1(rigid)} (the core is "
+        f"{1e3 * (radius[-1] - b):.0f} mm below the surface"
     )
 
 
@@ -758,6 +759,18 @@ def stack_strain() -> str:
             f"{1e3 * t.CASES[name]:g} mm)"
         )
     return "eps ~ " + " and ~ ".join(out)
+
+
+def model_ratio() -> str:
+    """3D against plane strain on the seven Table 2 rolls, from the cached 3D references
+    (tests/contact/data/contact3d_reference.json: both models' readings, the same head)."""
+    import json
+
+    from woundroll.studies._common import TABLE2
+
+    ref = json.loads((ROOT / "tests" / "contact" / "data" / "contact3d_reference.json").read_text())
+    ratios = [ref["cases"][n]["3d"]["rho_fd"] / ref["cases"][n]["2d"]["rho_fd"] for n in TABLE2]
+    return f"{min(ratios):.2f}-{max(ratios):.2f} times"
 
 
 # ---------------------------------------------------------------------------------------
@@ -903,6 +916,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "semi_width_reading": semi_width_reading,
     "fine_zone_margin": fine_zone_margin,
     "core_tube": core_tube,
+    "model_ratio": model_ratio,
     "stack_strain": stack_strain,
     # rendered from the measured record contact.probes (MEASUREMENTS)
     "probe_rows": probe_rows,
