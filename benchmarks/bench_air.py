@@ -36,7 +36,7 @@ from typing import Any  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).parent))
 
-from bench_storage import write_block  # noqa: E402
+from docs_block import load_note, write_block  # noqa: E402
 from yardstick import wind_per_layer  # noqa: E402
 
 from woundroll.materials import Core, Pfeiffer, Web  # noqa: E402
@@ -44,6 +44,7 @@ from woundroll.winding.air import AirSettings, wind_with_air  # noqa: E402
 from woundroll.winding.hakiel import wind  # noqa: E402
 from woundroll.winding.tension import TensionSchedule  # noqa: E402
 
+PAGE = Path(__file__).resolve().parent.parent / "docs" / "winding.md"
 H = 12e-6
 N = 10_000
 WEB = Web(thickness=H, width=1.0, E_theta=5e9, radial_modulus=Pfeiffer(10e3, 100.0))
@@ -123,16 +124,21 @@ def main() -> None:
         print(f"{label:58s} {t:9.3f} {t / t_yard:12.3f}")
     load1 = os.getloadavg()[0]
     if args.write_docs:
+        ratios = (
+            f"`wind_with_air` given the roll without air {y['3']:.3f} (3 m/s, no nip, 8 MPa) "
+            f"and {y['10']:.3f} (10 m/s, 500 N/m nip) ({y['3 full']:.3f} and "
+            f"{y['10 full']:.3f} winding both rolls); a whole `run` at 5 m/s "
+            f"{y['run, 5 m/s']:.3f} against {y['run, no speed key']:.3f} without air, and "
+            f"with `speed = 0` {y['run, speed 0']:.3f}."
+        )
         write_block(
+            PAGE,
             "air",
-            f"`benchmarks/bench_air.py`, {datetime.date.today().isoformat()}, best of "
-            f"{args.repeat}, {os.cpu_count()} cores at a load average of {load0:.1f} -> "
-            f"{load1:.1f}; the yardstick's {N:,}-layer roll, times as multiples of the yardstick "
-            f"({t_yard:.2f} s in the same run): `wind_with_air` given the roll without air "
-            f"{y['3']:.3f} (3 m/s, no nip, 8 MPa) and {y['10']:.3f} (10 m/s, 500 N/m nip) "
-            f"({y['3 full']:.3f} and {y['10 full']:.3f} winding both rolls); a whole `run` at "
-            f"5 m/s {y['run, 5 m/s']:.3f} against {y['run, no speed key']:.3f} without air, and "
-            f"with `speed = 0` {y['run, speed 0']:.3f}",
+            [
+                f"`benchmarks/bench_air.py`, {datetime.date.today().isoformat()}, best of "
+                f"{args.repeat}, {load_note(load0, load1)}; the yardstick's {N:,}-layer roll, "
+                f"times as multiples of the yardstick ({t_yard:.2f} s in the same run): {ratios}"
+            ],
         )
 
 

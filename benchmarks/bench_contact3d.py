@@ -13,6 +13,8 @@
    :func:`yardstick.wind_per_layer`) run just before it in the same process: wall and CPU,
    their ratios, Rho and the load average; each ``--variant`` (``name=KEY=VALUE,...``,
    keys of ``contact.options3d``) is run the same way and its Rho compared with the default.
+   With ``--write-docs`` (``make bench``): PET1 26.7 N and PET2 53.4 N, the table into
+   docs/performance.md.
 
 Run: ``OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/bench_contact3d.py [--case pet2-26.7N]``
 or ``.venv/bin/python benchmarks/bench_contact3d.py --ratio --case pet1-26.7N
@@ -64,8 +66,9 @@ def _run_3d(case: str, sets: list[str]) -> tuple[float, float, dict]:
     return wall, cpu, json.loads(out.stdout)
 
 
-def ratio(case: str, variants: list[str]) -> None:
-    """The user's 3D reading of ``case`` against the 10k-layer winding yardstick."""
+def ratio(case: str, variants: list[str]) -> list[tuple]:
+    """The user's 3D reading of ``case`` against the 10k-layer winding yardstick; the rows
+    (case, variant, DOF, CPU ratio, wall ratio, Rho, yardstick wall, load)."""
     import sys
     from pathlib import Path
 
@@ -77,6 +80,7 @@ def ratio(case: str, variants: list[str]) -> None:
         name, _, kv = v.partition("=")
         runs.append((name, [f"contact.options3d.{x}" for x in kv.split(",") if x]))
     rho0 = None
+    rows = []
     for name, sets in runs:
         c0 = time.process_time()
         _, yard = wind_per_layer()
@@ -91,6 +95,43 @@ def ratio(case: str, variants: list[str]) -> None:
             f"yardstick ({yard:.2f} s), CPU {cpu:.1f} s = {cpu / yard_cpu:.1f}x ({yard_cpu:.2f} "
             f"s); Rho {rho:.3f} ({rho - rho0:+.3f}); load {load:.1f}"
         )
+        rows.append((case, name, c["n_dof"], cpu / yard_cpu, wall / yard, rho, yard, load))
+    return rows
+
+
+#: the rolls ``--ratio --write-docs`` reads with the 3D model (a hard and a soft roll)
+DOCS_CASES = ("pet1-26.7N", "pet2-53.4N")
+
+
+def write_ratio_docs(variants: list[str]) -> None:
+    """``--ratio --write-docs``: :data:`DOCS_CASES` against the yardstick, the table in
+    docs/performance.md (``<!-- bench: contact3d -->``)."""
+    import platform
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from docs_block import load_note, write_block
+
+    load0 = os.getloadavg()[0]
+    rows = [r for case in DOCS_CASES for r in ratio(case, variants)]
+    yards = [r[6] for r in rows]
+    lines = [
+        "`benchmarks/bench_contact3d.py --ratio --write-docs`: the user's whole process "
+        "`woundroll run CASE --set contact.model=3d --json` (one BLAS/MKL thread), right after "
+        "the yardstick (the 10k-layer winding, benchmarks/yardstick.py: "
+        f"{min(yards):.2f}-{max(yards):.2f} s wall in this run) in the same process; python "
+        f"{platform.python_version()}, {load_note(load0)}. Bar: 3x.",
+        "",
+        "| roll | mesh | DOF | CPU x yardstick | wall x yardstick | Rho | bar |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for case, name, dof, cpu_r, wall_r, rho, _, _ in rows:
+        bar = "3x ok" if cpu_r <= 3 else "3x **over**"
+        lines.append(
+            f"| {case} | {name} | {dof} | {cpu_r:.1f}x | {wall_r:.1f}x | {rho:.3f} | {bar} |"
+        )
+    write_block(Path(__file__).resolve().parents[1] / "docs" / "performance.md", "contact3d", lines)
 
 
 def profile(case: str, check: int) -> None:
@@ -160,6 +201,9 @@ def main() -> None:
     ap.add_argument("--check", type=int, default=0, help="with --profile: sectors to check")
     ap.add_argument("--ratio", action="store_true", help="whole 3D run against the yardstick")
     ap.add_argument("--variant", action="append", default=[], help="name=key=value,...")
+    ap.add_argument(
+        "--write-docs", action="store_true", help="with --ratio: docs/performance.md's table"
+    )
     ap.add_argument("--case", default="pet2-26.7N")
     ap.add_argument("--depth", type=float, default=2.1e-3)
     ap.add_argument("--skip-solvers", action="store_true")
@@ -173,6 +217,9 @@ def main() -> None:
     args = ap.parse_args()
     if args.profile:
         profile(args.profile, args.check)
+        return
+    if args.ratio and args.write_docs:
+        write_ratio_docs(args.variant)
         return
     if args.ratio:
         ratio(args.case, args.variant)

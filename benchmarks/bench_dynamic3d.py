@@ -10,10 +10,17 @@ depth the quasi-static 3D solve reaches. Prints, in one run:
    PARDISO runs threaded) and wall time, the load average, and where the time goes
    (assembly, numeric factorisations, solves, the rest: contact, stresses, Python);
 3. with ``--compare``: the same impact factorising every step (``reuse=False``), for the
-   ratio and the agreement of Rho.
+   ratio and the agreement of Rho;
+4. the yardstick of issue 23 (the straightforward 10k-layer winding,
+   :func:`yardstick.wind_per_layer`), run in the same process before the 3D runs, and the
+   3D dynamic impact's CPU and wall time as multiples of it (the bar: 15x), also with its
+   quasi-static 3D solve (what ``woundroll run CASE --set contact.model=3d --set
+   contact.dynamic=true`` pays).
 
 BLAS threads are pinned to one (the per-ring GEMMs of the assembly, docs/contact.md).
-Run: ``.venv/bin/python benchmarks/bench_dynamic3d.py [--compare] [--coarse]``.
+``--write-docs`` puts section 4's table into docs/performance.md (``<!-- bench: dynamic3d
+-->``; ``make bench`` does). Run: ``.venv/bin/python benchmarks/bench_dynamic3d.py
+[--compare] [--coarse] [--write-docs]``.
 """
 
 from __future__ import annotations
@@ -45,7 +52,8 @@ def main() -> None:
     if "--coarse" in sys.argv:
         mesh = replace(mesh, n_fine=5, radial_growth=1.6, tangential_growth=1.6, axial_growth=1.6)
     print(f"python {platform.python_version()}, numpy {np.__version__}, {platform.machine()}")
-    print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
+    load0 = os.getloadavg()[0]
+    print(f"load average {load0:.1f} on {os.cpu_count()} cores")
     case = load_case("pet1-26.7N")
     web, core = case.web.build(), case.core.build()
     r_out = case.winding.final_radius(web, core)
@@ -58,6 +66,13 @@ def main() -> None:
     )
     setup = case.tester_setup
     inst = setup.instrument
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from yardstick import wind_per_layer
+
+    wind_per_layer()  # warm-up
+    yc, yt = time.process_time(), time.perf_counter()
+    wind_per_layer()
+    yard_cpu, yard = time.process_time() - yc, time.perf_counter() - yt
 
     c0, t0 = time.process_time(), time.perf_counter()
     st = roll_stiffness(web, core, w.radius, w.sigma_r, inst, model="3d", options3d=mesh)
@@ -103,6 +118,40 @@ def main() -> None:
 
     d, cpu, wall = dyn()
     show("2. one 3D dynamic impact, modified Newton (default)", d, cpu, wall)
+    print(
+        f"\n4. against the yardstick (10k-layer winding, {yard:.2f} s wall, {yard_cpu:.2f} s "
+        f"CPU, same process): the dynamic impact {cpu / yard_cpu:.1f}x CPU, {wall / yard:.1f}x "
+        f"wall; with its quasi-static 3D solve {(cpu + cpu_qs) / yard_cpu:.1f}x CPU, "
+        f"{(wall + wall_qs) / yard:.1f}x wall (bar 15x)"
+    )
+    if "--write-docs" in sys.argv:
+        from pathlib import Path
+
+        from docs_block import load_note, write_block
+
+        bar = "15x ok" if cpu / yard_cpu <= 15 else "15x **over**"
+        lines = [
+            "`benchmarks/bench_dynamic3d.py"
+            + (" --coarse" if "--coarse" in sys.argv else "")
+            + f"`: PET1 26.7 N, the Rho-meter, {'coarse' if '--coarse' in sys.argv else 'default'}"
+            f" 3D mesh, one BLAS thread; python {platform.python_version()}, "
+            f"{load_note(load0)}. The yardstick (the 10k-layer winding, "
+            f"benchmarks/yardstick.py) took {yard:.2f} s wall, {yard_cpu:.2f} s CPU in the same "
+            "process; times as multiples of it.",
+            "",
+            "| run | DOF | steps | CPU x yardstick | wall x yardstick | Rho | bar |",
+            "|---|---|---|---|---|---|---|",
+            f"| quasi-static 3D solve (the 1.5D models' spring) | {st.contact.n_dof} | "
+            f"{st.contact.delta.size - 1} | {cpu_qs / yard_cpu:.1f}x | {wall_qs / yard:.1f}x | "
+            f"{h.fd.rho:.2f} (FD) | |",
+            f"| 3D dynamic impact | {d.n_dof} | {d.n_steps} | {cpu / yard_cpu:.1f}x | "  # type: ignore[attr-defined]
+            f"{wall / yard:.1f}x | {d.rho:.2f} | {bar} |",  # type: ignore[attr-defined]
+            f'| both (`contact.model = "3d"`, `contact.dynamic = true`) | | | '
+            f"{(cpu + cpu_qs) / yard_cpu:.1f}x | {(wall + wall_qs) / yard:.1f}x | | |",
+        ]
+        write_block(
+            Path(__file__).resolve().parent.parent / "docs" / "performance.md", "dynamic3d", lines
+        )
     if compare:
         d2, cpu2, wall2 = dyn(reuse=False)
         show("3. the same, one factorisation per step", d2, cpu2, wall2)

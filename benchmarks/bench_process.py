@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import re
 import subprocess
 import sys
 import tempfile
@@ -31,6 +30,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_startup import cli_module, source_of  # noqa: E402
+from docs_block import write_block  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 CASES = ROOT / "benchmarks" / "cases"
@@ -63,7 +63,6 @@ LOADS = {
         "print(time.perf_counter() - t)"
     ),
 }
-BEGIN, END = "<!-- bench: process -->", "<!-- end bench -->"
 
 
 def run(args: list[str], env: dict[str, str], cli: str) -> tuple[float, int]:
@@ -112,14 +111,7 @@ def main() -> None:
     lines = table(opts, trees, best, size, load, loads0, loads1)
     print("\n".join(lines))
     if opts.write_docs:
-        page = ROOT / "docs" / "performance.md"
-        text = page.read_text(encoding="utf-8")
-        block = f"{BEGIN}\n" + "\n".join(lines) + f"\n{END}"
-        pat = re.compile(re.escape(BEGIN) + ".*?" + re.escape(END), re.S)
-        if not pat.search(text):
-            raise SystemExit(f"{page}: no {BEGIN} ... {END} block")
-        page.write_text(pat.sub(lambda _m: block, text), encoding="utf-8")
-        print(f"wrote {page}")
+        write_block(ROOT / "docs" / "performance.md", "process", lines)
 
 
 def table(opts, trees, best, size, load, loads0, loads1) -> list[str]:  # type: ignore[no-untyped-def]

@@ -25,13 +25,13 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 import argparse  # noqa: E402
 import datetime  # noqa: E402
-import re  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from docs_block import load_note, write_block  # noqa: E402
 from yardstick import wind_per_layer  # noqa: E402
 
 from woundroll.materials import Core, Pfeiffer, Web  # noqa: E402
@@ -42,18 +42,6 @@ from woundroll.winding.storage import StorageChange, apply_storage  # noqa: E402
 from woundroll.winding.tension import TensionSchedule  # noqa: E402
 
 PAGE = Path(__file__).resolve().parent.parent / "docs" / "winding.md"
-END = "<!-- end bench -->"
-
-
-def write_block(name: str, text: str) -> None:
-    """Replace docs/winding.md's ``<!-- bench: NAME -->`` ... ``<!-- end bench -->``."""
-    begin = f"<!-- bench: {name} -->"
-    page = PAGE.read_text(encoding="utf-8")
-    pat = re.compile(re.escape(begin) + ".*?" + re.escape(END), re.S)
-    if not pat.search(page):
-        raise SystemExit(f"{PAGE}: no {begin} ... {END} block")
-    PAGE.write_text(pat.sub(lambda _m: f"{begin}{text}{END}", page), encoding="utf-8")
-    print(f"wrote {PAGE} ({name})")
 
 
 def pet1_storage(repeat: int) -> dict[str, float]:
@@ -138,25 +126,24 @@ def main() -> None:
     if args.write_docs:
         when = (
             f"`benchmarks/bench_storage.py`, {datetime.date.today().isoformat()}, best of "
-            f"{args.repeat}, {os.cpu_count()} cores at a load average of {load0:.1f} -> "
-            f"{load1:.1f}; the yardstick (benchmarks/yardstick.py, the per-layer winding of the "
-            f"same roll) took {t_yard:.2f} s in the same run"
+            f"{args.repeat}, {load_note(load0, load1)}; the yardstick (benchmarks/yardstick.py, "
+            f"the per-layer winding of the same roll) took {t_yard:.2f} s in the same run"
         )
-        write_block(
-            "storage",
-            f"{when}: the {args.layers:,}-layer benchmark roll ({w.radius.size:,} nodes): winding "
+        roll = (
+            f"the {args.layers:,}-layer benchmark roll ({w.radius.size:,} nodes): winding "
             f"{t_wind / t_yard:.3f}, a -20 K change {t_temp / t_yard:.3f}, 30 d of creep in 40 "
             f"steps {t_creep / t_yard:.3f}: {total / t_yard:.3f} of the yardstick in all "
-            f"({total:.2f} s; the issue's target: 1 s)",
+            f"({total:.2f} s; the issue's target: 1 s)."
         )
-        write_block(
-            "storage-pet1",
-            f"an {pet['layers']:,}-layer roll (PET1 26.7 N at 10 um, {pet['nodes']:,} nodes), "
+        write_block(PAGE, "storage", [f"{when}: {roll}"])
+        pet1 = (
+            f"An {pet['layers']:,}-layer roll (PET1 26.7 N at 10 um, {pet['nodes']:,} nodes), "
             f"cooled by 20 K and wetted by 0.5 %: {pet['iterations']} Picard iterations, the "
             f"storage change {pet['storage'] / pet['wind']:.3f} of its winding's time in the "
-            f"same process ({pet['storage'] / t_yard:.4f} and {pet['wind'] / t_yard:.3f} of the "
-            f"yardstick; {when})",
+            f"same process ({pet['storage'] / t_yard:.4f} and {pet['wind'] / t_yard:.3f} of "
+            f"the yardstick; {when})."
         )
+        write_block(PAGE, "storage-pet1", [pet1])
 
 
 if __name__ == "__main__":

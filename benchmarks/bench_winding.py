@@ -41,7 +41,6 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMB
 
 import argparse  # noqa: E402
 import platform  # noqa: E402
-import re  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
 from collections.abc import Callable  # noqa: E402
@@ -50,6 +49,7 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from docs_block import write_block  # noqa: E402
 from yardstick import wind_per_layer  # noqa: E402
 
 from woundroll.materials import Core, Pfeiffer, Web  # noqa: E402
@@ -62,7 +62,6 @@ WEB = Web(thickness=H, width=1.0, E_theta=5e9, radial_modulus=Pfeiffer(10e3, 100
 CORE = Core(0.076)
 SCHED = TensionSchedule(1.5e6)
 PAGE = Path(__file__).resolve().parent.parent / "docs" / "winding.md"
-BEGIN, END = "<!-- bench: winding -->", "<!-- end bench -->"
 
 
 def timed(fn: Callable[[], WindingResult], repeat: int) -> tuple[WindingResult, float, float]:
@@ -157,13 +156,7 @@ def main() -> None:
             f"took {yard:.2f} s in the same run; wall times as multiples of it."
         )
         tail = "Speed-up of the default (wall): " + "; ".join(speedups) + "."
-        block = "\n".join([BEGIN, intro, "", *md, "", tail, END])
-        text = PAGE.read_text(encoding="utf-8")
-        pat = re.compile(re.escape(BEGIN) + ".*?" + re.escape(END), re.S)
-        if not pat.search(text):
-            raise SystemExit(f"{PAGE}: no {BEGIN} ... {END} block")
-        PAGE.write_text(pat.sub(lambda _m: block, text), encoding="utf-8")
-        print(f"wrote {PAGE}")
+        write_block(PAGE, "winding", [intro, "", *md, "", tail])
 
 
 if __name__ == "__main__":

@@ -1,19 +1,28 @@
 """Run every benchmark script in this folder and print its report (make bench).
 
-``bench_process.py`` also rewrites its table in docs/performance.md (against the tree before
-issue 23, ``BEFORE``), ``bench_winding.py``, ``bench_storage.py`` and ``bench_air.py`` their
-blocks in docs/winding.md."""
+The benchmarks with a table in docs/ rewrite it (``--write-docs``, benchmarks/docs_block.py):
+``bench_process.py`` (against the tree before issue 23, ``BEFORE``), ``bench_profile.py
+--table3``, ``bench_contact3d.py --ratio`` and ``bench_dynamic3d.py`` their tables in
+docs/performance.md, ``bench_winding.py``, ``bench_storage.py`` and ``bench_air.py`` their
+blocks in docs/winding.md. The others print."""
 
 import subprocess
 import sys
 from pathlib import Path
 
 BEFORE = "0b425c8"
-#: the benchmarks that write their blocks into docs/winding.md
-WRITE_DOCS = ("bench_winding.py", "bench_storage.py", "bench_air.py")
+#: the arguments that make a benchmark write its docs table
+DOCS = {
+    "bench_process.py": ["--before", BEFORE, "--write-docs"],
+    "bench_winding.py": ["--write-docs"],
+    "bench_profile.py": ["--table3", "--write-docs"],
+    "bench_contact3d.py": ["--ratio", "--write-docs"],
+    "bench_dynamic3d.py": ["--write-docs"],
+    "bench_storage.py": ["--write-docs"],
+    "bench_air.py": ["--write-docs"],
+}
 
 for script in sorted(Path(__file__).parent.glob("bench_*.py")):
     print(f"=== {script.name}", flush=True)
-    extra = ["--before", BEFORE, "--write-docs"] if script.name == "bench_process.py" else []
-    extra += ["--write-docs"] if script.name in WRITE_DOCS else []
+    extra = DOCS.get(script.name, [])
     subprocess.run([sys.executable, str(script), *extra], check=False)

@@ -136,3 +136,28 @@ def test_record_machinery(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> No
     m3 = rec.Measurement("synthetic", runs2, drift, spot=("a",), rtol=0.01, reason="test")
     monkeypatch.setattr(rec, "measurements", lambda: {"x.y": m3})
     assert rec.spot_check("x.y") == ["x.y: a.n stored 10.0, now 10.5"]
+
+
+def test_every_bench_block_is_written_by_make_bench() -> None:
+    # a timing table in docs/ (<!-- bench: NAME -->) is rewritten by a benchmark that
+    # make bench (benchmarks/run_all.py) runs with --write-docs: none is left hand-written
+    bench = ROOT / "benchmarks"
+    blocks = {
+        (page.name, m)
+        for page in [*(ROOT / "docs").glob("*.md"), ROOT / "README.md"]
+        for m in re.findall(r"<!-- bench: ([\w-]+) -->", page.read_text())
+    }
+    assert len(blocks) >= 5
+    run_all = (bench / "run_all.py").read_text()
+    writers = {}
+    for script in bench.glob("bench_*.py"):
+        for name in re.findall(r'write_block\(.*?,\s*"([\w-]+)",', script.read_text(), re.S):
+            writers[name] = script.name
+    assert sorted(n for _, n in blocks if n not in writers) == []
+    assert (
+        sorted({writers[n] for _, n in blocks} - set(re.findall(r'"(bench_\w+\.py)"', run_all)))
+        == []
+    )
+    for page in [*(ROOT / "docs").glob("*.md")]:
+        text = page.read_text()
+        assert text.count("<!-- bench: ") == text.count("<!-- end bench -->"), page.name

@@ -302,7 +302,8 @@ def test_output_atomic_files_recorded_and_stale_removed(tmp_path):
     out = tmp_path / "out"
     first = run(load_case(base)).write(out)
     names = sorted(p.name for p in first)
-    assert names == ["hardness.png", "result.json", "winding.png"]
+    # the impact's time series (> COMPACT_MAX_POINTS steps) go to result.npz
+    assert names == ["hardness.png", "result.json", "result.npz", "winding.png"]
     data = json.loads((out / "result.json").read_text())
     assert sorted(data["files"]) == names
     assert set(data["flags"]) >= {"reading_outside_range", "spring_extrapolated"}
@@ -312,7 +313,7 @@ def test_output_atomic_files_recorded_and_stale_removed(tmp_path):
     second = run(load_case(base))
     written = second.write(out)
     assert sorted(p.name for p in written) == ["result.json", "winding.png"]
-    assert not (out / "hardness.png").exists()
+    assert not (out / "hardness.png").exists() and not (out / "result.npz").exists()
     assert any("profile_cmd.png" in n for n in second.notes)
     assert sorted(p.name for p in out.iterdir()) == [
         "profile_cmd.png",

@@ -42,10 +42,9 @@ def test_center_mode_is_todays_formula_bit_for_bit():
 
 def test_center_run_unchanged_through_the_cli():
     nip = ["--set", "winding.nip_load=300 N/m", "--set", "winding.friction=0.2"]
-    a = runner.invoke(app, ["run", "pet1-26.7N", "--json", "--no-update", *nip])
-    b = runner.invoke(
-        app, ["run", "pet1-26.7N", "--json", "--no-update", *nip, "--set", "winding.mode=center"]
-    )
+    full = ["--json", "--fields", "full", "--no-update"]  # per-node fields compared
+    a = runner.invoke(app, ["run", "pet1-26.7N", *full, *nip])
+    b = runner.invoke(app, ["run", "pet1-26.7N", *full, *nip, "--set", "winding.mode=center"])
     assert a.exit_code == 0 and b.exit_code == 0, b.output
     wa, wb = json.loads(a.stdout)["winding"], json.loads(b.stdout)["winding"]
     assert wa["sigma_r_Pa"] == wb["sigma_r_Pa"]
@@ -104,7 +103,7 @@ def test_surface_run_through_the_cli_reports_wot_against_radius():
         "winding.nip_saturation=1000 N/m",
         "winding.friction=0.2",
     ]
-    args = ["run", "pet1-26.7N", "--json", "-q"]
+    args = ["run", "pet1-26.7N", "--json", "--fields", "full", "-q"]  # per-node wot
     for s in sets:
         args += ["--set", s]
     res = runner.invoke(app, args)
@@ -177,7 +176,7 @@ def test_drum_slip_is_flagged_with_a_warning():
         "winding.nip_saturation=1000 N/m",
         "winding.tension_differential=1000 N/m",
     ]
-    args = ["run", "pet1-26.7N", "--json"]
+    args = ["run", "pet1-26.7N", "--json", "--fields", "full"]  # per-node wot
     for s in sets:
         args += ["--set", s]
     res = runner.invoke(app, args)

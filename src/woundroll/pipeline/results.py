@@ -16,9 +16,11 @@ import numpy as np
 FIELDS = ("compact", "full")
 DEFAULT_FIELDS = "compact"
 #: arrays longer than this are left out of a compact result (a 10,000-layer roll's five
-#: per-node arrays are 1.6 MB of JSON text; docs/performance.md). 4,000 keeps a Table 2
-#: roll's (1,779 nodes, 2,080 impact steps: 0.39 MB) in the JSON as before.
-COMPACT_MAX_POINTS = 4000
+#: per-node arrays are 1.6 MB of JSON text; docs/performance.md). 1,000: a Table 2 roll's
+#: per-node fields (1,779 nodes) and impact time series (~2,000 steps) go to result.npz
+#: too (its JSON 373 kB -> ~12 kB, ~50 ms of its process: writing the text); kept are the
+#: scalars and the short tables (F(d) curves, a profile's sectors, limits).
+COMPACT_MAX_POINTS = 1000
 
 
 def compact(doc: dict[str, Any], max_points: int = COMPACT_MAX_POINTS) -> tuple[

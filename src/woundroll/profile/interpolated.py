@@ -383,90 +383,130 @@ def interpolated_springs(
         Anchored (module docstring): a cheaper model's springs on every sector; what is
         interpolated is the full solves' spring relative to these.
     """
-    n = len(profiles)
-    x_all = descriptors(profiles)
-    x = x_all.mean(axis=1)
-    alpha, beta = np.zeros(n), np.zeros(n)
-    solved = np.zeros(n, dtype=bool)
-    reading = np.full(n, np.nan)  # readings of solved sectors
-    groups = _groups(fns)
-    anchor = _Anchor.of(base, n)
-    offset = np.zeros(n)  # anchored: the cheap springs' readings (what the checks correct)
-    if base is not None:
-        offset = readings(*(np.asarray(c, dtype=float) for c in base), np.arange(n))
+    run = _Interpolation(fns, profiles, solve, readings, progress, base)
+    first, copies = _first_nodes(run.x, run.members)
+    run.full(first)
+    for k, j0 in copies.items():
+        run.alpha[run.members[k]], run.beta[run.members[k]] = run.alpha[j0], run.beta[j0]
+    run.live = {k: m for k, m in run.members.items() if k not in copies}
+    while True:
+        run.interpolate()
+        cand = _candidates(
+            run.x,
+            run.x_all,
+            run.live,
+            run.solved,
+            run.reading,
+            run.cached,
+            run.calibration,
+            scale,
+            run.offset,
+        )
+        if not cand or run.check(cand, batch, tolerance, scale):
+            break
+    run.interpolate()
+    return InterpolatedContact(
+        alpha=run.alpha,
+        beta=run.beta,
+        solved=run.solved,
+        x=run.x,
+        rounds=run.rounds,
+        largest_check=run.largest_check,
+        largest_change=run.largest_change,
+    )
 
-    def full(idx: list[int]) -> None:
-        idx = [j for j in idx if not solved[j]]
+
+class _Interpolation:
+    """The state of :func:`interpolated_springs`: the springs so far, which sectors are
+    solved, their readings, and the check rounds' record."""
+
+    def __init__(
+        self,
+        fns: Sequence[ContactFn],
+        profiles: Sequence[tuple[FloatArray, FloatArray]],
+        solve: SolveFn,
+        readings: ReadingFn,
+        progress: Callable[[int, int], None] | None,
+        base: tuple[FloatArray, FloatArray] | None,
+    ) -> None:
+        n = len(profiles)
+        self.fns, self.profiles, self.solve_fn, self.readings = fns, profiles, solve, readings
+        self.progress, self.n = progress, n
+        self.x_all = descriptors(profiles)
+        self.x = self.x_all.mean(axis=1)
+        self.alpha, self.beta = np.zeros(n), np.zeros(n)
+        self.solved = np.zeros(n, dtype=bool)
+        self.reading = np.full(n, np.nan)  # readings of solved sectors
+        # the nodes: extremes and median of each group (one sector for one descriptor)
+        self.members = {k: np.asarray(g, dtype=np.intp) for k, g in _groups(fns).items()}
+        self.live: dict[int, NDArray[np.intp]] = {}
+        self.anchor = _Anchor.of(base, n)
+        # anchored: the cheap springs' readings (what the checks correct)
+        self.offset = np.zeros(n)
+        if base is not None:
+            self.offset = readings(*(np.asarray(c, dtype=float) for c in base), np.arange(n))
+        self.rounds, self.largest_check, self.largest_change = 0, 0.0, 0.0
+        self.calibration = 1.0
+        self.memo: dict[int, tuple[float, float, float]] = {}
+
+    def full(self, idx: list[int]) -> None:
+        """Full contact solves of the sectors ``idx`` not solved yet."""
+        idx = [j for j in idx if not self.solved[j]]
         if not idx:
             return
-        a, b = solve([fns[j] for j in idx], [profiles[j] for j in idx])
+        a, b = self.solve_fn([self.fns[j] for j in idx], [self.profiles[j] for j in idx])
         sel = np.asarray(idx, dtype=np.intp)
-        alpha[sel], beta[sel] = a, b
-        anchor.relate(alpha, beta, sel)
-        solved[sel] = True
-        reading[sel] = readings(alpha[sel], beta[sel], sel)
-        if progress is not None:
-            progress(int(solved.sum()), n)
+        self.alpha[sel], self.beta[sel] = a, b
+        self.anchor.relate(self.alpha, self.beta, sel)
+        self.solved[sel] = True
+        self.reading[sel] = self.readings(self.alpha[sel], self.beta[sel], sel)
+        if self.progress is not None:
+            self.progress(int(self.solved.sum()), self.n)
 
-    # the nodes: extremes and median of each group (one sector for one descriptor)
-    members = {k: np.asarray(g, dtype=np.intp) for k, g in groups.items()}
-    first, copies = _first_nodes(x, members)
-    full(first)
-    for k, j0 in copies.items():
-        alpha[members[k]], beta[members[k]] = alpha[j0], beta[j0]
-    live = {k: m for k, m in members.items() if k not in copies}
-
-    rounds, largest_check, largest_change, calibration = 0, 0.0, 0.0, 1.0
-    memo: dict[int, tuple[float, float, float]] = {}
-
-    def cached(js: NDArray[np.intp]) -> FloatArray:
+    def cached(self, js: NDArray[np.intp]) -> FloatArray:
         """Readings of interpolated springs (the FD reading is 2 ms a sector: a sector whose
         interval did not change is not read again)."""
+        alpha, beta, memo = self.alpha, self.beta, self.memo
         new = [j for j in js if memo.get(int(j), (None, None))[:2] != (alpha[j], beta[j])]
         if new:
             sel = np.asarray(new, dtype=np.intp)
-            for j, r in zip(new, readings(alpha[sel], beta[sel], sel), strict=True):
+            for j, r in zip(new, self.readings(alpha[sel], beta[sel], sel), strict=True):
                 memo[int(j)] = (float(alpha[j]), float(beta[j]), float(r))
         return np.array([memo[int(j)][2] for j in js])
 
-    def interpolate() -> None:
-        for m in live.values():
-            nodes = [int(j) for j in m if solved[j]]
-            _interpolate(x, nodes, *anchor.interpolated(alpha, beta), m)
-            anchor.apply(alpha, beta, np.setdiff1d(m, nodes))
+    def interpolate(self) -> None:
+        for m in self.live.values():
+            nodes = [int(j) for j in m if self.solved[j]]
+            _interpolate(self.x, nodes, *self.anchor.interpolated(self.alpha, self.beta), m)
+            self.anchor.apply(self.alpha, self.beta, np.setdiff1d(m, nodes))
 
-    while True:
-        interpolate()
-        cand = _candidates(x, x_all, live, solved, reading, cached, calibration, scale, offset)
-        if not cand:
-            break
+    def check(
+        self,
+        cand: list[tuple[float, float, float, int]],
+        batch: int,
+        tolerance: float,
+        scale: tuple[float, float] | None,
+    ) -> bool:
+        """One check round: solve the ``batch`` most doubtful candidates, compare with
+        their interpolated readings; True when the interpolation is accepted."""
         pick = _pick(cand, batch)
         sel = np.asarray(pick, dtype=np.intp)
         estimate = {j: e for e, _, _, j in cand}
-        before = cached(sel)
-        full(pick)
-        change = np.abs(reading[sel] - before)
+        before = self.cached(sel)
+        self.full(pick)
+        change = np.abs(self.reading[sel] - before)
         if scale is not None:  # what the instrument shows
-            change = np.abs(np.clip(reading[sel], *scale) - np.clip(before, *scale))
-        rounds += 1
-        largest_check = float(change.max())
-        largest_change = max(largest_change, largest_check)
+            change = np.abs(np.clip(self.reading[sel], *scale) - np.clip(before, *scale))
+        self.rounds += 1
+        self.largest_check = float(change.max())
+        self.largest_change = max(self.largest_change, self.largest_check)
         # the estimates, calibrated by the checks so far (never below their face value)
         for j, c in zip(pick, change, strict=True):
-            calibration = max(calibration, float(c) / max(estimate[j], 1e-12))
+            self.calibration = max(self.calibration, float(c) / max(estimate[j], 1e-12))
         rest = [e for e, _, _, j in cand if j not in pick]
-        if largest_check <= tolerance and (not rest or calibration * max(rest) <= tolerance):
-            break
-    interpolate()
-    return InterpolatedContact(
-        alpha=alpha,
-        beta=beta,
-        solved=solved,
-        x=x,
-        rounds=rounds,
-        largest_check=largest_check,
-        largest_change=largest_change,
-    )
+        return self.largest_check <= tolerance and (
+            not rest or self.calibration * max(rest) <= tolerance
+        )
 
 
 __all__ = [

@@ -198,6 +198,36 @@ class _CutAssembler3D(Assembler3D):
         return vals
 
 
+class _NodeNumbering:
+    """Node number of doubled ring ``i2``, hoop index ``j``, CMD index ``k`` (the doubled
+    mesh numbers rings fastest, then the hoop, then the CMD)."""
+
+    def __init__(self, n_t: int, nr2: int) -> None:
+        self.n_t, self.nr2 = n_t, nr2
+
+    def __call__(self, i2: Any, j: Any, k: Any) -> Any:
+        return (np.asarray(k) * self.n_t + np.asarray(j)) * self.nr2 + np.asarray(i2)
+
+
+def _doubled_dofs(
+    mesh: RollMesh3D, lower: IntArray, upper: IntArray, node: _NodeNumbering
+) -> IntArray:
+    """Each element's 24 DOFs on the doubled mesh: an element's radial DOFs on its rings'
+    ``lower`` nodes, its tangential ones on the inner ring's ``upper`` (outer-face) nodes
+    and the outer ring's ``lower`` ones."""
+    i, j, k = mesh.element_index
+    dofs = np.empty((i.size, 24), dtype=np.int64)
+    for a in range(8):
+        a1, a2, a3 = a & 1, (a >> 1) & 1, (a >> 2) & 1
+        ring = i + a1
+        n_rad = node(lower[ring], j + a2, k + a3)
+        n_tan = node(upper[ring] if a1 == 0 else lower[ring], j + a2, k + a3)
+        dofs[:, 3 * a] = 3 * n_rad
+        dofs[:, 3 * a + 1] = 3 * n_tan + 1
+        dofs[:, 3 * a + 2] = 3 * n_tan + 2
+    return dofs
+
+
 class _LayeredRoll3D(Roll3D):
     """The 3D roll on the layered mesh (module docstring): :class:`Roll3D` with the doubled
     tangential DOFs of the interface rings ``cut`` (indices into ``mesh.r``)."""
@@ -217,56 +247,18 @@ class _LayeredRoll3D(Roll3D):
         n_r, n_t, n_z = mesh.shape
         is_cut = np.zeros(n_r, dtype=bool)
         is_cut[cut] = True
+        # ring i's radial (and inner tangential) nodes on doubled ring lower[i], the outer
+        # face's tangential nodes of a cut ring on upper[i] = lower[i] + 1
         lower = np.arange(n_r) + np.concatenate([[0], np.cumsum(is_cut)[:-1]])
         upper = lower + is_cut
         nr2 = n_r + int(is_cut.sum())
-
-        def node(i2: Any, j: Any, k: Any) -> Any:
-            return (np.asarray(k) * n_t + np.asarray(j)) * nr2 + np.asarray(i2)
-
-        i, j, k = mesh.element_index
-        dofs = np.empty((i.size, 24), dtype=np.int64)
-        for a in range(8):
-            a1, a2, a3 = a & 1, (a >> 1) & 1, (a >> 2) & 1
-            ring = i + a1
-            n_rad = node(lower[ring], j + a2, k + a3)
-            n_tan = node(upper[ring] if a1 == 0 else lower[ring], j + a2, k + a3)
-            dofs[:, 3 * a] = 3 * n_rad
-            dofs[:, 3 * a + 1] = 3 * n_tan + 1
-            dofs[:, 3 * a + 2] = 3 * n_tan + 2
+        node = _NodeNumbering(n_t, nr2)
+        dofs = _doubled_dofs(mesh, lower, upper, node)
         n_nodes = nr2 * n_t * n_z
-        free = np.zeros(3 * n_nodes, dtype=bool)
-        free[np.unique(dofs)] = True
-        I2, J, K = np.meshgrid(np.arange(nr2), np.arange(n_t), np.arange(n_z), indexing="ij")
-        every = node(I2, J, K)
-        core_nodes = node(0, *np.meshgrid(np.arange(n_t), np.arange(n_z), indexing="ij")).ravel()
-        free[3 * core_nodes + 1] = False
-        free[3 * core_nodes + 2] = False
-        free[3 * every[:, 0, :].ravel() + 1] = False  # theta = 0
-        free[3 * every[:, -1, :].ravel() + 1] = False  # theta = pi (or the cut)
-        free[3 * every[:, :, 0].ravel() + 2] = False  # z = 0
-        if opts.cmd_edges == "fixed":
-            free[3 * every[:, :, -1].ravel() + 2] = False
-        diagonal = None
-        if core.rigid:
-            free[3 * core_nodes] = False
-        else:
-            area = np.outer(self.trib_t, self.trib_z).ravel()  # order j * n_z + k
-            diagonal = np.zeros(3 * n_nodes)
-            diagonal[3 * core_nodes] = core.stiffness * area
+        free, diagonal = self._constraints(dofs, node, nr2, n_nodes, core, opts)
         fi = np.full(3 * n_nodes, -1, dtype=np.int64)
         fi[free] = np.arange(int(free.sum()))
-        # interface pairs: every node of every cut ring, theta and z components
-        C, PJ, PK = np.meshgrid(
-            np.flatnonzero(is_cut), np.arange(n_t), np.arange(n_z), indexing="ij"
-        )
-        C, PJ, PK = C.ravel(), PJ.ravel(), PK.ravel()
-        na, nb = node(lower[C], PJ, PK), node(upper[C], PJ, PK)
-        fa = np.stack([fi[3 * na + 1], fi[3 * na + 2]], axis=1)
-        fb = np.stack([fi[3 * nb + 1], fi[3 * nb + 2]], axis=1)
-        live = np.any(fa >= 0, axis=1)
-        self.pair_ring, self.pair_j, self.pair_k = C[live], PJ[live], PK[live]
-        fa, fb = fa[live], fb[live]
+        fa, fb = self._pairs(np.flatnonzero(is_cut), lower, upper, node, fi)
         self.free = free
         self.asm = _CutAssembler3D(self.asm, free, dofs, diagonal, fa, fb, penalty)
         self.surface = node(nr2 - 1, *np.meshgrid(np.arange(n_t), np.arange(n_z), indexing="xy"))
@@ -279,6 +271,64 @@ class _LayeredRoll3D(Roll3D):
         # radial stress is the pair's pressure)
         pr = mesh.r[self.pair_ring]
         self.pair_area = pr * self.trib_t[self.pair_j] * self.trib_z[self.pair_k]
+        self.pair_elements = self._elements_around_pairs()
+
+    def _constraints(
+        self,
+        dofs: IntArray,
+        node: _NodeNumbering,
+        nr2: int,
+        n_nodes: int,
+        core: Core,
+        opts: Contact3DOptions,
+    ) -> tuple[NDArray[np.bool_], FloatArray | None]:
+        """The free DOFs of the doubled mesh (symmetry planes, the core's hold, the CMD
+        edges as ``opts`` asks) and the core's radial springs (None on a rigid core)."""
+        n_t, n_z = self.mesh.shape[1:]
+        free = np.zeros(3 * n_nodes, dtype=bool)
+        free[np.unique(dofs)] = True
+        I2, J, K = np.meshgrid(np.arange(nr2), np.arange(n_t), np.arange(n_z), indexing="ij")
+        every = node(I2, J, K)
+        core_nodes = node(0, *np.meshgrid(np.arange(n_t), np.arange(n_z), indexing="ij")).ravel()
+        free[3 * core_nodes + 1] = False
+        free[3 * core_nodes + 2] = False
+        free[3 * every[:, 0, :].ravel() + 1] = False  # theta = 0
+        free[3 * every[:, -1, :].ravel() + 1] = False  # theta = pi (or the cut)
+        free[3 * every[:, :, 0].ravel() + 2] = False  # z = 0
+        if opts.cmd_edges == "fixed":
+            free[3 * every[:, :, -1].ravel() + 2] = False
+        if core.rigid:
+            free[3 * core_nodes] = False
+            return free, None
+        area = np.outer(self.trib_t, self.trib_z).ravel()  # order j * n_z + k
+        diagonal = np.zeros(3 * n_nodes)
+        diagonal[3 * core_nodes] = core.stiffness * area
+        return free, diagonal
+
+    def _pairs(
+        self,
+        cut_rings: IntArray,
+        lower: IntArray,
+        upper: IntArray,
+        node: _NodeNumbering,
+        fi: IntArray,
+    ) -> tuple[IntArray, IntArray]:
+        """The interface pairs (every node of every cut ring, theta and z components) with
+        a free DOF: their free indices on the inner (``fa``) and outer (``fb``) face; sets
+        ``pair_ring``, ``pair_j``, ``pair_k``."""
+        n_t, n_z = self.mesh.shape[1:]
+        C, PJ, PK = np.meshgrid(cut_rings, np.arange(n_t), np.arange(n_z), indexing="ij")
+        C, PJ, PK = C.ravel(), PJ.ravel(), PK.ravel()
+        na, nb = node(lower[C], PJ, PK), node(upper[C], PJ, PK)
+        fa = np.stack([fi[3 * na + 1], fi[3 * na + 2]], axis=1)
+        fb = np.stack([fi[3 * nb + 1], fi[3 * nb + 2]], axis=1)
+        live = np.any(fa >= 0, axis=1)
+        self.pair_ring, self.pair_j, self.pair_k = C[live], PJ[live], PK[live]
+        return fa[live], fb[live]
+
+    def _elements_around_pairs(self) -> IntArray:
+        """The (up to) eight elements around each interface pair (pairs, 8)."""
+        n_r, n_t, n_z = self.mesh.shape
         ne_r, ne_t, ne_z = n_r - 1, n_t - 1, n_z - 1
         around = []
         for di in (-1, 0):
@@ -288,7 +338,7 @@ class _LayeredRoll3D(Roll3D):
                     ej = np.clip(self.pair_j + dj, 0, ne_t - 1)
                     ek = np.clip(self.pair_k + dk, 0, ne_z - 1)
                     around.append((ek * ne_t + ej) * ne_r + ei)
-        self.pair_elements = np.stack(around, axis=1)
+        return np.stack(around, axis=1)
 
     def factor(self, D: FloatArray) -> None:
         """Assemble K (with the interface pairs' augmentation at the current sets) and
