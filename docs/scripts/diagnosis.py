@@ -528,8 +528,8 @@ def reduced_check() -> str:
     return (
         f"the sector-to-sector pattern of `P_s` correlates at {r['correlation']:.3f} with the "
         f"coupled (r, z) model's, the RMS difference is {100 * r['rms_rel']:.0f} % of the mean "
-        f"over a profile that runs from {r['min_kPa']:.0f} to {r['max_kPa']:.0f} kPa (at the "
-        f"reduced model's highest sector {r['peak_reduced_kPa']:.0f} kPa against "
+        f"over a profile that runs from {max(r['min_kPa'], 0.0):.0f} to {r['max_kPa']:.0f} kPa "
+        f"(at the reduced model's highest sector {r['peak_reduced_kPa']:.0f} kPa against "
         f"{r['peak_coupled_kPa']:.0f} kPa coupled); the coupled winding took "
         f"{r['_wall_ratio']:.0f} times as long in the same run "
         f"({_measured('diagnosis.reduced_model')})"
