@@ -127,7 +127,8 @@ def main() -> None:
         when = (
             f"`benchmarks/bench_storage.py`, {datetime.date.today().isoformat()}, best of "
             f"{args.repeat}, {load_note(load0, load1)}; the yardstick (benchmarks/yardstick.py, "
-            f"the per-layer winding of the same roll) took {t_yard:.2f} s in the same run"
+            f"the per-layer winding of the {args.layers:,}-layer roll) took {t_yard:.2f} s in "
+            "the same run"
         )
         roll = (
             f"the {args.layers:,}-layer benchmark roll ({w.radius.size:,} nodes): winding "
