@@ -98,7 +98,7 @@ MEASUREMENTS: dict[str, Any] = {
             "deterministic on one machine; Brent stops at 1e-4 of the radius and the 3D "
             "solve's iterative rounding moves the block's reading by far less than 1e-3"
         ),
-        cost="about 10 3D block solves, 1-3 CPU min",
+        cost="about 10 3D block solves and a 2D calibration, about 1 CPU min",
     ),
 }
 

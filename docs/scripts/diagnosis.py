@@ -802,7 +802,7 @@ MEASUREMENTS: dict[str, Any] = {
             "deterministic on one machine; T0 is solved by Brent and secant steps to about "
             "1e-3 in the reading, so platform rounding may move the setpoints by a few 1e-4"
         ),
-        cost="6 designs, 5-10 CPU min",
+        cost="6 designs, about 13 CPU min (measured 750 s)",
     ),
     "uncertainty": _records().Measurement(
         about="docs/diagnosis.md's uncertainty checks (tests/test_uncertainty.py's problems)",
@@ -815,7 +815,7 @@ MEASUREMENTS: dict[str, Any] = {
             "of readings (~0.1-3 Rho) in which platform rounding of the contact and impact "
             "solves (~1e-3 Rho) is a larger relative part: 2 %"
         ),
-        cost="a 1D Monte Carlo check, 60 reduced profile runs, 6 full profile runs at 5 sectors",
+        cost="a 1D Monte Carlo check, 60 reduced profile runs, 6 full profile runs at 5 sectors: about 1.5 CPU min",
     ),
     "reduced_model": _records().Measurement(
         about="the reduced profile model's near-surface pressures against the coupled "
@@ -837,7 +837,7 @@ MEASUREMENTS: dict[str, Any] = {
             "deterministic; the fit's Gauss-Newton steps and posterior SDs of a "
             "nearly unidentifiable parameter amplify platform rounding of the windings: 1 %"
         ),
-        cost="a causes fit with the reduced model, 1-3 CPU min",
+        cost="a causes fit with the reduced model, about 1.5 CPU min",
     ),
     "causes_full": _records().Measurement(
         about="the causes fit against readings of the full profile model, with the level "
