@@ -849,7 +849,8 @@ MEASUREMENTS: dict[str, Any] = {
             "deterministic on one machine; the readings go through iterative contact and "
             "impact solves whose platform rounding is far below 1e-3"
         ),
-        cost="uniform PET3 in three models (one 3D), two 61-sector profile runs, four 2D runs: about 1 CPU min",
+        cost="uniform PET3 in three models (one 3D), two 61-sector profile runs, four 2D "
+        "runs: about 1 CPU min",
     ),
 }
 

@@ -815,7 +815,8 @@ MEASUREMENTS: dict[str, Any] = {
             "of readings (~0.1-3 Rho) in which platform rounding of the contact and impact "
             "solves (~1e-3 Rho) is a larger relative part: 2 %"
         ),
-        cost="a 1D Monte Carlo check, 60 reduced profile runs, 6 full profile runs at 5 sectors: about 1.5 CPU min",
+        cost="a 1D Monte Carlo check, 60 reduced profile runs, 6 full profile runs at 5 "
+        "sectors: about 1.5 CPU min",
     ),
     "reduced_model": _records().Measurement(
         about="the reduced profile model's near-surface pressures against the coupled "
