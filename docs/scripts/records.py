@@ -128,12 +128,24 @@ def _digest(obj: Any) -> str:
 
 def run_inputs(run: Run) -> str:
     """Hash of what ``run`` is computed from: its case resolved today (every input value
-    with its default) and its params."""
+    with its default, the whole contact section, and the instrument's definition with its
+    calibrated head: a bundled instrument's data is not a case input) and its params."""
     from woundroll.case import load_case
 
     case = load_case(run.case, list(run.overrides))
     values = {v["key"]: v["value"] for v in case.record()["inputs"]}
-    return _digest({"inputs": values, "params": [list(p) for p in run.params]})
+    setup = case.tester_setup
+    tester = None
+    if setup is not None:
+        tester = {f.name: getattr(setup, f.name) for f in dataclasses.fields(setup)}
+    return _digest(
+        {
+            "inputs": values,
+            "contact": case.contact.model_dump(),
+            "tester": tester,
+            "params": [list(p) for p in run.params],
+        }
+    )
 
 
 # ---------------------------------------------------------------------------------------
@@ -287,6 +299,22 @@ def measure(name: str, only: Sequence[str] = (), fresh: bool = False) -> dict[st
     return rec
 
 
+def rehash(name: str) -> list[str]:
+    """Store today's input hashes for the runs of record ``name`` without measuring them;
+    return the run ids rehashed. Only for a change of :func:`run_inputs` itself (what the
+    hash covers), made while the inputs stayed what the record was measured on: it does not
+    check that. The models' defaults must still match."""
+    m = measurements()[name]
+    p = path_of(name)
+    rec = json.loads(p.read_text())
+    if rec["model_defaults"] != model_defaults():
+        raise SystemExit(f"{name}: the models' defaults changed: re-measure, do not rehash")
+    ids = [r.id for r in m.runs() if r.id in rec["runs"]]
+    rec["inputs"] = {r.id: run_inputs(r) for r in m.runs() if r.id in rec["runs"]}
+    p.write_text(json.dumps(rec, indent=1, allow_nan=False) + "\n")
+    return ids
+
+
 def spot_check(name: str) -> list[str]:
     """Measure the record's spot runs again; the numbers outside ``rtol`` ([] if none)."""
     m = measurements()[name]
@@ -316,6 +344,12 @@ def main() -> None:
     ap.add_argument("--fresh", action="store_true", help="re-measure every run")
     ap.add_argument("--check", action="store_true", help="only check the inputs; exit 1 if stale")
     ap.add_argument("--all", action="store_true", help="measure every record's stale runs")
+    ap.add_argument(
+        "--rehash",
+        action="store_true",
+        help="store today's input hashes without measuring (only after a change of the hash "
+        "function itself; see rehash())",
+    )
     opts = ap.parse_args()
     allm = measurements()
     if opts.all:
@@ -331,6 +365,10 @@ def main() -> None:
         for s in stale:
             print("stale: " + s)
         sys.exit(1 if stale and opts.check else 0)
+    if opts.rehash:
+        for n in names:
+            print(f"{n}: rehashed {len(rehash(n))} runs")
+        return
     only = [s for s in opts.runs.split(",") if s]
     for n in names:
         measure(n, only, opts.fresh)

@@ -129,6 +129,27 @@ def test_print_css_keeps_headings_with_content(report):
         ), body[m.start() - 80 : m.start() + 40]
 
 
+def print_to_pdf(html: Path, pdf: Path) -> int:
+    """Print ``html`` to ``pdf`` with headless Chromium (the printer's default page: Letter
+    here) and return the page count (docs/report.md's generated count uses it too)."""
+    subprocess.run(
+        [
+            "chromium",
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-pdf-header-footer",
+            f"--print-to-pdf={pdf}",
+            html.as_uri(),
+        ],
+        capture_output=True,
+        timeout=180,
+        check=False,
+    )
+    assert pdf.is_file() and pdf.read_bytes().startswith(b"%PDF")
+    return _pages_of(pdf)
+
+
 def _pages_of(pdf: Path) -> int:
     if shutil.which("pdfinfo"):
         out = subprocess.run(["pdfinfo", str(pdf)], capture_output=True, text=True).stdout
@@ -139,22 +160,7 @@ def _pages_of(pdf: Path) -> int:
 @pytest.mark.skipif(shutil.which("chromium") is None, reason="chromium not installed")
 def test_prints_to_pdf_without_orphan_headings(report, tmp_path):
     pdf = tmp_path / "report.pdf"
-    subprocess.run(
-        [
-            "chromium",
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--no-pdf-header-footer",
-            f"--print-to-pdf={pdf}",
-            report.as_uri(),
-        ],
-        capture_output=True,
-        timeout=180,
-        check=False,
-    )
-    assert pdf.is_file() and pdf.read_bytes().startswith(b"%PDF")
-    pages = _pages_of(pdf)
+    pages = print_to_pdf(report, pdf)
     # the fast case with readings, diagnosis and trend: about 9-12 pages on Letter; a broken
     # layout (a figure per page, or nothing printed) lands outside this range
     assert 5 <= pages <= 16, pages

@@ -452,12 +452,12 @@ def default_groups(n_layers: int, max_layers: int = MAX_GROUP_LAYERS) -> int:
 
 
 def _one_blas_thread() -> Any:
-    """One BLAS thread while winding: the banded factorisations (bandwidth ~2 n_sectors) gain
-    nothing from threads and lose 7x with them on a loaded 2-core machine (20.5 vs 3.0 ms a
-    Table 3 window, docs/profile.md section 7)."""
-    from threadpoolctl import threadpool_limits
+    """One BLAS thread while winding (:mod:`woundroll.util.blas`): the banded
+    factorisations (bandwidth ~2 n_sectors) gain nothing from threads and lose 7x with them
+    on a loaded 2-core machine (20.5 vs 3.0 ms a Table 3 window, docs/profile.md section 7)."""
+    from woundroll.util.blas import one_blas_thread
 
-    return threadpool_limits(limits=1, user_api="blas")
+    return one_blas_thread()
 
 
 def _check_inputs(

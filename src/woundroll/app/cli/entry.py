@@ -13,9 +13,16 @@ import os
 import sys
 from typing import Annotated, Any
 
-import typer
+from woundroll.util.blas import single_thread_process
 
-from woundroll.app.cli import (
+# one BLAS thread for the command and its worker processes, set before NumPy loads
+# (woundroll.util.blas: OpenBLAS's threads made the models' small solves up to 1000x slower
+# on a loaded 2-core machine); OPENBLAS_NUM_THREADS set by the user is kept
+single_thread_process()
+
+import typer  # noqa: E402
+
+from woundroll.app.cli import (  # noqa: E402
     calibrate,
     diagnose,
     materials,
@@ -26,7 +33,7 @@ from woundroll.app.cli import (
     study,
     sweep,
 )
-from woundroll.app.cli.console import err, escape, out
+from woundroll.app.cli.console import err, escape, out  # noqa: E402
 
 
 class _Commands(typer.core.TyperGroup):

@@ -79,6 +79,7 @@ from woundroll.contact.plane_strain.fem import Assembler, plane_strain_moduli
 from woundroll.contact.plane_strain.mesh import RollMesh
 from woundroll.contact.plane_strain.solver import ContactOptions, _Roll, contact_mesh
 from woundroll.errors import ConvergenceError, InputError
+from woundroll.util.blas import one_blas_thread
 
 if TYPE_CHECKING:
     from woundroll.instruments import Instrument
@@ -815,7 +816,8 @@ def impact_dynamic(
     # the half model carries half the load per unit CMD length: per length -> whole head
     striker = Striker.of(instrument, (2.0 if mesh_opts.half_model else 1.0) * L)
     fe = _ImpactRoll2D(roll, opts, Newmark.of(opts, dt), striker, R_h, depth_scale)
-    run = timeloop.run_impact(fe, contact_time, opts.max_contact_times)
+    with one_blas_thread():  # woundroll.util.blas
+        run = timeloop.run_impact(fe, contact_time, opts.max_contact_times)
     return DynamicImpactResult(
         **timeloop.result_fields(run, fe, instrument),
         n_dof=roll.n + 1,

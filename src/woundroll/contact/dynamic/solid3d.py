@@ -64,6 +64,7 @@ from woundroll.contact.heads import Head
 from woundroll.contact.solid3d.fem import lumped_mass, orthotropic_moduli, stresses
 from woundroll.contact.solid3d.solver import Contact3DOptions, Roll3D, build_roll3d
 from woundroll.errors import ConvergenceError, InputError
+from woundroll.util.blas import one_blas_thread
 
 if TYPE_CHECKING:
     from woundroll.instruments import Instrument
@@ -546,7 +547,8 @@ def impact_dynamic3d(
     m = lumped_mass(roll.mesh, rho_roll)[roll.free]
     striker = Striker.of(instrument, 4.0)  # quarter model
     fe = _ImpactRoll3D(roll, web, hd, m, opts, Newmark.of(opts, dt), striker, r_out, depth_scale)
-    run = timeloop.run_impact(fe, contact_time, opts.max_contact_times)
+    with one_blas_thread():  # woundroll.util.blas
+        run = timeloop.run_impact(fe, contact_time, opts.max_contact_times)
     fields = timeloop.result_fields(run, fe, instrument)
     wall = time.perf_counter() - t_start
     return DynamicImpactResult(

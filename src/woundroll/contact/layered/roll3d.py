@@ -67,6 +67,7 @@ from woundroll.contact.stepping import check_profile, check_scalar, depth_schedu
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.materials.web import Core, Web
 from woundroll.units import to_si
+from woundroll.util.blas import one_blas_thread
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -662,7 +663,8 @@ def indent_layered3d(
     t_setup = time.perf_counter() - t0
     delta = depth_schedule(depth_max, int(base.n_steps), base.step_exponent)
     load = _LayeredLoading3D(model, lopts, head, delta, mu, update_modulus)
-    h, half_len = _press3d(load)
+    with one_blas_thread():  # woundroll.util.blas
+        h, half_len = _press3d(load)
     res = _result3d(load, h, half_len, head, update_modulus, (t0, t_setup))
     stats = {
         **res.stats,

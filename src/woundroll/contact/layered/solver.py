@@ -684,12 +684,12 @@ def indent_layered(
     roll = _LayeredRoll(web, core, r, s, mesh, cut, lopts)
     delta = depth_schedule(depth_max, int(lopts.base.n_steps), lopts.base.step_exponent, deepest)
     load = _LayeredLoading(roll, lopts, delta, head_radius, mu, update_modulus)
-    # one BLAS thread: the many small banded factorisations of the active-set passes ran
-    # 10-100x slower with OpenBLAS's threads on the loaded 2-core machine (a 5-sheet test
-    # roll: 72 s against 2.3 s)
-    from threadpoolctl import threadpool_limits
+    # one BLAS thread (woundroll.util.blas): the many small banded factorisations of the
+    # active-set passes ran 10-100x slower with OpenBLAS's threads on the loaded 2-core
+    # machine (a 5-sheet test roll: 72 s against 2.3 s)
+    from woundroll.util.blas import one_blas_thread
 
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_blas_thread():
         h, u_hist, s_surf = _press(load, 2.0, head_length, stop)
     res = _result2d(load, h, u_hist, s_surf, head_length, update_modulus, t0)
     res = dataclasses.replace(res, mesh_shape=(mesh.n_r - 1, mesh.n_theta))

@@ -48,6 +48,7 @@ from woundroll.contact.stepping import solve_lcp as _solve_lcp
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.materials.web import Core, Web
 from woundroll.units import to_si
+from woundroll.util.blas import one_blas_thread
 
 FloatArray = NDArray[np.float64]
 _S = TypeVar("_S", bound=Any)
@@ -1280,5 +1281,6 @@ def indent(
     roll = _Roll(web, core, r, s, mesh, opts)
     delta = depth_schedule(depth_max, int(opts.n_steps), opts.step_exponent, deepest)
     load = _Loading(roll, opts, delta, head_radius, friction, update_modulus)
-    h, u_hist, s_surf = _press(load, sym, head_length, stop)
+    with one_blas_thread():  # woundroll.util.blas: OpenBLAS's threads only wait here
+        h, u_hist, s_surf = _press(load, sym, head_length, stop)
     return _result2d(load, h, u_hist, s_surf, head_length, update_modulus, t0)

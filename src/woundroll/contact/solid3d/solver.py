@@ -46,6 +46,7 @@ from woundroll.contact.stepping import solve_lcp as _solve_lcp
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.materials.web import Core, Web
 from woundroll.units import to_si
+from woundroll.util.blas import one_blas_thread
 
 FloatArray = NDArray[np.float64]
 
@@ -696,5 +697,6 @@ def indent3d(
     t_setup = time.perf_counter() - t0
     delta = depth_schedule(depth_max, int(opts.n_steps), opts.step_exponent)
     load = _Loading3D(model, head, delta, friction, update_modulus)
-    h, half_len = _press3d(load)
+    with one_blas_thread():  # woundroll.util.blas (the assembly's small per-ring products)
+        h, half_len = _press3d(load)
     return _result3d(load, h, half_len, head, update_modulus, (t0, t_setup))
