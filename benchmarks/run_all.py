@@ -3,7 +3,8 @@
 The benchmarks with a table in docs/ rewrite it (``--write-docs``, benchmarks/docs_block.py):
 ``bench_process.py`` (against the tree before issue 23, ``BEFORE``), ``bench_profile.py
 --table3``, ``bench_contact3d.py --ratio`` and ``bench_dynamic3d.py`` their tables in
-docs/performance.md, ``bench_winding.py`` its table in docs/winding.md. The others print."""
+docs/performance.md, ``bench_winding.py``, ``bench_storage.py`` and ``bench_air.py`` their
+blocks in docs/winding.md. The others print."""
 
 import subprocess
 import sys
@@ -17,6 +18,8 @@ DOCS = {
     "bench_profile.py": ["--table3", "--write-docs"],
     "bench_contact3d.py": ["--ratio", "--write-docs"],
     "bench_dynamic3d.py": ["--write-docs"],
+    "bench_storage.py": ["--write-docs"],
+    "bench_air.py": ["--write-docs"],
 }
 
 for script in sorted(Path(__file__).parent.glob("bench_*.py")):

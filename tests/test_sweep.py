@@ -258,21 +258,26 @@ def test_uncertainty_process_pool_equals_serial(uq_serial):
     assert res.columns == uq_serial.columns and _same(res.rows, uq_serial.rows)
 
 
-def test_uncertainty_reading_band_with_contact_model():
-    # the contact model instead of an explicit spring: the reading gets a (surrogate) band,
-    # checked against full forward runs; one roll (about 3 s: 1 + 3 + 2 forward runs)
+def contact_model_band_row():  # type: ignore[no-untyped-def]
+    """One roll of the sweep with the contact model and ``--uncertainty 10``: its table row
+    as a dict (the test below; docs/scripts/misc.py renders the surrogate's check)."""
     data = {**UQ_CASE, "tester": {"instrument": "rho-meter"}}
     s = run_sweep(data, ["winding.tension=26.7 N"], workers=1, uncertainty=10)
     assert s.n_failed == 0
     (row,) = s.rows
-    v = dict(zip(s.columns, row, strict=True))
+    return dict(zip(s.columns, row, strict=True))
+
+
+def test_uncertainty_reading_band_with_contact_model():
+    # the contact model instead of an explicit spring: the reading gets a (surrogate) band,
+    # checked against full forward runs; one roll (about 3 s: 1 + 3 + 2 forward runs)
+    v = contact_model_band_row()
     # the band is the model's reading's (unclipped): it brackets reading_model; the column
     # hardness.reading is what the dial shows (100 here: this 6 cm roll reads past the scale)
     assert v["hardness.reading_low [rho]"] < v["hardness.reading_model [rho]"]
     assert v["hardness.reading_model [rho]"] < v["hardness.reading_high [rho]"]
     assert v["hardness.reading [rho]"] == min(v["hardness.reading_model [rho]"], 100.0)
-    # the surrogate's check against full runs is reported (on this 6 cm roll, read beyond the
-    # Rho-meter's range, it is several Rho: a property of the surrogate, docs/sweeps.md)
+    # the surrogate's check against full runs is reported (its size on this roll: docs/sweeps.md)
     assert v["uncertainty.surrogate_error [rho]"] >= 0.0
 
 

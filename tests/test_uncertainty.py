@@ -76,13 +76,19 @@ def test_reading_surrogate_checked_against_full_runs():
     assert 1.0 < np.std(res.reading) < 3.0
 
 
+#: the surrogate check's case (K2, thickness and tension uncertain); docs/diagnosis.md
+SURROGATE_SETS = ["uncertainty.K2=8", "uncertainty.thickness='3 %'", "uncertainty.tension='4 %'"]
+
+
+def surrogate_against_full_runs():  # type: ignore[no-untyped-def]
+    """PET1 26.7 N with K2, thickness and tension uncertain: 40 samples, the first 12 also
+    run in full (the test below; docs/scripts/diagnosis.py renders the same numbers)."""
+    return propagate(load_case("pet1-26.7N", SURROGATE_SETS), 40, verify=12)
+
+
 @pytest.mark.slow
 def test_surrogate_against_full_monte_carlo():
-    case = load_case(
-        "pet1-26.7N",
-        ["uncertainty.K2=8", "uncertainty.thickness='3 %'", "uncertainty.tension='4 %'"],
-    )
-    res = propagate(case, 40, verify=12)
+    res = surrogate_against_full_runs()
     errs = [abs(c["reading_full"] - c["reading_surrogate"]) for c in res.surrogate["checks"]]
     full = np.array([c["reading_full"] for c in res.surrogate["checks"]])
     assert max(errs) < 0.3
@@ -108,21 +114,23 @@ def test_cli_run_uncertainty_json(tmp_path):
     assert res.exit_code == 2 and "uncertainty:" in res.output
 
 
-def test_profile_band_against_brute_force_monte_carlo(tmp_path):
-    # reduced case: 5 sectors, 20 winding increments; tension 5 % and caliper 2 % (no K1/K2:
-    # every sample then uses the same forward curve, so the brute force is cheap)
+#: the profile band's brute-force check: 5 sectors, 20 winding increments, tension 5 % and
+#: caliper 2 % (no K1/K2: every sample then uses the same forward curve, so it is cheap)
+BRUTE_SETS = [
+    "profile.sectors=5",
+    "profile.groups=20",
+    "uncertainty.tension='5 %'",
+    "uncertainty.thickness='2 %'",
+]
+
+
+def profile_band_against_brute_force():  # type: ignore[no-untyped-def]
+    """The profile band's surrogate and the reduced model itself at the same 60 samples
+    (the test below; docs/scripts/diagnosis.py renders the numbers): ``(bands, brute)``."""
     from woundroll.assess.uncertainty import profile_bands, reduced_profile
     from woundroll.inverse.diagnosis import RollModel, forward_curve
 
-    case = load_case(
-        "pet3-2.3MPa",
-        [
-            "profile.sectors=5",
-            "profile.groups=20",
-            "uncertainty.tension='5 %'",
-            "uncertainty.thickness='2 %'",
-        ],
-    )
+    case = load_case("pet3-2.3MPa", BRUTE_SETS)
     model = RollModel.from_case(case)
     curve = forward_curve(model)
     params = uncertain_parameters(case)
@@ -136,6 +144,11 @@ def test_profile_band_against_brute_force_monte_carlo(tmp_path):
             for i in range(60)
         ]
     )
+    return bands, brute
+
+
+def test_profile_band_against_brute_force_monte_carlo(tmp_path):
+    bands, brute = profile_band_against_brute_force()
     sur = bands["_samples"]
     inside = ~np.array(bands["outside_curve"])
     assert inside.sum() >= 2  # the thick lanes carry pressure; slack lanes are flagged
@@ -195,6 +208,67 @@ def test_tension_calibration_by_hand():
     np.testing.assert_allclose(-2 * a3 + 2 * b3, cal["full_change_minus"], rtol=1e-12)
 
 
+#: the profile band's tension term against full profile runs: 5 sectors, tension 5 %
+SENSITIVITY_SETS = [
+    "profile.sectors=5",
+    "profile.groups=20",
+    "uncertainty.tension='5 %'",
+    "profile.workers=1",
+]
+
+
+def profile_band_sensitivity(name, minus_half=False):  # type: ignore[no-untyped-def]
+    """The profile band's tension term per sector on ``name`` (5 sectors, tension 5 %)
+    against full profile runs at -2 SD (-10 %) and, from the calibration, +2 SD (the test
+    below; docs/scripts/diagnosis.py renders the numbers). Returns the sectors ``z``, the
+    reduced and the calibrated linear term ``a_reduced``, ``a`` (Rho per SD), the quadratic
+    ``b``, the ``calibration``, the full model's change at -2 SD ``minus`` and its central
+    sensitivity ``full``; with ``minus_half`` also the full model's change at -1 SD
+    (``minus_half``) and the prediction of the two-run calibration there (``pred2_half``)."""
+    from woundroll.assess.uncertainty import _apply_calibration, profile_bands
+    from woundroll.inverse.diagnosis import RollModel, forward_curve
+    from woundroll.pipeline import run
+
+    case = load_case(name, SENSITIVITY_SETS)
+    model = RollModel.from_case(case)
+    params = uncertain_parameters(case)
+    nominal = run(case).profile
+    bands = profile_bands(
+        case, model, draw_samples(case, 20), params, curve=forward_curve(model), n_sectors=5,
+        full=nominal,
+    )  # fmt: skip
+    sur = bands["surrogate"]
+    z = np.array(bands["z_m"])
+    r0 = np.interp(z, nominal.z, nominal.rho)
+    t = model.tension
+
+    def change(factor):  # type: ignore[no-untyped-def]
+        prof = run(load_case(name, [*SENSITIVITY_SETS, f"winding.tension='{factor * t} Pa'"]))
+        return np.interp(z, prof.profile.z, prof.profile.rho) - r0
+
+    cal = sur["tension_calibration"]
+    minus = change(0.9)
+    out = {
+        "z": z,
+        "a_reduced": np.array(sur["linear_reduced"]["tension"]),
+        "a": np.array(sur["linear"]["tension"]),
+        "b": np.array(sur["quadratic"]["tension"]),
+        "calibration": cal,
+        "minus": minus,
+        "full": (np.array(cal["full_change"]) - minus) / 4.0,  # central, Rho per SD
+    }
+    if minus_half:  # two calibration runs (+-2 SD) predict -1 SD; a full run there
+        a2, b2 = _apply_calibration(
+            np.array(sur["linear_reduced"]["tension"]),
+            np.array(sur["quadratic"]["tension"]),
+            {**cal, "full_change_minus": minus.tolist()},
+            2.0,
+        )
+        out["pred2_half"] = -a2 + b2
+        out["minus_half"] = change(0.95)
+    return out
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize(
     ("name", "measured"),
@@ -211,35 +285,9 @@ def test_profile_band_sensitivity_against_full_profile_runs(name, measured):
     # a uniform roll, a uniform mu N / h) was off by up to 2.5x at the edge sector; one full
     # run at +2 SD calibrates it (exact there by construction), so the check is the central
     # sensitivity and the change at -2 SD (an independent full run)
-    from woundroll.assess.uncertainty import profile_bands
-    from woundroll.inverse.diagnosis import RollModel, forward_curve
-    from woundroll.pipeline import run
-
-    sets = [
-        "profile.sectors=5",
-        "profile.groups=20",
-        "uncertainty.tension='5 %'",
-        "profile.workers=1",
-    ]
-    case = load_case(name, sets)
-    model = RollModel.from_case(case)
-    params = uncertain_parameters(case)
-    nominal = run(case).profile
-    bands = profile_bands(
-        case, model, draw_samples(case, 20), params, curve=forward_curve(model), n_sectors=5,
-        full=nominal,
-    )  # fmt: skip
-    sur = bands["surrogate"]
-    a = np.array(sur["linear"]["tension"])  # Rho per SD, calibrated
-    b = np.array(sur["quadratic"]["tension"])
-    cal = sur["tension_calibration"]
+    s = profile_band_sensitivity(name)
+    a, b, cal, minus, full = s["a"], s["b"], s["calibration"], s["minus"], s["full"]
     assert cal["full_runs"] == 1
-    z = np.array(bands["z_m"])
-    r0 = np.interp(z, nominal.z, nominal.rho)
-    t = model.tension
-    rm = run(load_case(name, [*sets, f"winding.tension='{0.9 * t} Pa'"])).profile
-    minus = np.interp(z, rm.z, rm.rho) - r0
-    full = (np.array(cal["full_change"]) - minus) / 4.0  # central, Rho per SD
     loaded = np.abs(full) > 0.5
     assert loaded.sum() >= 3
     # measured: calibrated / full central 0.81-1.06 (the uncalibrated 0.40-1.34); allowed

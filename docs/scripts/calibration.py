@@ -39,6 +39,70 @@ def _block(model: str) -> Any:
     return read_block(_hertz().instrument, model=model)
 
 
+def _records() -> Any:
+    import records
+
+    return records
+
+
+def _head3d_runs() -> list[Any]:
+    return [_records().Run("3d", "pet1-26.7N")]
+
+
+def _head3d_measure(run: Any) -> dict[str, Any]:
+    """The head calibrated in 3D from the Hertz head (as ``woundroll calibrate-head --model
+    3d`` does from the bundled file's), the block read with the Hertz head and with the
+    bundled head in 3D, and the calibration's wall time against the yardstick timed in the
+    same run (benchmarks/yardstick.py ``wind_per_layer``)."""
+    import os
+    import sys
+    import time
+
+    from woundroll.contact.block import read_block
+    from woundroll.instruments import get_instrument
+
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from yardstick import wind_per_layer
+
+    yard0 = wind_per_layer()[1]
+    t0 = time.perf_counter()
+    cal = _in_model("3d")
+    wall = time.perf_counter() - t0
+    from woundroll.contact.block import calibrate_head_in_model
+
+    t0 = time.perf_counter()
+    cal2 = calibrate_head_in_model(_hertz().instrument, model="2d")
+    wall2 = time.perf_counter() - t0
+    yard1 = wind_per_layer()[1]
+    bundled = get_instrument("rho-meter")
+    return {
+        "head_radius_mm": 1e3 * cal.value,
+        "evaluations": float(cal.evaluations),
+        "block_hertz": read_block(_hertz().instrument, model="3d").reading,
+        "block_bundled": read_block(bundled, model="3d").reading,
+        "bundled_radius_mm": 1e3 * bundled.head_radius,
+        "_yardsticks": wall / min(yard0, yard1),
+        "_solve_ratio_3d_2d": (wall / cal.evaluations) / (wall2 / cal2.evaluations),
+        "_load": round(os.getloadavg()[0], 1),
+    }
+
+
+MEASUREMENTS: dict[str, Any] = {
+    "head3d": _records().Measurement(
+        about="the Rho-meter head calibrated on its block in the 3D model (docs/calibration.md)",
+        runs=_head3d_runs,
+        measure=_head3d_measure,
+        spot=("3d",),
+        rtol=1e-3,
+        reason=(
+            "deterministic on one machine; Brent stops at 1e-4 of the radius and the 3D "
+            "solve's iterative rounding moves the block's reading by far less than 1e-3"
+        ),
+        cost="about 10 3D block solves and a 2D calibration, about 1 CPU min",
+    ),
+}
+
+
 def head_models() -> str:
     """The head radius for 77 Rho in each model, and the block read with the Hertz head."""
     from woundroll.instruments import get_instrument
@@ -68,11 +132,31 @@ def head_models() -> str:
         "brings it to the target (the command warns when the dimension moves by more than 4x) "
         f"| {_block('2d+cmd-spread').reading:.2f} |"
     )
+    d3 = _records().results("calibration.head3d")["3d"]
     rows.append(
-        "| `3d` | not computed here (a 3D block solve per search step) | "
-        f"{_block('3d').reading:.1f} (the block is isotropic: G_r_z of the block, not the web's) |"
+        f"| `3d` | {d3['head_radius_mm']:.3f} mm ({d3['evaluations']:.0f} block solves; the "
+        f"bundled {d3['bundled_radius_mm']:.3f} mm head reads the block {d3['block_bundled']:.1f} "
+        f"in 3D; {_measured()}) | {d3['block_hertz']:.1f} (the block is isotropic: G_r_z of the "
+        "block, not the web's) |"
     )
     return "\n".join(rows)
+
+
+def _measured() -> str:
+    rec = _records().load("calibration.head3d")
+    return f"measured {rec['measured']} by `docs/scripts/records.py calibration.head3d`"
+
+
+def head3d_cost() -> str:
+    """The 3D calibration's cost from its record, against the 2D one's."""
+    d3 = _records().results("calibration.head3d")["3d"]
+    return (
+        f"The 3D calibration took {d3['evaluations']:.0f} block solves and about "
+        f"{d3['_yardsticks']:.0f} yardsticks (`wind_per_layer` of benchmarks/yardstick.py, "
+        f"timed in the same run at a load average of {d3['_load']:g}; {_measured()}); "
+        f"a 3D block solve cost {d3['_solve_ratio_3d_2d']:.0f} times a `2d` one (the default) "
+        "in that run"
+    )
 
 
 def _target() -> float:
@@ -138,4 +222,5 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "head_length": head_length,
     "rolls_move": rolls_move,
     "site_example": site_example,
+    "head3d_cost": head3d_cost,
 }

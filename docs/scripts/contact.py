@@ -700,6 +700,203 @@ def fine_zone_margin() -> str:
     return " and ".join(f"{v:.2f} a_geo on the {k} rolls" for k, v in sorted(out.items()))
 
 
+# ---------------------------------------------------------------------------------------
+# assumptions 10 and 11 (live: three and two 2D solves of test_real_profiles' rolls)
+
+
+def _e1(x: float) -> str:
+    """One significant digit in e-notation without a padded exponent: 4e-6."""
+    m, e = f"{x:.0e}".split("e")
+    return f"{m}e{int(e)}"
+
+
+def core_tube() -> str:
+    """Assumption 10: the plane-stress tube's E_c against the plane-strain one on the
+    bundled steel core, and what either change does to F(d) under the head (PET1 26.7 N)."""
+    import dataclasses
+
+    from woundroll.contact import ContactOptions, indent
+
+    t = _tests()
+    web, core, radius, sigma_r = t.real_roll("pet1-26.7N")
+    depth = t.CASES["pet1-26.7N"]
+    a, b, E, nu = core.inner_radius, core.outer_radius, core.E, core.nu
+    e_strain = E / ((1 + nu) * ((1 - 2 * nu) * b**2 + a**2) / (b**2 - a**2))
+
+    def solve(c: Any) -> Any:
+        return indent(
+            web, c, radius, sigma_r, depth_max=depth, **t.rho_meter_head(), options=ContactOptions()
+        )
+
+    base = _solve("pet1-26.7N", ContactOptions())
+    strain = t.max_change(solve(dataclasses.replace(core, stiffness=e_strain)), base, depth)
+    rigid = t.max_change(solve(dataclasses.replace(core, stiffness=float("inf"))), base, depth)
+    return (
+        f"{e_strain / 1e9:.1f} GPa instead of {core.stiffness / 1e9:.1f} GPa for the bundled "
+        f"steel core (radii {1e3 * a:.1f}/{1e3 * b:.1f} mm). Under the head it does not "
+        f"matter: that change moves F by {_e1(strain)} (PET1 26.7 N, Rho-meter head, "
+        f"{1e3 * depth:g} mm), a rigid core by {_e1(rigid)} (the core is "
+        f"{1e3 * (radius[-1] - b):.0f} mm below the surface"
+    )
+
+
+def stack_strain() -> str:
+    """Assumption 11: the stack's nominal strain under the head at the test rolls' depths,
+    from the largest contact pressure and Pfeiffer's law {2} (eps = ln(1 + P/K1) / K2)."""
+    import math
+
+    from woundroll.contact import ContactOptions
+
+    t = _tests()
+    out = []
+    for name, label in (("pet1-26.7N", "PET1"), ("pet2-26.7N", "PET2")):
+        res = _solve(name, ContactOptions())
+        law = t.real_roll(name)[0].radial_modulus
+        p = float(res.peak_pressure[-1])
+        eps = math.log(1 + p / law.K1) / law.K2
+        out.append(
+            f"{eps:.2f} ({label}, P ~ {p / 1e6:.2g} MPa, Rho-meter head at "
+            f"{1e3 * t.CASES[name]:g} mm)"
+        )
+    return "eps ~ " + " and ~ ".join(out)
+
+
+def model_ratio() -> str:
+    """3D against plane strain on the seven Table 2 rolls, from the cached 3D references
+    (tests/contact/data/contact3d_reference.json: both models' readings, the same head)."""
+    import json
+
+    from woundroll.studies._common import TABLE2
+
+    ref = json.loads((ROOT / "tests" / "contact" / "data" / "contact3d_reference.json").read_text())
+    ratios = [ref["cases"][n]["3d"]["rho_fd"] / ref["cases"][n]["2d"]["rho_fd"] for n in TABLE2]
+    return f"{min(ratios):.2f}-{max(ratios):.2f} times"
+
+
+# ---------------------------------------------------------------------------------------
+# measured record (docs/scripts/records.py): the probes of "Which model reads a roll" and
+# assumption 2b (3D and 61-sector profile runs)
+
+
+def _records() -> Any:
+    import records
+
+    return records
+
+
+#: the hard roll of assumption 2b: PET1 46.7 N with a 16x higher K2, Poisson ratios varied
+HARD = ("web.radial_modulus.K2=2000",)
+HARD_RATIOS = (
+    ("nu_tr_0", "web.nu_theta_r=0"),
+    ("nu_tr_0.25", "web.nu_theta_r=0.25"),
+    ("nu_tr_0.3", "web.nu_theta_r=0.3"),
+    ("nu_zr_0.3", "web.nu_z_r=0.3"),
+)
+
+
+def _probe_runs() -> list[Any]:
+    Run = _records().Run
+    return [
+        Run("pet3_uniform", "pet3-2.3MPa"),
+        Run("pet3_profile", "pet3-2.3MPa"),
+        *[Run(f"hard_{k}", "pet1-46.7N", (*HARD, o)) for k, o in HARD_RATIOS],
+    ]
+
+
+def _probe_measure(run: Any) -> dict[str, Any]:
+    import numpy as np
+
+    from woundroll.case import load_case
+    from woundroll.instruments.definitions import beyond_scale
+    from woundroll.pipeline import run as run_case
+
+    if run.id == "pet3_uniform":  # the Table 3 roll without its thickness profile
+        out = {}
+        for model in ("2d", "2d+cmd-spread", "3d"):
+            case = load_case(run.case, [*run.overrides, f"contact.model='{model}'"])
+            case = case.model_copy(
+                update={"winding": case.winding.model_copy(update={"thickness_profile": None})}
+            )
+            out[model] = float(run_case(case).hardness.fd.rho)
+        return out
+    if run.id == "pet3_profile":  # the Table 3 profile: sectors beyond the dial
+        p2 = run_case(load_case(run.case, list(run.overrides))).profile
+        cs = run_case(load_case(run.case, [*run.overrides, "contact.model='2d+cmd-spread'"]))
+        pc = cs.profile
+        return {
+            "sectors": float(len(p2.z)),
+            "saturated_2d_fd": float(np.sum(p2.saturated)),
+            "saturated_cmd_spread_energy": float(np.sum(beyond_scale(pc.rho_energy, pc.scale))),
+        }
+    from woundroll.errors import ConvergenceError
+
+    try:
+        res = run_case(load_case(run.case, list(run.overrides)))
+    except ConvergenceError as exc:  # recorded: the page says so
+        return {"converged": False, "error": str(exc)}
+    return {"rho_fd": float(res.hardness.fd.rho)}
+
+
+MEASUREMENTS: dict[str, Any] = {
+    "probes": _records().Measurement(
+        about="docs/contact.md's probes: uniform PET3 in each model, the Table 3 profile's "
+        "saturated sectors, the hard roll of assumption 2b",
+        runs=_probe_runs,
+        measure=_probe_measure,
+        spot=("hard_nu_tr_0.3",),
+        rtol=1e-3,
+        reason=(
+            "deterministic on one machine; the readings go through iterative contact and "
+            "impact solves whose platform rounding is far below 1e-3"
+        ),
+        cost="uniform PET3 in three models (one 3D), two 61-sector profile runs, four 2D "
+        "runs: about 1 CPU min",
+    ),
+}
+
+
+def _measured() -> str:
+    rec = _records().load("contact.probes")
+    return f"measured {rec['measured']} by `docs/scripts/records.py contact.probes`"
+
+
+def probe_rows() -> str:
+    """The uniform PET3 row of the model table (record contact.probes)."""
+    r = _records().results("contact.probes")["pet3_uniform"]
+    return (
+        f"| uniform PET3, 2.3 MPa | {r['2d']:.1f} | {r['2d+cmd-spread']:.1f} | {r['3d']:.1f} | "
+        "the Table 3 roll read on the 0-100 scale |"
+    )
+
+
+def probe_pet3() -> str:
+    """The Table 3 bullet (record contact.probes)."""
+    res = _records().results("contact.probes")
+    u, p = res["pet3_uniform"], res["pet3_profile"]
+    past = "past" if u["2d"] > 100 else "below"
+    return (
+        f"the uniform PET3 roll reads {u['2d']:.1f} in plane strain ({past} the dial's 100), "
+        f"{u['3d']:.1f} in 3D; on the real Table 3 profile {p['saturated_2d_fd']:.0f} of "
+        f"{p['sectors']:.0f} sectors saturate in plane strain (FD reading), against "
+        f"{p['saturated_cmd_spread_energy']:.0f} through the CMD-spreading path read by the "
+        f"energy model ({_measured()})"
+    )
+
+
+def hard_roll() -> str:
+    """Assumption 2b's hard roll (record contact.probes)."""
+    res = _records().results("contact.probes")
+
+    def cell(k: str) -> str:
+        r = res[f"hard_{k}"]
+        return f"{r['rho_fd']:.0f}" if "rho_fd" in r else f"no reading ({r['error']})"
+
+    return (
+        f"That roll now reads {cell('nu_tr_0')}, {cell('nu_tr_0.25')}, {cell('nu_tr_0.3')} Rho "
+        f"(FD) at nu_tr = 0, 0.25, 0.3; at nu_zr = 0.3: {cell('nu_zr_0.3')} ({_measured()})"
+    )
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
     "head": head,
     "synthetic": synthetic,
@@ -729,6 +926,13 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "locking": locking,
     "semi_width_reading": semi_width_reading,
     "fine_zone_margin": fine_zone_margin,
+    "core_tube": core_tube,
+    "model_ratio": model_ratio,
+    "stack_strain": stack_strain,
+    # rendered from the measured record contact.probes (MEASUREMENTS)
+    "probe_rows": probe_rows,
+    "probe_pet3": probe_pet3,
+    "hard_roll": hard_roll,
 }
 
 if __name__ == "__main__":

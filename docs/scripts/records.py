@@ -75,7 +75,8 @@ class Measurement:
     """An expensive study whose numbers a page shows.
 
     ``runs()`` lists the runs (cheap: no solve); ``measure(run)`` returns the run's numbers
-    as a flat dict of floats, strings or lists (JSON-able, finite); ``spot`` names the runs
+    as a flat dict of floats, strings or lists (JSON-able, finite; a key starting with ``_``
+    is informational, a wall time or the load, and not spot-checked); ``spot`` names the runs
     the slow test measures again, ``rtol`` the relative tolerance it allows and ``reason``
     why that tolerance (the numbers are deterministic on one machine; the tolerance covers
     BLAS and platform rounding of iterative solves). ``about`` is the one-line description
@@ -323,6 +324,8 @@ def spot_check(name: str) -> list[str]:
     for rid in m.spot:
         now = m.measure(by_id[rid])
         for key, was in stored[rid].items():
+            if key.startswith("_"):  # informational (a time, the load): not re-checked
+                continue
             is_ = now.get(key)
             if isinstance(was, (int, float)) and not isinstance(was, bool):
                 if not isinstance(is_, (int, float)) or not math.isclose(

@@ -204,7 +204,34 @@ def contact_pressure() -> str:
     return _span([r["peak_contact_pressure_Pa"] / 1e6 for r in rows], ".0f", " MPa")
 
 
+def _slip_factor_row() -> dict[str, str]:
+    """The slip-factor table's row (PET2 53.4 N, mu 0.3), by column header."""
+    t = _slip().summary()[0]
+    return dict(zip(t.header, t.rows[0], strict=True))
+
+
+def slip_factor_peak() -> str:
+    """The slip factor's peak and how many elements near the head reach 1 (Figure 18)."""
+    row = _slip_factor_row()
+    n, total = (x.strip() for x in row["SF>=1 elements (within 3a)"].split("/"))
+    return (
+        f"max SF {row['max SF']} within 3 a of the axis (in the surface ring: not "
+        f"mesh-converged); SF >= 1 in {n} of the {total} elements within 3 a"
+    )
+
+
+def slip_factor_depth() -> str:
+    """How deep the region with slip factor >= 1 reaches."""
+    row = _slip_factor_row()
+    return (
+        f"{row['SF>=1 depth [mm]']} mm deep within 3 a and "
+        f"{row['SF>=1 depth, whole model [mm]']} mm deep in the whole model"
+    )
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
+    "slip_factor_peak": slip_factor_peak,
+    "slip_factor_depth": slip_factor_depth,
     "tension": tension,
     "tension_cmd_spread": tension_cmd_spread,
     "pile_height": pile_height,

@@ -69,17 +69,9 @@ def runs() -> dict:
     return {n: _pet1(n) for n in (50, 100)}
 
 
-def test_sphere_impact_on_a_half_space_is_hertz_impact() -> None:
-    """Hertz's impact theory (quasi-static contact, elastic bodies): a sphere of mass m at
-    speed v on a half-space reaches ``d_max = (15 m v^2 / (16 E* sqrt(R)))^(2/5)`` and leaves
-    after ``t_c = 2.9432 d_max / v``, with its speed back. The body: isotropic, E = 10 MPa,
-    nu = 0.3, 40 mm thick under the contact (~140 contact radii), light (1 kg/m^3: v / c =
-    8e-5, so no wave loss, Hunter's fraction ~ (v/c)^(3/5) < 0.5 %), roll radius 0.5 m (R the
-    geometric mean of the principal radii, as the quasi-static Hertz test). Striker spring
-    1e-3 N/m: 1e-7 of the contact force. Measured (4 elements per contact radius, 100
-    steps): d_max -0.8 %, t_c 0.0 %, e = 0.994 (gamma = 0.6's loss, 1.1 % of the energy).
-    Tolerance 2 % (the mesh: the quasi-static F(d) is within ~2 % of Hertz at this
-    resolution and d_max goes as F^-0.4; the time step)."""
+def hertz_impact():
+    """The Hertz impact problem of the test below: ``(result, d_max, t_c)``, the FE impact and
+    Hertz's closed-form maximum depth and contact time (docs/scripts/studies3d.py shows it)."""
     E, nu, R_roll, Rh, t = 10e6, 0.3, 0.5, 0.01, 0.04
     G = E / (2 * (1 + nu))
     web = Web(
@@ -120,19 +112,31 @@ def test_sphere_impact_on_a_half_space_is_hertz_impact() -> None:
         depth_scale=1.1 * d_max,
         options=Dynamic3DOptions(steps_per_contact=100, mesh=Contact3DOptions(n_fine=4, **grow)),
     )
+    return d, d_max, t_c
+
+
+def test_sphere_impact_on_a_half_space_is_hertz_impact() -> None:
+    """Hertz's impact theory (quasi-static contact, elastic bodies): a sphere of mass m at
+    speed v on a half-space reaches ``d_max = (15 m v^2 / (16 E* sqrt(R)))^(2/5)`` and leaves
+    after ``t_c = 2.9432 d_max / v``, with its speed back. The body: isotropic, E = 10 MPa,
+    nu = 0.3, 40 mm thick under the contact (~140 contact radii), light (1 kg/m^3: v / c =
+    8e-5, so no wave loss, Hunter's fraction ~ (v/c)^(3/5) < 0.5 %), roll radius 0.5 m (R the
+    geometric mean of the principal radii, as the quasi-static Hertz test). Striker spring
+    1e-3 N/m: 1e-7 of the contact force. Measured (4 elements per contact radius, 100
+    steps): d_max -0.8 %, t_c 0.0 %, e = 0.994 (gamma = 0.6's loss, 1.1 % of the energy).
+    Tolerance 2 % (the mesh: the quasi-static F(d) is within ~2 % of Hertz at this
+    resolution and d_max goes as F^-0.4; the time step)."""
+    d, d_max, t_c = hertz_impact()
     assert d.max_depth == pytest.approx(d_max, rel=0.02)
     assert d.contact_time == pytest.approx(t_c, rel=0.02)
     assert d.restitution == pytest.approx(1.0, abs=0.01)
     assert d.stats["factorisations"] == 1  # linear material: one factorisation, kept
 
 
-def test_massless_roll_matches_the_fd_model_on_the_same_3d_curve() -> None:
-    """The 1.5D models' limit: without roll inertia the 3D FE impact is the striker on the
-    quasi-static 3D F(d) of the same mesh; the FD model on that curve (tabulated, m_r = 0)
-    must agree, and the maximum depth is the energy model's {19}. Measured: Rho 127.46 vs
-    127.58, impulse -0.35 %, depth +0.15 %, contact time +0.9 %. Tolerances: 0.5 % (the
-    dynamic hypoelastic path against 24 quasi-static increments; gamma = 0.6's first-order
-    loss), 1.5 % on the contact time (the separation between steps, dt = 1 % of it)."""
+def massless_problem():
+    """The massless-roll problem of the test below: ``(dynamic, fd, energy)``, the FE impact
+    of a massless roll and the FD and energy models on the same coarse mesh's quasi-static
+    F(d) (docs/scripts/studies3d.py shows it)."""
     r, s = pet_profile()
     inst = get_instrument("rho-meter")
     qs = indent3d(
@@ -142,6 +146,17 @@ def test_massless_roll_matches_the_fd_model_on_the_same_3d_curve() -> None:
     fd = impact_fd(inst, RollSpring(law, 0.0))
     en = impact_energy(inst, law)
     d = _pet1(100, density=1e-3)
+    return d, fd, en
+
+
+def test_massless_roll_matches_the_fd_model_on_the_same_3d_curve() -> None:
+    """The 1.5D models' limit: without roll inertia the 3D FE impact is the striker on the
+    quasi-static 3D F(d) of the same mesh; the FD model on that curve (tabulated, m_r = 0)
+    must agree, and the maximum depth is the energy model's {19}. Measured: Rho 127.46 vs
+    127.58, impulse -0.35 %, depth +0.15 %, contact time +0.9 %. Tolerances: 0.5 % (the
+    dynamic hypoelastic path against 24 quasi-static increments; gamma = 0.6's first-order
+    loss), 1.5 % on the contact time (the separation between steps, dt = 1 % of it)."""
+    d, fd, en = massless_problem()
     assert d.rho == pytest.approx(fd.rho, rel=5e-3)
     assert d.impulse == pytest.approx(fd.impulse, rel=5e-3)
     assert d.max_depth == pytest.approx(en.max_depth, rel=5e-3)
@@ -183,14 +198,19 @@ def test_modified_newton_equals_a_factorisation_per_step(runs: dict) -> None:
 
 @pytest.mark.slow
 def test_time_step_convergence(runs: dict) -> None:
-    """Rho and impulse converge with the time step: successive differences shrink and the
-    last (100 -> 200 steps per contact) is below 1 % in Rho, 0.5 % in impulse. Measured:
-    Rho 108.57, 109.80, 110.27 (last step 0.43 %); impulse 0.2514, 0.2526, 0.2529 N s."""
+    """Rho and impulse converge with the time step: successive differences shrink by a
+    ratio below 0.7 (an observed order above 0.5; the contact's onset and release fall
+    between steps, first order at best) and the last (100 -> 200 steps per contact) is
+    below 1.5 % in Rho, 0.5 % in impulse. Measured with the bundled head (7.820 mm, since
+    2026-11-25; docs/dynamic.md renders the record studies3d.checks): Rho 105.66, 107.71,
+    108.85 (ratio 0.56, order 0.85, last step 1.06 %: the extrapolated limit is 110.3, the
+    default 400 steps about 0.6 % below it); impulse 0.2514, 0.2526, 0.2528 N s. (With the
+    6.565 mm Hertz head the bound was set on: 108.57, 109.80, 110.27, last step 0.43 %.)"""
     seq = [runs[50], runs[100], _pet1(200)]
     rho = [d.rho for d in seq]
     imp = [d.impulse for d in seq]
-    assert abs(rho[2] - rho[1]) < abs(rho[1] - rho[0])
-    assert abs(rho[2] - rho[1]) < 1e-2 * rho[2]
+    assert abs(rho[2] - rho[1]) < 0.7 * abs(rho[1] - rho[0])
+    assert abs(rho[2] - rho[1]) < 1.5e-2 * rho[2]
     assert abs(imp[2] - imp[1]) < 5e-3 * imp[2]
 
 
@@ -208,6 +228,17 @@ def test_bad_options_name_the_field() -> None:
     assert e.value.field == "contact.dynamic_options.mass"
 
 
+#: the case path's coarse 3D problem (PET1 26.7 N; docs/scripts/studies3d.py shows it)
+COARSE_CASE_OVERRIDES = (
+    "contact.dynamic=true",
+    "contact.model='3d'",
+    "contact.options3d.n_fine=3",
+    "contact.options3d.n_steps=8",
+    "contact.dynamic_options.steps_per_contact=25",
+    *(f"contact.options3d.{k}_growth=3.0" for k in ("radial", "tangential", "axial")),
+)
+
+
 def test_case_with_3d_contact_runs_the_3d_dynamic_impact(tmp_path) -> None:
     """``contact.dynamic = true`` with ``contact.model = '3d'`` runs the 3D impact beside the
     1.5D models on the same (coarse here) 3D mesh: JSON keys, histories, the plot; the FE
@@ -218,18 +249,7 @@ def test_case_with_3d_contact_runs_the_3d_dynamic_impact(tmp_path) -> None:
     import woundroll
     from woundroll.case import load_case
 
-    coarse = [f"contact.options3d.{k}_growth=3.0" for k in ("radial", "tangential", "axial")]
-    case = load_case(
-        "pet1-26.7N",
-        [
-            "contact.dynamic=true",
-            "contact.model='3d'",
-            "contact.options3d.n_fine=3",
-            "contact.options3d.n_steps=8",
-            "contact.dynamic_options.steps_per_contact=25",
-            *coarse,
-        ],
-    )
+    case = load_case("pet1-26.7N", list(COARSE_CASE_OVERRIDES))
     res = woundroll.run(case)
     d = json.loads(res.to_json())["hardness"]
     dyn = d["dynamic"]

@@ -1,0 +1,75 @@
+"""Generators of the numbers in docs/sweeps.md and docs/case-files.md (docs/scripts/
+regenerate.py runs them): the sweep's reading band and its surrogate check on
+tests/test_sweep.py's own roll, and the winding time estimate of ``woundroll.limits``. Cost:
+a few seconds (one roll with 10 uncertainty samples)."""
+
+from __future__ import annotations
+
+import importlib.util
+from collections.abc import Callable
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@cache
+def _sweep_tests() -> Any:
+    """tests/test_sweep.py as a module: the page shows the test's own roll."""
+    path = ROOT / "tests" / "test_sweep.py"
+    spec = importlib.util.spec_from_file_location("docs_test_sweep", path)
+    assert spec is not None and spec.loader is not None
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def sweep_surrogate() -> str:
+    """test_uncertainty_reading_band_with_contact_model: the surrogate's check against full
+    runs on the 6 cm PET1 roll, against the width of its reading band."""
+    t = _sweep_tests()
+    v = t.contact_model_band_row()
+    lo, hi = v["hardness.reading_low [rho]"], v["hardness.reading_high [rho]"]
+    err = v["uncertainty.surrogate_error [rho]"]
+    roll = t.UQ_CASE["winding"]["outer_radius"]
+    return (
+        f"the tests' {roll} PET1 roll, read at {v['hardness.reading_model [rho]']:.0f} Rho by "
+        f"the model (the instrument's scale ends at 100), K2 SD 5, 10 samples: the check "
+        f"differs by {err:.2g} Rho, {100 * err / (hi - lo):.2g} % of the 95 % reading band "
+        f"({lo:.1f}-{hi:.1f} Rho)"
+    )
+
+
+def winding_estimate() -> str:
+    """``limits.winding_seconds`` at three roll sizes (the estimate the warning uses)."""
+    from woundroll.limits import fmt_seconds, winding_seconds
+
+    cells = [f"{fmt_seconds(winding_seconds(n))} for {n:,}" for n in (30_000, 60_000, 100_000)]
+    return f"{', '.join(cells[:-1])} and {cells[-1]} increments"
+
+
+def long_runs() -> str:
+    """The other `long run:` warnings of ``woundroll.limits`` (their fixed constants)."""
+    from woundroll.limits import (
+        LONG_RUN_SECONDS,
+        PROFILE_REFERENCE_SECONDS,
+        THIN_WEB_CONTACT,
+        fmt_seconds,
+    )
+
+    return (
+        f"runs of the contact model on webs thinner than {THIN_WEB_CONTACT * 1e6:g} um (the "
+        "contact mesh follows the web thickness; the warning quotes the times measured when "
+        "the threshold was set) and CMD profiles estimated above "
+        f"{fmt_seconds(LONG_RUN_SECONDS)} (the bundled pet3 case's "
+        f"{fmt_seconds(PROFILE_REFERENCE_SECONDS)} for 61 sectors on 2 workers, a fixed "
+        "reference in `woundroll.limits`, scaled by `profile.sectors` and `profile.workers`)"
+    )
+
+
+BLOCKS: dict[str, Callable[[], str]] = {
+    "sweep_surrogate": sweep_surrogate,
+    "winding_estimate": winding_estimate,
+    "long_runs": long_runs,
+}
