@@ -327,9 +327,11 @@ def measure_head(run: Run) -> dict[str, Any]:
         "depth_m": float(c.delta[-1]),
         "force_N": float(c.force[-1]),
         "pressure_depths_m": list(PRESSURE_DEPTHS),
-        "pressure_Pa": [float(np.interp(d, d_col, p_col)) for d in PRESSURE_DEPTHS],
         "spread_depths_m": list(SPREAD_DEPTHS),
     }
+    # one key a number (the spot check's tolerance applies to numbers, not to lists)
+    for k, d in enumerate(PRESSURE_DEPTHS):
+        out[f"pressure_{k}_Pa"] = float(np.interp(d, d_col, p_col))
 
     def half_width(zz: Any, pp: Any, where: str) -> float:
         level = SPREAD_LEVEL * pp[0]
@@ -352,7 +354,8 @@ def measure_head(run: Run) -> dict[str, Any]:
         row = on_line & np.isclose(depth, layer, rtol=0, atol=1e-12)
         zo = np.argsort(z[row])
         widths.append(half_width(z[row][zo], p[row][zo], f"at {1e3 * d:g} mm"))
-    out["spread_half_width_m"] = widths
+    for k, w in enumerate(widths):
+        out[f"spread_half_width_{k}_m"] = w
     return out
 
 
@@ -831,8 +834,8 @@ def text3d() -> str:
         head[f"pet2-53.4N/layered-3d@{1e3 * HEAD_DEPTH:g}mm"],
     )
     top = [k for k, d in enumerate(PRESSURE_DEPTHS) if d <= 2e-3]
-    dp = [-_pct(lay["pressure_Pa"][k], c["pressure_Pa"][k]) for k in top]
-    wc, wl = c["spread_half_width_m"], lay["spread_half_width_m"]
+    dp = [-_pct(lay[f"pressure_{k}_Pa"], c[f"pressure_{k}_Pa"]) for k in top]
+    wc, wl = ([r[f"spread_half_width_{k}_m"] for k in range(len(SPREAD_DEPTHS))] for r in (c, lay))
     as_far = max(abs(a / b - 1) for a, b in zip(wl, wc, strict=True)) < 0.15
     where = " / ".join("the surface" if d == 0 else f"{1e3 * d:g} mm" for d in SPREAD_DEPTHS)
     text = (
