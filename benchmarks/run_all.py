@@ -4,7 +4,8 @@ The benchmarks with a table in docs/ rewrite it (``--write-docs``, benchmarks/do
 ``bench_process.py`` (against the tree before issue 23, ``BEFORE``), ``bench_profile.py
 --table3``, ``bench_contact3d.py --ratio`` and ``bench_dynamic3d.py`` their tables in
 docs/performance.md, ``bench_winding.py``, ``bench_storage.py`` and ``bench_air.py`` their
-blocks in docs/winding.md. The others print."""
+blocks in docs/winding.md, ``bench_diagnosis.py`` its paragraph in docs/diagnosis.md,
+``bench_report.py`` its sentences in docs/report.md and docs/web.md. The others print."""
 
 import subprocess
 import sys
@@ -18,6 +19,8 @@ DOCS = {
     "bench_profile.py": ["--table3", "--write-docs"],
     "bench_contact3d.py": ["--ratio", "--write-docs"],
     "bench_dynamic3d.py": ["--write-docs"],
+    "bench_diagnosis.py": ["--write-docs"],
+    "bench_report.py": ["--write-docs"],
     "bench_storage.py": ["--write-docs"],
     "bench_air.py": ["--write-docs"],
 }
