@@ -172,3 +172,12 @@ def test_every_bench_block_is_written_by_make_bench() -> None:
         # a marker quoted in backticks (prose about the markers) is not one
         opened = len(re.findall(r"(?<!`)<!-- bench: ", text))
         assert opened == len(re.findall(r"(?<!`)<!-- end bench -->", text)), page.name
+
+
+def test_spot_check_tolerance_applies_to_each_number_of_a_list() -> None:
+    agrees = _records()._agrees
+    assert agrees([1.0, 2.0], [1.0, 2.0 * (1 + 1e-6)], 1e-3)
+    assert not agrees([1.0, 2.0], [1.0, 2.1], 1e-3)
+    assert not agrees([1.0, 2.0], [1.0], 1e-3)  # a list that changed length
+    assert agrees("a", "a", 1e-3) and not agrees("a", "b", 1e-3)
+    assert not agrees(True, 1.0, 1e-3)  # a flag is not a number

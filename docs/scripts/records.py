@@ -315,6 +315,22 @@ def rehash(name: str) -> list[str]:
     return ids
 
 
+def _agrees(was: Any, now: Any, rtol: float) -> bool:
+    """``now`` equals ``was`` within ``rtol`` for numbers (element by element in lists),
+    exactly for anything else (strings, flags)."""
+    if isinstance(was, bool) or isinstance(now, bool):
+        return type(was) is type(now) and was == now
+    if isinstance(was, (int, float)):
+        return isinstance(now, (int, float)) and math.isclose(now, was, rel_tol=rtol, abs_tol=1e-12)
+    if isinstance(was, list):
+        return (
+            isinstance(now, list)
+            and len(now) == len(was)
+            and all(_agrees(a, b, rtol) for a, b in zip(was, now, strict=True))
+        )
+    return bool(now == was)
+
+
 def spot_check(name: str) -> list[str]:
     """Measure the record's spot runs again; the numbers outside ``rtol`` ([] if none)."""
     m = measurements()[name]
@@ -324,16 +340,10 @@ def spot_check(name: str) -> list[str]:
     for rid in m.spot:
         now = m.measure(by_id[rid])
         for key, was in stored[rid].items():
-            if key.startswith("_"):  # informational (a time, the load): not re-checked
-                continue
-            is_ = now.get(key)
-            if isinstance(was, (int, float)) and not isinstance(was, bool):
-                if not isinstance(is_, (int, float)) or not math.isclose(
-                    is_, was, rel_tol=m.rtol, abs_tol=1e-12
-                ):
-                    out.append(f"{name}: {rid}.{key} stored {was!r}, now {is_!r}")
-            elif is_ != was:
-                out.append(f"{name}: {rid}.{key} stored {was!r}, now {is_!r}")
+            if key.startswith("_"):
+                continue  # a timing or the load: stored, not compared
+            if not _agrees(was, now.get(key), m.rtol):
+                out.append(f"{name}: {rid}.{key} stored {was!r}, now {now.get(key)!r}")
     return out
 
 
