@@ -241,7 +241,7 @@ def test_slack_sectors_start_their_contact_at_the_reach() -> None:
     assert fns[1].depth_max == np.inf and fns[1].instrument is inst
     other = lambda r, s: (1.0, 2.0)  # noqa: E731
     assert sector_contacts(other, np.array([True, True])) == [other, other]
-    a, b = map_sectors([other, lambda r, s: (3.0, 4.0)], [(None, None)] * 2, workers=1)
+    a, b, _ = map_sectors([other, lambda r, s: (3.0, 4.0)], [(None, None)] * 2, workers=1)
     assert list(a) == [1.0, 3.0] and list(b) == [2.0, 4.0]
     with pytest.raises(InputError):
         map_sectors([other], [(None, None)] * 2, workers=1)
@@ -328,7 +328,7 @@ def test_early_pool_is_started_before_the_winding_and_reused() -> None:
     contact = ContactModel(WEB, CORE, 6.5e-3, 0.0254)
     with early_pool(contact, 2) as pool:
         assert isinstance(pool, cf.ProcessPoolExecutor)
-        a, b = map_sectors(divmod, [(7.0, 2.0), (9.0, 4.0)], workers=2, pool=pool)
+        a, b, _ = map_sectors(divmod, [(7.0, 2.0), (9.0, 4.0)], workers=2, pool=pool)
         np.testing.assert_array_equal(a, [3.0, 2.0])
         np.testing.assert_array_equal(b, [1.0, 1.0])
         assert pool.submit(os.getpid).result() != os.getpid()  # still open, other process
@@ -406,7 +406,7 @@ def test_table3_reading_of_the_deep_levels_equals_the_exact_winding() -> None:
     for name, kw in (("levels", {}), ("exact", {"window": None})):
         w = wind_axisymmetric(WEB, CORE, 0.2032, ten, bundled_profile(), n_groups=400, **kw)
         fns = sector_contacts(contact, w.slack)
-        a, b = map_sectors(fns, [w.sector_profile(j) for j in range(61)], workers=2)
+        a, b, _ = map_sectors(fns, [w.sector_profile(j) for j in range(61)], workers=2)
         rho[name] = readout(a, b)
     np.testing.assert_allclose(rho["levels"], rho["exact"], rtol=5e-3)
 

@@ -5,9 +5,11 @@ difference from the 1D winding.
 
 PET2 53.4 N, 24 in wide, at 110 % of its tension (the causes round trip's roll), 3 sectors:
 the single roll reads 16.68 Rho (FD) with the contact model's semi-contact width a = 1.45 mm
-in the roll's active mass {14}-{18}. Tolerance 1.5 %: with the same a the profile reads
-16.62 (-0.37 %, measured 2026-11-26); the (r, z) winding's core pressure is 22.3 against the
-1D's 20.5 kPa and its stresses within 3 % of the 1D's over the outer 20 mm.
+in the roll's active mass {14}-{18}; the profile's sectors take their own contact widths the
+same way (until 2026-11-26 they took the tester's default 0.6 cm and read 14.67, 12 % low).
+Tolerance 1.5 %: the profile reads 16.62 (-0.37 %, measured 2026-11-26); the (r, z)
+winding's core pressure is 22.3 against the 1D's 20.5 kPa and its stresses within 3 % of the
+1D's over the outer 20 mm.
 """
 
 from __future__ import annotations
@@ -44,13 +46,6 @@ def test_with_the_single_rolls_a_the_profile_reads_the_single_roll(single_and_fl
     np.testing.assert_allclose(prof.rho, single.hardness.reading, rtol=0.015)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="the profile's FD reading takes the tester's default a = 0.6 cm (the paper's "
-    "accepted value) for the roll's active mass, the single roll the contact model's a "
-    "(1.45 mm here): the profile reads 12 % low (14.67 against 16.68 Rho; PET1 26.7 N: "
-    "43.5 against 51.2). Found 2026-11-26; the per-sector contact callable must return a.",
-)
 def test_the_profile_reads_the_single_roll(single_and_flat) -> None:
     single, sets = single_and_flat
     prof = run(load_case("pet2-53.4N", sets)).profile

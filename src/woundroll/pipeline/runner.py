@@ -640,6 +640,7 @@ def _run_profile(
             setup=setup if setup is not None else tester_from_spec({"instrument": "rho-meter"}),
             contact_stage=spec.contact,
             contact_tolerance=spec.contact_tolerance,
+            semi_contact_width_given="semi_contact_width" in (case.tester or {}),
         )
         winding = job.result() if job is not None else wind(*reference, options=options)
     measured = case.measured_profile

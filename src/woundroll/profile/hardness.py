@@ -40,7 +40,7 @@ from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -65,8 +65,22 @@ from woundroll.winding.tension import TensionSchedule
 
 FloatArray = NDArray[np.float64]
 
-#: ``contact(radius [m], sigma_r [Pa]) -> (alpha [N/m^2], beta [N/m])`` for one sector.
-ContactFn = Callable[[FloatArray, FloatArray], tuple[float, float]]
+#: ``contact(radius [m], sigma_r [Pa]) -> (alpha [N/m^2], beta [N/m])`` for one sector, or
+#: ``(alpha, beta, a)`` with the semi-contact width a [m] at the striker's maximum depth
+#: (the default :class:`ContactModel` with an instrument: the FD reading's active mass
+#: {14}-{18} then takes it, as the single roll's does).
+ContactFn = Callable[[FloatArray, FloatArray], tuple[float, ...]]
+
+
+class SectorSprings(NamedTuple):
+    """What :func:`map_sectors` returns: the roll spring {3} of every sector and its
+    semi-contact width ``width`` [m] (NaN where the contact callable gives none)."""
+
+    alpha: FloatArray
+    beta: FloatArray
+    width: FloatArray
+
+
 #: ``readout(alpha, beta) -> reading`` (vectorised over sectors).
 ReadoutFn = Callable[[FloatArray, FloatArray], ArrayLike]
 #: ``progress(stage, done, total)`` with stage in {"winding", "foundation", "contact"}.
@@ -79,7 +93,9 @@ class ContactModel:
 
     With an ``instrument``: :func:`woundroll.contact.roll_stiffness` with the instrument's
     head, starting at ``depth_max`` and deepened while the striker goes further (no
-    extrapolation of the fit), the spring fitted over the striker's reach. Without one (the
+    extrapolation of the fit), the spring fitted over the striker's reach; it returns
+    ``(alpha, beta, a)``, a the semi-contact width at the striker's maximum depth (the
+    roll's active mass, as for a single roll). Without one (the
     nip roller as a foundation): :func:`woundroll.contact.indent` with ``head_radius`` and
     ``head_length`` to ``depth_max``, the spring fitted over the whole curve. Both fits by
     :func:`woundroll.contact.fit_roll_spring` (``alpha, beta >= 0``).
@@ -110,7 +126,7 @@ class ContactModel:
     model: str | None = None
     options3d: Any = None
 
-    def __call__(self, radius: FloatArray, sigma_r: FloatArray) -> tuple[float, float]:
+    def __call__(self, radius: FloatArray, sigma_r: FloatArray) -> tuple[float, ...]:
         from woundroll.contact import fit_roll_spring, indent, roll_stiffness
 
         if self.instrument is not None:
@@ -126,7 +142,7 @@ class ContactModel:
                 model=self.model,
                 options3d=self.options3d,
             )
-            return rs.alpha, rs.beta
+            return rs.alpha, rs.beta, rs.semi_contact_width
         res = indent(
             self.web,
             self.core,
@@ -158,22 +174,29 @@ class FdReadout:
     """The finite-difference model {4}-{13} per sector, the paper's "FD optional" readout.
 
     The roll's active mass {14}-{18} of sector ``j`` uses its pile height ``H_j`` (build
-    radius minus core radius), the roll density, and the tester's semi-contact width a
-    (default 0.6 cm, the paper's accepted value: the per-sector contact callable returns
-    only alpha and beta). Reads the striker's total deceleration in the instrument's units.
+    radius minus core radius), the roll density, and the semi-contact width a: the contact
+    model's at the striker's maximum depth, ``width[j]``, as for a single roll
+    (:func:`woundroll.pipeline.hardness_on_roll`); the tester's own (``tester.
+    semi_contact_width``, default 0.6 cm, the paper's accepted value) where ``width`` is
+    None or NaN (a contact callable that gives none, or a width the user set). Reads the
+    striker's total deceleration in the instrument's units.
     """
 
     setup: Any
     pile_height: FloatArray
     density: float
+    width: FloatArray | None = None
 
     def __call__(self, alpha: FloatArray, beta: FloatArray) -> FloatArray:
         from woundroll.instruments import hardness_from_spring
 
         out = np.empty(np.size(alpha))
         for j, (a, b) in enumerate(zip(np.ravel(alpha), np.ravel(beta), strict=True)):
+            setup = self.setup
+            if self.width is not None and math.isfinite(float(self.width[j])):
+                setup = replace(setup, semi_contact_width=float(self.width[j]))
             h = hardness_from_spring(
-                self.setup,
+                setup,
                 float(a),
                 float(b),
                 pile_height=float(self.pile_height[j]),
@@ -193,11 +216,13 @@ class FdReadout:
         if pool is None or workers < 2 or a.size < 2:
             return self(a, b)
         parts = np.array_split(np.arange(a.size), min(workers, a.size))
-        jobs = [
-            pool.submit(replace(self, pile_height=self.pile_height[p]), a[p], b[p])
-            for p in parts[1:]
-        ]
-        head = self(a[parts[0]], b[parts[0]])
+
+        def part(p: NDArray[np.intp]) -> FdReadout:
+            w = None if self.width is None else self.width[p]
+            return replace(self, pile_height=self.pile_height[p], width=w)
+
+        jobs = [pool.submit(part(p), a[p], b[p]) for p in parts[1:]]
+        head = part(parts[0])(a[parts[0]], b[parts[0]])
         return np.concatenate([head, *(job.result() for job in jobs)])
 
 
@@ -514,9 +539,10 @@ class ProfileResult:
         return f2
 
 
-def _call(fn: ContactFn, radius: FloatArray, sigma_r: FloatArray) -> tuple[float, float]:
-    a, b = fn(radius, sigma_r)
-    return float(a), float(b)
+def _call(fn: ContactFn, radius: FloatArray, sigma_r: FloatArray) -> tuple[float, float, float]:
+    out = tuple(fn(radius, sigma_r))
+    width = float(out[2]) if len(out) > 2 and out[2] is not None else math.nan
+    return float(out[0]), float(out[1]), width
 
 
 def _picklable(obj: Any) -> bool:
@@ -534,20 +560,21 @@ def map_sectors(
     workers: int = 2,
     progress: Callable[[int, int], None] | None = None,
     pool: cf.Executor | None = None,
-) -> tuple[FloatArray, FloatArray]:
+) -> SectorSprings:
     """Evaluate ``fn(radius, sigma_r)`` for every sector, in parallel (``fn`` one callable,
     or one per sector).
 
     Processes (``spawn``) when ``fn`` can be pickled and ``workers > 1``, threads when it
     cannot, in-line when ``workers == 1``. ``pool``: a process pool already started (e.g.
     :func:`early_pool`, whose workers imported the contact model while the roll was
-    wound); it is used and left open. Returns ``(alpha, beta)`` arrays in sector order.
+    wound); it is used and left open. Returns :class:`SectorSprings` ``(alpha, beta,
+    width)`` arrays in sector order.
     """
     n = len(profiles)
     fns = list(fn) if isinstance(fn, Sequence) else [fn] * n
     if len(fns) != n:
         raise InputError(f"{len(fns)} contact callables for {n} sectors", "tester.contact")
-    out = np.empty((n, 2))
+    out = np.empty((n, 3))
     done = 0
     if workers <= 1 or n <= 1:
         for j, (r, s) in enumerate(profiles):
@@ -555,7 +582,7 @@ def map_sectors(
             done += 1
             if progress is not None:
                 progress(done, n)
-        return out[:, 0], out[:, 1]
+        return SectorSprings(out[:, 0], out[:, 1], out[:, 2])
     if _picklable(fns):
         try:
             if pool is not None:
@@ -621,7 +648,7 @@ def _run_pool(
     progress: Callable[[int, int], None] | None,
     ex: cf.Executor,
     close: bool = True,
-) -> tuple[FloatArray, FloatArray]:
+) -> SectorSprings:
     n = len(profiles)
     done = 0
     with ex if close else contextlib.nullcontext():
@@ -632,7 +659,7 @@ def _run_pool(
             done += 1
             if progress is not None:
                 progress(done, n)
-    return out[:, 0], out[:, 1]
+    return SectorSprings(out[:, 0], out[:, 1], out[:, 2])
 
 
 def _warm_up() -> int:
@@ -692,6 +719,7 @@ def predict_profile(
     model: str | None = None,
     contact_stage: str = DEFAULT_CONTACT_STAGE,
     contact_tolerance: float = DEFAULT_TOLERANCE,
+    semi_contact_width_given: bool = False,
 ) -> ProfileResult:
     """Predict the CMD hardness profile of a center-wound roll.
 
@@ -740,6 +768,10 @@ def predict_profile(
     contact_tolerance : float
         Largest reading change (the instrument's units) the interpolation's last check may
         find.
+    semi_contact_width_given : bool
+        The tester's ``semi_contact_width`` was set by the user: the FD reading's active
+        mass takes it on every sector instead of each sector's contact width (as for a
+        single roll, :func:`woundroll.pipeline.hardness_on_roll`).
 
     Raises
     ------
@@ -750,8 +782,9 @@ def predict_profile(
     stage_name, tolerance = check_stage(contact_stage, contact_tolerance)
     t0 = time.perf_counter()
     readout, contact = _readout_and_contact(
-        web, core, contact, instrument, depth_max, setup=setup, model=model
-    )
+        web, core, contact, instrument, depth_max, setup=setup, model=model,
+        contact_width=not semi_contact_width_given,
+    )  # fmt: skip
     scope = contextlib.nullcontext(pool) if pool is not None else early_pool(contact, workers)
     with scope as pool:
         return _predict_profile(
@@ -824,7 +857,7 @@ def _predict_profile(
     if stage_name == "anchored" and _anchors_itself(contact):
         stage_name = "every-sector"  # plane strain anchored on plane strain: every sector
     if stage_name == "every-sector":
-        alpha, beta = map_sectors(
+        alpha, beta, width = map_sectors(
             fns, profiles, workers=workers, progress=stage("contact"), pool=pool
         )
     else:
@@ -834,13 +867,16 @@ def _predict_profile(
                 sector_contacts(_cheap_contact(contact), w.slack), profiles,
                 workers=workers, progress=stage("contact (plane strain)"), pool=pool,
             )  # fmt: skip
+        widths = np.full(len(profiles), np.nan)  # of the sectors solved in full
         contact_stage = _interpolated_contact(
-            fns, profiles, readout, w, web, pool, workers, tolerance, stage("contact"), base
-        )
+            fns, profiles, readout, w, web, pool, workers, tolerance, stage("contact"),
+            None if base is None else (base.alpha, base.beta), widths,
+        )  # fmt: skip
         alpha, beta = contact_stage.alpha, contact_stage.beta
+        width = _fill_widths(widths, w.z)
     timings["contact"] = time.perf_counter() - t2
     # 3. the reading: the instrument's own (FD), the energy model beside it
-    rho, rho_energy, scale = _sector_readings(readout, alpha, beta, w, web, pool, workers)
+    rho, rho_energy, scale = _sector_readings(readout, alpha, beta, w, web, pool, workers, width)
     roll_model = None
     if isinstance(contact, ContactModel) and contact.instrument is not None:
         from woundroll.contact.models import resolve_model
@@ -880,18 +916,26 @@ def _interpolated_contact(
     tolerance: float,
     progress: Callable[[int, int], None] | None,
     base: tuple[FloatArray, FloatArray] | None = None,
+    widths: FloatArray | None = None,
 ) -> InterpolatedContact:
     """The springs by :func:`woundroll.profile.interpolated.interpolated_springs`: full
     solves by :func:`map_sectors` on the pool, readings of the checked sectors with their
-    own pile heights; anchored on the cheap model's springs ``base`` when given."""
+    own pile heights and semi-contact widths (the solved ones', interpolated along the CMD
+    between them elsewhere); anchored on the cheap model's springs ``base`` when given.
+    ``widths`` (one per sector, NaN): filled in with the solved sectors' widths."""
     pile = w.build_radius - w.core_radius
     scale = None
+    solved_width = np.full(len(profiles), np.nan) if widths is None else widths
+    sector_of = {id(p): j for j, p in enumerate(profiles)}
     if isinstance(readout, InstrumentReadout):
         setup = readout.setup
         scale = setup.instrument.reading_range
 
         def readings(a: FloatArray, b: FloatArray, sel: NDArray[np.intp]) -> FloatArray:
-            return FdReadout(setup, pile[sel], web.density)(a, b)
+            width = readout.widths(_fill_widths(solved_width, w.z))
+            return FdReadout(setup, pile[sel], web.density, None if width is None else width[sel])(
+                a, b
+            )
     else:
 
         def readings(a: FloatArray, b: FloatArray, sel: NDArray[np.intp]) -> FloatArray:
@@ -900,7 +944,9 @@ def _interpolated_contact(
     def solve(
         f: Sequence[ContactFn], p: Sequence[tuple[FloatArray, FloatArray]]
     ) -> tuple[FloatArray, FloatArray]:
-        return map_sectors(list(f), list(p), workers=workers, pool=pool)
+        springs = map_sectors(list(f), list(p), workers=workers, pool=pool)
+        solved_width[[sector_of[id(q)] for q in p]] = springs.width
+        return springs.alpha, springs.beta
 
     return interpolated_springs(
         fns,
@@ -955,13 +1001,14 @@ def _sector_readings(
     web: Web,
     pool: cf.Executor | None,
     workers: int,
+    width: FloatArray | None = None,
 ) -> tuple[FloatArray, FloatArray | None, tuple[float, float] | None]:
-    """Each sector's reading from its roll spring (the energy model's beside it, and the
-    instrument's scale, for an instrument readout)."""
+    """Each sector's reading from its roll spring and semi-contact width (the energy
+    model's beside it, and the instrument's scale, for an instrument readout)."""
     scale, rho_energy = None, None
     if isinstance(readout, InstrumentReadout):
         rho, rho_energy = readout.read(
-            alpha, beta, w.build_radius - w.core_radius, web.density, pool, workers
+            alpha, beta, w.build_radius - w.core_radius, web.density, pool, workers, width
         )
         scale = readout.setup.instrument.reading_range
     else:
@@ -971,6 +1018,16 @@ def _sector_readings(
             "the readout must return one finite reading per sector", "tester.instrument"
         )
     return rho, rho_energy, scale
+
+
+def _fill_widths(width: FloatArray, z: FloatArray) -> FloatArray:
+    """The semi-contact width of every sector: the given (finite) ones, linearly
+    interpolated along the CMD between them elsewhere (the nearest at the ends); all NaN
+    when none is given (the FD reading then takes the tester's own)."""
+    known = np.isfinite(width)
+    if known.all() or not known.any():
+        return width
+    return np.where(known, width, np.interp(z, z[known], width[known]))
 
 
 def sector_contacts(contact: ContactFn, slack: NDArray[np.bool_]) -> list[ContactFn]:
@@ -988,9 +1045,16 @@ def sector_contacts(contact: ContactFn, slack: NDArray[np.bool_]) -> list[Contac
 class InstrumentReadout:
     """The readout of an instrument: its own reading by the FD model {4}-{13}
     (:class:`FdReadout`, with each sector's pile height once the roll is wound) and the
-    energy model {19}-{22} beside it (:class:`EnergyReadout`)."""
+    energy model {19}-{22} beside it (:class:`EnergyReadout`). ``contact_width``: the
+    active mass takes each sector's contact semi-contact width (False: the tester's
+    ``semi_contact_width``, which the user set)."""
 
     setup: Any
+    contact_width: bool = True
+
+    def widths(self, width: FloatArray | None) -> FloatArray | None:
+        """The per-sector widths the FD reading uses (None: the tester's)."""
+        return width if self.contact_width else None
 
     def read(
         self,
@@ -1000,9 +1064,11 @@ class InstrumentReadout:
         density: float,
         pool: cf.Executor | None,
         workers: int,
+        width: FloatArray | None = None,
     ) -> tuple[FloatArray, FloatArray]:
-        """(FD reading, energy reading) per sector."""
-        fd = FdReadout(self.setup, pile_height, density)
+        """(FD reading, energy reading) per sector; ``width``: each sector's contact
+        semi-contact width [m]."""
+        fd = FdReadout(self.setup, pile_height, density, self.widths(width))
         return fd.shared(alpha, beta, pool, workers), EnergyReadout(self.setup.instrument)(
             alpha, beta
         )
@@ -1016,6 +1082,7 @@ def _readout_and_contact(
     depth_max: float,
     setup: Any = None,
     model: str | None = None,
+    contact_width: bool = True,
 ) -> tuple[InstrumentReadout | ReadoutFn, ContactFn]:
     """The reading from (alpha, beta) (an Instrument's own reading, default the
     Rho-meter, with the tester ``setup`` when given; or a callable) and the per-sector
@@ -1027,7 +1094,7 @@ def _readout_and_contact(
     inst = None
     if setup is not None:
         inst = setup.instrument
-        readout = InstrumentReadout(setup)
+        readout = InstrumentReadout(setup, contact_width)
     elif instrument is None or (
         hasattr(instrument, "spring_stiffness") and hasattr(instrument, "head_radius")
     ):
@@ -1100,7 +1167,7 @@ def _nip_on_the_roll(
     f_depth: float | None = nip.foundation_depth
     for attempt in range(3):
         found = nip.foundation or ContactModel(web, core, roller.radius, 1.0, f_depth)
-        fa, fb = map_sectors(
+        fa, fb, _ = map_sectors(
             found,
             [pre.sector_profile(j) for j in picks],
             workers=workers,
