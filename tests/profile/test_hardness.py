@@ -340,7 +340,7 @@ def test_early_pool_is_started_before_the_winding_and_reused() -> None:
 
 def _sector_rho(w, sectors, contact, readout) -> np.ndarray:
     return np.array(
-        [readout(*map(np.atleast_1d, contact(*w.sector_profile(j))))[0] for j in sectors]
+        [readout(*map(np.atleast_1d, contact(*w.sector_profile(j))[:2]))[0] for j in sectors]
     )
 
 
