@@ -5,24 +5,18 @@ a few seconds (one roll with 10 uncertainty samples)."""
 
 from __future__ import annotations
 
-import importlib.util
 from collections.abc import Callable
-from functools import cache
 from pathlib import Path
 from typing import Any
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
-@cache
 def _sweep_tests() -> Any:
     """tests/test_sweep.py as a module: the page shows the test's own roll."""
-    path = ROOT / "tests" / "test_sweep.py"
-    spec = importlib.util.spec_from_file_location("docs_test_sweep", path)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    import records
+
+    return records.test_module("test_sweep.py")
 
 
 def sweep_surrogate() -> str:

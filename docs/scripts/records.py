@@ -163,6 +163,20 @@ def _load(stem: str) -> Any:
 
 
 @cache
+def test_module(rel: str) -> Any:
+    """A test file (``rel`` relative to tests/, e.g. ``"contact/test_dynamic3d.py"``) as a
+    module, loaded once: generators show the tests' own problems through it."""
+    path = ROOT / "tests" / rel
+    name = "docs_tests_" + rel.removesuffix(".py").replace("/", "_")
+    spec = importlib.util.spec_from_file_location(name, path)
+    assert spec is not None and spec.loader is not None
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules[name] = mod  # dataclasses look their module up
+    spec.loader.exec_module(mod)
+    return mod
+
+
+@cache
 def measurements() -> dict[str, Measurement]:
     """``{"module.name": Measurement}`` over docs/scripts/*.py."""
     found: dict[str, Measurement] = {}

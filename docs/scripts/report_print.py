@@ -7,7 +7,6 @@ Chromium (``.ci/run`` installs it). Cost: the report's run (~15-40 s CPU) and th
 
 from __future__ import annotations
 
-import importlib.util
 import subprocess
 import sys
 import tempfile
@@ -19,12 +18,9 @@ READINGS = "examples/data/readings_rho_3passes.csv"
 
 
 def _print_test():  # type: ignore[no-untyped-def]
-    path = ROOT / "tests" / "report" / "test_report_print.py"
-    spec = importlib.util.spec_from_file_location("docs_report_print_test", path)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    import records
+
+    return records.test_module("report/test_report_print.py")
 
 
 def letter_pages() -> str:

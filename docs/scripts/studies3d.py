@@ -15,7 +15,6 @@ measurement's ``cost``; all five: about 20 CPU min).
 
 from __future__ import annotations
 
-import importlib.util
 import math
 import os
 from collections.abc import Callable
@@ -41,15 +40,11 @@ TABLE2 = (
 )
 
 
-@cache
 def _test_module(name: str) -> Any:
     """tests/contact/<name>.py as a module: the pages show the tests' own problems."""
-    path = ROOT / "tests" / "contact" / f"{name}.py"
-    spec = importlib.util.spec_from_file_location(f"docs3dst_{name}", path)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    import records
+
+    return records.test_module(f"contact/{name}.py")
 
 
 def _plain(row: dict[str, Any]) -> dict[str, Any]:
