@@ -902,6 +902,14 @@ def cost3d() -> str:
     )
 
 
+def cost_ratio3d() -> str:
+    """CPU time of layered-3d against 3d on the same roll and mesh (inline)."""
+    cpu = records.load("layered_study.roll3d")["cpu_s"]
+    rolls = [k[: -len("/3d")] for k in cpu if k.endswith("/3d")]
+    x = [cpu[f"{r}/{LAYERED_3D}"] / cpu[f"{r}/3d"] for r in rolls if f"{r}/{LAYERED_3D}" in cpu]
+    return f"{_span(x, '.1f')}x over {len(x)} rolls ({_measured('roll3d')})"
+
+
 def head3d_table() -> str:
     """The pressure under the head and the CMD spread of both 3D models (PET2 53.4 N
     pressed :data:`HEAD_DEPTH`)."""
@@ -921,6 +929,55 @@ def head3d_table() -> str:
         )
         lines.append(f"| {label} | {r['force_N']:.1f} | {p_} | {w} |")
     return "\n".join(lines)
+
+
+def text3d_all() -> str:
+    """The paragraph on the whole 3D table and the mu sweep: every claim computed."""
+    from woundroll.instruments.definitions import READING_RANGES
+
+    low, top = READING_RANGES["rho"]
+    rows = _rolls3d()
+    vs3 = [_pct(_rho3d(r, LAYERED_3D), _rho3d(r, "3d")) for _, r in rows]
+    vs2 = [_pct(_rho3d(r, LAYERED_3D), _rho3d(r, "2d")) for _, r in rows]
+    below3 = all(v < 0 for v in vs3)
+    above2 = sum(v > 0 for v in vs2)
+    lo, hi = (roll.split("@")[0] if "@8.89" in roll else roll for roll in _pile_pair())
+    series = [r for _, r in rows if r.startswith("pet2-53.4N@")] + [hi]
+    series = sorted(series, key=lambda r: _reading3d(r, "3d")["pile_height_m"])
+    falls = all(
+        _rho3d(a, LAYERED_3D) > _rho3d(b, LAYERED_3D)
+        for a, b in zip(series, series[1:], strict=False)
+    )
+    mus = _frictions()
+    q = {m: _rho3d(lo, f"layered-3d_mu{m:g}") / _rho3d(hi, f"layered-3d_mu{m:g}") for m in mus}
+    keeps = min(q.values()) > 1 + NEARLY
+    m0, m1 = mus[0], mus[-1]
+
+    def span_mu(kind: str, roll: str) -> float:
+        return _pct(_rho3d(roll, f"{kind}_mu{m0:g}"), _rho3d(roll, f"{kind}_mu{m1:g}"))
+
+    d3, d2 = span_mu("layered-3d", hi), span_mu("layered", hi)
+    p3 = {m: _rho3d(PET3_ID, m) for m in ("2d", f"layered_mu{MU_3D:g}", "3d", LAYERED_3D)}
+    on = p3[LAYERED_3D] <= top
+    text = (
+        f"Over the study's rolls, the layered roll in 3D (mu {MU_3D:g}, default shells) reads "
+        + ("below" if below3 else "not always below")
+        + f" the 3D continuum ({_span(vs3, '+.1f')} %) and above `2d` on {above2} of "
+        f"{len(rows)} rolls ({_span(vs2, '+.0f')} %). Along PET2's pile series it "
+        + ("falls with every taller pile" if falls else "does not fall steadily with the pile")
+        + f", and the 2 cm / 8.89 cm ratio is {_span(list(q.values()), '.2f')} at mu "
+        f"{m0:g}-{m1:g}"
+        + (" (the paper's tests: about 1)" if keeps else "")
+        + f". Friction matters less in 3D than in plane strain: from mu {m0:g} to {m1:g} the "
+        f"8.89 cm roll reads {d3:+.1f} % in layered-3d against {d2:+.1f} % in the 2D layered "
+        f"roll. The uniform PET3 roll at 2.3 MPa reads {p3[LAYERED_3D]:.1f} in layered-3d "
+        f"({p3['3d']:.1f} in 3d, {p3['2d']:.1f} in 2d), "
+        + ("inside" if on else "beyond")
+        + f" the dial's {low:g}-{top:g}."
+    )
+    import textwrap
+
+    return textwrap.fill(text, width=95, break_long_words=False, break_on_hyphens=False)
 
 
 def text3d() -> str:
@@ -992,8 +1049,10 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "table3d": table3d,
     "mu3d": mu3d,
     "head3d_table": head3d_table,
+    "cost_ratio3d": cost_ratio3d,
     "cost3d": cost3d,
     "text3d": text3d,
+    "text3d_all": text3d_all,
 }
 
 if __name__ == "__main__":
