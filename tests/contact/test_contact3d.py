@@ -50,7 +50,9 @@ def isotropic_web(E: float, nu: float, width: float) -> Web:
 # ------------------------------------------------------------------ material and element
 
 
-def test_orthotropic_moduli_invert_the_compliance() -> None:
+def moduli_and_inverse() -> tuple[np.ndarray, np.ndarray, tuple[float, float, float]]:
+    """The moduli of an orthotropic web (all nine) and ``numpy.linalg.inv`` of its 3x3
+    normal compliance, with (E_r, E_theta, E_z) (docs/scripts/contact_checks.py shows it)."""
     web = Web(
         thickness=H,
         width=0.1,
@@ -69,31 +71,40 @@ def test_orthotropic_moduli_invert_the_compliance() -> None:
             [-0.02 / Ez, -0.35 / Et, 1 / Ez],
         ]
     )
-    C = np.linalg.inv(S)
-    D = orthotropic_moduli(web, np.array([Er]))[:, 0]
+    return orthotropic_moduli(web, np.array([Er]))[:, 0], np.linalg.inv(S), (Er, Et, Ez)
+
+
+def test_orthotropic_moduli_invert_the_compliance() -> None:
+    D, C, (Er, Et, _) = moduli_and_inverse()
     for (p, q), v in zip(D_PAIRS[:6], D[:6], strict=True):
         assert v == pytest.approx(C[p, q], rel=1e-9)  # round-off of a 3x3 inversion
     assert D[6] == pytest.approx(2 * Er) and D[7] == pytest.approx(2 * Er)  # Table 2 default
     assert D[8] == pytest.approx(Et / (2 * 1.35))
 
 
-@pytest.mark.parametrize("dr", [1e-4, 1e-2])
-def test_element_has_exactly_the_rigid_body_null_space(dr: float) -> None:
-    """Six zero eigenvalues (rigid motions) and no more: the assumed hoop strain and the
-    mid-line shear sampling add no hourglass mode (thin surface brick and a fat one)."""
+def element_matrix(dr: float) -> np.ndarray:
+    """The 24x24 stiffness of one brick ``dr`` thick at r = 0.1 m (nine distinct moduli)."""
     M = ring_matrices(np.array([0.1, 0.1 + dr]))[0]
     dth, dz = 0.01, 0.002
     D = np.array([1.0, 3, 2, 0.3, 0.2, 0.4, 0.7, 0.9, 1.1])
     f = np.array([1.0, 1 / dth, 1 / dz])
     c = (D[:, None, None] * f[None, :, None] * f[None, None, :] * dth * dz).ravel()
-    K = (c @ M).reshape(24, 24)
+    return (c @ M).reshape(24, 24)
+
+
+@pytest.mark.parametrize("dr", [1e-4, 1e-2])
+def test_element_has_exactly_the_rigid_body_null_space(dr: float) -> None:
+    """Six zero eigenvalues (rigid motions) and no more: the assumed hoop strain and the
+    mid-line shear sampling add no hourglass mode (thin surface brick and a fat one)."""
+    K = element_matrix(dr)
     assert np.abs(K - K.T).max() <= 1e-12 * np.abs(K).max()
     ev = np.linalg.eigvalsh(K) / np.abs(K).max()
     assert np.sum(np.abs(ev) < 1e-10) == 6  # round-off level
     assert ev[6] > 1e-7
 
 
-def test_lumped_mass_is_the_mass_of_the_quarter() -> None:
+def quarter_mass() -> tuple[float, float]:
+    """The lumped mass of a graded quarter mesh and rho pi/2 (R^2 - r^2) W/2 [kg]."""
     mesh = build_mesh3d(
         0.05,
         0.1,
@@ -110,7 +121,12 @@ def test_lumped_mass_is_the_mass_of_the_quarter() -> None:
     )
     m = lumped_mass(mesh, 1400.0)
     exact = 1400.0 * math.pi / 2 * (0.1**2 - 0.05**2) * 0.02  # half annulus x z_max
-    assert m[::3].sum() == pytest.approx(exact, rel=1e-12)
+    return float(m[::3].sum()), exact
+
+
+def test_lumped_mass_is_the_mass_of_the_quarter() -> None:
+    total, exact = quarter_mass()
+    assert total == pytest.approx(exact, rel=1e-12)
 
 
 # ------------------------------------------------------------------------------ heads
@@ -229,7 +245,8 @@ def test_plane_strain_slab_is_the_2d_model() -> None:
     assert np.max(np.abs(default.force[2:] / r2.force[2:] - 1)) < 0.02
 
 
-def test_update_stiffens_and_no_update_is_softer() -> None:
+def updated_and_frozen():  # noqa: ANN201
+    """A sphere pressed 0.4 mm into the PET1 test roll with E_r updated and frozen."""
     r, s = pet_profile()
     head = Head("sphere", 0.0125)
     grow = {"radial_growth": 1.5, "tangential_growth": 1.5, "axial_growth": 1.5}
@@ -238,6 +255,11 @@ def test_update_stiffens_and_no_update_is_softer() -> None:
     frozen = indent3d(
         PET1, RIGID, r, s, head=head, depth_max=4e-4, update_modulus=False, options=opts
     )
+    return up, frozen
+
+
+def test_update_stiffens_and_no_update_is_softer() -> None:
+    up, frozen = updated_and_frozen()
     assert np.all(np.diff(up.force) > 0) and np.all(np.diff(frozen.force) > 0)
     assert frozen.force[-1] < 0.8 * up.force[-1]  # E_r grows with the pressure {2}
     assert frozen.stats["factorisations"] == 1

@@ -1,0 +1,471 @@
+"""Generators of the checks in docs/contact.md's later sections: the 3D model's refinement,
+the layered roll in 3D (its verification table), the other explanations' stiffening factor
+(docs/scripts/regenerate.py runs them).
+
+The checks are the tests' own problems (tests/contact/test_layered3d.py's coarse PET1 roll
+and nine-sheet slab, test_layered.py's 2D refinement, test_contact3d.py's Rho-meter on PET2
+26.7 N), loaded with ``records.test_module``. Live (cheap, about 30 CPU s in all): the
+layered-3D stick and plate checks, the default shells, the 2D comparison, two plane-strain
+pipeline runs. Measured records (docs/scripts/records.py, ``MEASUREMENTS``):
+``contact_checks.layers3d``, the layers-per-shell refinement in 3D (about 70 CPU s), and
+``contact_checks.refine3d``, the 3D mesh refinement of the slow tests (a 3D solve of 1-10
+CPU min per refinement).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable
+from functools import cache
+from typing import Any
+
+os.environ.setdefault("MKL_NUM_THREADS", "1")  # PARDISO threads only contend under load
+
+import records  # noqa: E402  (docs/scripts is on the path of regenerate.py and records.py)
+from records import Measurement, Run  # noqa: E402
+
+#: the runs' nominal case: the tests' problems define their own rolls (not hashed), so the
+#: records go stale on the models' defaults only; their code is spot-checked
+NOMINAL = "pet1-26.7N"
+
+
+def _layered3d() -> Any:
+    return records.test_module("contact/test_layered3d.py")
+
+
+def _stamp(name: str) -> str:
+    """ "measured YYYY-MM-DD by `docs/scripts/records.py contact_checks.NAME`"."""
+    rec = records.load(f"contact_checks.{name}")
+    return f"measured {rec['measured']} by `docs/scripts/records.py contact_checks.{name}`"
+
+
+def _sci(x: float, digits: int = 1) -> str:
+    """A small relative difference as 4e-16 (``digits`` significant), or "0" when equal."""
+    if x == 0:
+        return "0"
+    m, e = f"{x:.{digits - 1}e}".split("e")
+    return f"{m}e{int(e)}"
+
+
+def _order(f: list[float]) -> float:
+    """Observed order of a sequence refined by 2 each time (coarse to fine)."""
+    return math.log2(abs(f[0] - f[1]) / abs(f[1] - f[2]))
+
+
+# =======================================================================================
+# the layered roll in 3D: verification (tests/contact/test_layered3d.py)
+
+
+def uncut3d() -> str:
+    """No interfaces: the doubled numbering's stiffness against the 3D assembler (inline)."""
+    import numpy as np
+
+    from woundroll.contact.layered.roll3d import Layered3DOptions, _LayeredRoll3D, layered_mesh3d
+    from woundroll.contact.solid3d.fem import orthotropic_moduli
+    from woundroll.contact.solid3d.solver import Contact3DOptions, Roll3D
+
+    t = _layered3d()
+    r, s = t.pet_profile()
+    base = Contact3DOptions(n_fine=4, locality_cut=True, **t.GROW)
+    lopts = Layered3DOptions(base=base, layered_depth=1e-3, layers_per_shell=5)
+    mesh, cut, _, _ = layered_mesh3d(t.PET1, t.RIGID, t.R_OUT, t.SPHERE, 3e-4, lopts)
+    plain = Roll3D(t.PET1, t.RIGID, r, s, mesh, base)
+    uncut = _LayeredRoll3D(t.PET1, t.RIGID, r, s, mesh, base, cut[:0], 1.0)
+    D = orthotropic_moduli(t.PET1, t.PET1.E_r(plain.sigma_pre))
+    Kp, Ku = plain.asm.matrix(D), uncut.asm.matrix(D)
+    rel = float(abs(Kp - Ku).max() / abs(Kp).max())
+    same = bool(np.array_equal(plain.sr, uncut.sr))
+    text = "equal to the last bit" if rel == 0 else f"largest difference {_sci(rel)}"
+    return text + ("" if same else " (the pre-impact stresses differ)")
+
+
+@cache
+def _stick() -> dict[str, float]:
+    """mu = 1e6 against the continuum on the same mesh, at two gap tolerances."""
+    t = _layered3d()
+    out: dict[str, float] = {}
+    for key, gap in (("tight", 1e-6), ("default", None)):
+        stuck = t.pet_roll(1.0, t.SPHERE, interfaces=False, gap_tol=gap)
+        high = t.pet_roll(1e6, t.SPHERE, gap_tol=gap)
+        out[key] = abs(high / stuck - 1)
+    return out
+
+
+def stick3d() -> str:
+    """The mu = 1e6 row's measured cell (inline)."""
+    d = _stick()
+    return (
+        f"{_sci(d['tight'], 2)} with the head's gap tolerance at 1e-6 of the first step "
+        f"({_sci(d['default'])} at the 3D model's 1e-3)"
+    )
+
+
+@cache
+def _plates() -> dict[str, float]:
+    t = _layered3d()
+    stuck, free = t.slab(1.0, interfaces=False), t.slab(1e-6)
+    k_stuck, k_free = t.beam_stiffness(t.EI_STICK), t.beam_stiffness(t.EI_SLIP)
+    return {
+        "stuck": stuck / k_stuck - 1,
+        "free": free / k_free - 1,
+        "ratio": stuck / free,
+        "closed": (t.EI_STICK / t.EI_SLIP) ** 0.25,
+    }
+
+
+def plates3d() -> str:
+    """The nine-sheet slab's row: stuck, frictionless against the beam closed forms, the
+    ratio (inline)."""
+    p = _plates()
+    return (
+        f"{100 * p['stuck']:+.1f} %, {100 * p['free']:+.1f} %, {p['ratio']:.3f} vs "
+        f"{p['closed']:.3f}"
+    )
+
+
+# ------------------------------------------------------------- layers per shell (record)
+
+#: the slow test's problem (test_layered3d.py, test_layers_per_shell_refinement_converges,
+#: inline there): the Rho-meter-sized cylinder on the coarse PET1 roll, a 1.2 mm zone,
+#: mu 0.3, three increments
+LPS_HEAD = ("cylinder", 0.00635, 0.0254)
+LPS_ZONE_M, LPS_MU, LPS_STEPS = 1.2e-3, 0.3, 3
+LPS = (4, 2, 1)
+
+
+def _lps_runs() -> list[Run]:
+    return [Run(f"{n} layers per shell", NOMINAL, (), (("layers_per_shell", n),)) for n in LPS]
+
+
+def _lps_measure(run: Run) -> dict[str, Any]:
+    from woundroll.contact.heads import Head
+
+    t = _layered3d()
+    st: list[Any] = []
+    f = t.pet_roll(
+        LPS_MU,
+        Head(*LPS_HEAD),
+        layers_per_shell=int(run.param("layers_per_shell")),
+        layered_depth=LPS_ZONE_M,
+        n_steps=LPS_STEPS,
+        state=st,
+    )
+    return {"force_N": float(f), "shells": float(st[0].n_shells), "_passes": float(st[0].passes)}
+
+
+def _lps() -> list[dict[str, Any]]:
+    rec = records.results("contact_checks.layers3d")
+    return [rec[f"{n} layers per shell"] for n in LPS]
+
+
+@cache
+def _lps_2d() -> list[float]:
+    """The 2D slow test's layers per shell, 4/2/1 on 8 layers (test_layered.py)."""
+    from woundroll.contact.layered.solver import ContactOptions, LayeredOptions
+
+    t = records.test_module("contact/test_layered.py")
+    return [
+        t.run(
+            0.3,
+            LayeredOptions(
+                base=ContactOptions(newton=False, n_steps=4),
+                layered_depth=8 * t.H,
+                layers_per_shell=k,
+            ),
+        )
+        for k in LPS
+    ]
+
+
+def _lumping() -> tuple[float, float, float, float]:
+    """3D: two and four sheets a shell against one; 2D: two against one, its order."""
+    f = [r["force_N"] for r in _lps()]
+    g = _lps_2d()
+    return f[1] / f[2] - 1, f[0] / f[2] - 1, g[1] / g[2] - 1, _order(g)
+
+
+def lps3d_row() -> str:
+    """The layers-per-shell row's measured cell (inline; record layers3d, 2D live)."""
+    f = [r["force_N"] for r in _lps()]
+    two, four, two_2d, order_2d = _lumping()
+    return (
+        " / ".join(f"{x:.1f}" for x in f)
+        + f" N: lumping 2 sheets {100 * two:+.1f} %, 4 sheets {100 * four:+.0f} %, observed "
+        f"order {_order(f):.2f} (2D: {100 * two_2d:+.1f} % and {order_2d:.2f}; "
+        f"{_stamp('layers3d')})"
+    )
+
+
+def lumping3d() -> str:
+    """Two sheets a shell in 3D against 2D (inline)."""
+    two, _, two_2d, _ = _lumping()
+    return f"{100 * two:+.1f} % for two sheets against {100 * two_2d:+.1f} %"
+
+
+def admm_passes() -> str:
+    """The ADMM passes of the one-sheet run of the layers-per-shell record (inline)."""
+    r = records.results("contact_checks.layers3d")["1 layers per shell"]
+    return (
+        f"{r['_passes']:.0f} over the {LPS_STEPS} increments of the coarse PET1 test roll "
+        f"under the cylinder of the layers-per-shell row, one sheet per shell"
+    )
+
+
+# ----------------------------------------------------------------- the default shells
+
+
+def default_shells() -> str:
+    """Layers per shell of the default mesh on the Table 2 rolls and pile heights (inline):
+    the bundled Rho-meter head, solved to 1.25 x the 3D model's impact depth (the stored
+    3D references, tests/contact/data/contact3d_reference.json)."""
+    import json
+
+    from woundroll.case import load_case
+    from woundroll.contact.heads import Head
+    from woundroll.contact.layered.roll3d import Layered3DOptions, layered_mesh3d
+    from woundroll.instruments import get_instrument
+
+    ref = json.loads((records.ROOT / "tests/contact/data/contact3d_reference.json").read_text())
+    head = Head.from_instrument(get_instrument("rho-meter"))
+    n, d = [], []
+    for c in ref["cases"].values():
+        c3 = c["3d"]
+        case = load_case(c3["case"], c3["overrides"])
+        depth = 1.25 * c3["delta_max_m"]
+        _, _, _, k = layered_mesh3d(
+            case.web.build(), case.core.build(), c3["outer_radius_m"], head, depth,
+            Layered3DOptions(),
+        )  # fmt: skip
+        n.append(k)
+        d.append(1e3 * depth)
+    span = f"{min(n)}-{max(n)}" if min(n) != max(n) else f"{n[0]}"
+    return (
+        f"{span} layers per shell (solved to {min(d):.2f}-{max(d):.2f} mm, 1.25 x the 3D "
+        f"model's impact depths on the Table 2 rolls and pile heights, with the bundled "
+        f"{1e3 * head.radius:.2f} mm head)"
+    )
+
+
+# =======================================================================================
+# other explanations: how much E_r grows under the head
+
+
+@cache
+def _er_growth(case_name: str) -> float:
+    """Median E_r(pre + contact) / E_r(pre) at the impact depth over the elements carrying
+    at least a tenth of the peak contact-induced radial stress (plane strain, defaults)."""
+    import numpy as np
+
+    import woundroll
+
+    case = woundroll.load_case(case_name)
+    res = woundroll.run(case)
+    c = res.contact.contact
+    web = case.web.build()
+    st = c.at_depth(res.hardness.to_dict()["impact_depth_m"])
+    pre = c.sigma_r_pre
+    f = web.E_r(pre + st.sigma_r) / web.E_r(pre)
+    loaded = np.abs(st.sigma_r) >= 0.1 * np.abs(st.sigma_r).max()
+    return float(np.median(f[loaded]))
+
+
+def er_growth() -> str:
+    """The factor E_r grows under the head on the readings' rolls (inline)."""
+    a, b = _er_growth("pet2-53.4N"), _er_growth("pet1-26.7N")
+    lo, hi = sorted((a, b))
+    return (
+        f"{lo:.0f}-{hi:.0f} here (PET2 53.4 N {a:.0f}, PET1 26.7 N {b:.0f}: the median over "
+        "the elements that carry at least a tenth of the peak contact stress at the impact "
+        "depth, plane strain)"
+    )
+
+
+# =======================================================================================
+# the 3D model's verification (tests/contact/test_contact3d.py's problems)
+
+
+def moduli3d() -> str:
+    """The orthotropic moduli against the inverted compliance (inline)."""
+    from woundroll.contact.solid3d.fem import D_PAIRS
+
+    D, C, _ = _contact3d_tests().moduli_and_inverse()
+    err = max(abs(v / C[p, q] - 1) for (p, q), v in zip(D_PAIRS[:6], D[:6], strict=True))
+    return "equal to the last bit" if err == 0 else f"largest relative difference {_sci(err)}"
+
+
+def null_space3d() -> str:
+    """Zero eigenvalues of the thin and the fat brick, and the smallest nonzero one (inline)."""
+    import numpy as np
+
+    t = _contact3d_tests()
+    parts = []
+    for dr, label in ((1e-4, "thin"), (1e-2, "fat")):
+        K = t.element_matrix(dr)
+        ev = np.sort(np.abs(np.linalg.eigvalsh(K) / np.abs(K).max()))
+        zero = int(np.sum(ev < 1e-10))
+        parts.append(f"{label}: {zero} at most {_sci(ev[zero - 1])}, the next {_sci(ev[zero])}")
+    return "; ".join(parts)
+
+
+def mass3d() -> str:
+    """The quarter's lumped mass against the closed form (inline)."""
+    total, exact = _contact3d_tests().quarter_mass()
+    err = abs(total / exact - 1)
+    return "equal to the last bit" if err == 0 else f"relative difference {_sci(err)}"
+
+
+def frozen3d() -> str:
+    """E_r frozen against updated, and the frozen run's factorisations (inline)."""
+    up, frozen = _contact3d_tests().updated_and_frozen()
+    n = frozen.stats["factorisations"]
+    return (
+        f"frozen = {frozen.force[-1] / up.force[-1]:.2f} x updated at "
+        f"{1e3 * up.delta[-1]:.1f} mm; {n} factorisation{'s' if n != 1 else ''}"
+    )
+
+
+# =======================================================================================
+# the 3D linear solver: right-hand sides per factorisation, the anisotropy
+
+
+def _reference3d() -> dict[str, Any]:
+    import json
+
+    path = records.ROOT / "tests/contact/data/contact3d_reference.json"
+    return dict(json.loads(path.read_text())["cases"])
+
+
+def solves_per_factorisation() -> str:
+    """Right-hand sides solved per factorisation in the stored 3D references (inline)."""
+    q = [c["3d"]["stats"]["rhs_solved"] / c["3d"]["stats"]["factorisations"]
+         for c in _reference3d().values()]  # fmt: skip
+    return (
+        f"{min(q):.0f}-{max(q):.0f} per factorisation on average in the ten stored 3D "
+        "references of the fast path below"
+    )
+
+
+def anisotropy3d() -> str:
+    """E_theta / E_r of the Table 2 webs at zero pressure (the surface) (inline)."""
+    from woundroll.case import load_case
+
+    q = {}
+    for name in ("pet1-26.7N", "pet2-53.4N"):
+        web = load_case(name).web.build()
+        q[name[:4].upper()] = float(web.E_theta / web.E_r(0.0))
+    return (
+        "E_theta / E_r up to "
+        + " and ".join(f"{v:,.0f} ({k})" for k, v in q.items())
+        + " at the surface (where the wound-in pressure vanishes)"
+    )
+
+
+# =======================================================================================
+# the 3D model's mesh refinement (tests/contact/test_contact3d.py's slow tests, record)
+
+REFINED = ("radial_growth", "tangential_growth", "axial_growth", "axial_size", "n_steps", "n_fine")
+#: the depths the slow test compares F(d) at, as fractions of its depth_max 2.1 mm
+REF_FRACTIONS = tuple(0.2 + 0.1 * k for k in range(9))
+
+
+def _contact3d_tests() -> Any:
+    return records.test_module("contact/test_contact3d.py")
+
+
+def _refine_runs() -> list[Run]:
+    return [Run(name, "pet2-26.7N", (), (("refined", name),)) for name in ("default", *REFINED)]
+
+
+def _refine_measure(run: Run) -> dict[str, Any]:
+    import numpy as np
+
+    from woundroll.contact.solid3d.solver import Contact3DOptions
+
+    t = _contact3d_tests()
+    name = run.param("refined")
+    opts = Contact3DOptions() if name == "default" else t._refined(Contact3DOptions(), name)
+    res = t._rho_meter_pet2(opts)
+    d = np.asarray(REF_FRACTIONS) * 2.1e-3
+    return {
+        "force_N": [float(x) for x in np.interp(d, res.delta, res.force)],
+        "_dof": float(res.n_dof),
+    }
+
+
+def refinement3d() -> str:
+    """The refinement table (record refine3d)."""
+    rec = records.results("contact_checks.refine3d")
+    base = rec["default"]["force_N"]
+    cpu = records.load("contact_checks.refine3d")["cpu_s"]
+    lines = [
+        "| refined alone | largest change of F(d) over 0.2-1 depth_max | at | at depth_max "
+        "| CPU s |",
+        "|---|---|---|---|---|",
+    ]
+    for name in REFINED:
+        f = rec[name]["force_N"]
+        ch = [x / y - 1 for x, y in zip(f, base, strict=True)]
+        k = max(range(len(ch)), key=lambda i: abs(ch[i]))
+        lines.append(
+            f"| `{name}` | {100 * ch[k]:+.2f} % | {REF_FRACTIONS[k]:.1f} depth_max "
+            f"| {100 * ch[-1]:+.2f} % | {cpu[name]:.0f} |"
+        )
+    lines.append("")
+    lines.append(f"The default curve: {cpu['default']:.0f} CPU s; {_stamp('refine3d')}.")
+    return "\n".join(lines)
+
+
+MEASUREMENTS: dict[str, Measurement] = {
+    "layers3d": Measurement(
+        about="the layered 3D roll's layers-per-shell refinement (test_layered3d.py's coarse "
+        "PET1 roll, cylinder head, 1.2 mm zone, mu 0.3): 4, 2, 1 layers per shell",
+        runs=_lps_runs,
+        measure=_lps_measure,
+        spot=("4 layers per shell",),
+        rtol=1e-3,
+        reason="deterministic solves; the ADMM stops at 1e-5 of the displacement increment, "
+        "which moves the force by ~1e-5 (the mu = 1e6 row): 0.1 % covers that and platform "
+        "rounding, far below the 6-14 % the row reports. The pass count is stored, not "
+        "compared (rounding can move it by a pass)",
+        cost="12 / 18 / 39 CPU s for 4 / 2 / 1 layers per shell",
+    ),
+    "refine3d": Measurement(
+        about="the 3D model's mesh refinement (test_contact3d.py's slow tests: PET2 26.7 N, "
+        "Rho-meter head 6.565 mm, 2.1 mm): each mesh parameter refined alone",
+        runs=_refine_runs,
+        measure=_refine_measure,
+        spot=("default",),
+        rtol=1e-3,
+        reason="deterministic direct solves; the contact iteration stops at 1e-3 of the "
+        "first increment's depth in the gaps, which moves F(d) by far less than 0.1 %, a "
+        "tenth of the 1 % bar the refinements are held to",
+        cost="1-2 CPU min the default curve, up to ~10 CPU min the refined ones",
+    ),
+}
+
+
+BLOCKS: dict[str, Callable[[], str]] = {
+    "moduli3d": moduli3d,
+    "null_space3d": null_space3d,
+    "mass3d": mass3d,
+    "frozen3d": frozen3d,
+    "solves_per_factorisation": solves_per_factorisation,
+    "anisotropy3d": anisotropy3d,
+    "uncut3d": uncut3d,
+    "stick3d": stick3d,
+    "plates3d": plates3d,
+    "default_shells": default_shells,
+    "er_growth": er_growth,
+    # rendered from the measured records (MEASUREMENTS)
+    "lps3d_row": lps3d_row,
+    "lumping3d": lumping3d,
+    "admm_passes": admm_passes,
+    "refinement3d": refinement3d,
+}
+
+if __name__ == "__main__":
+    import sys
+
+    for name in sys.argv[1:] or list(BLOCKS):
+        print(f"--- {name}\n{BLOCKS[name]()}", flush=True)
