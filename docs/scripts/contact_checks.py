@@ -247,6 +247,20 @@ def default_shells() -> str:
     )
 
 
+def coarse3d() -> str:
+    """The layered study's coarse 3D mesh, ``COARSE_3D`` (inline)."""
+    from woundroll.studies.layered import COARSE_3D
+
+    opts = dict(o.removeprefix("contact.options3d.").split("=", 1) for o in COARSE_3D)
+    growth = {k: v for k, v in opts.items() if k.endswith("_growth")}
+    rest = [f"`{k}` {v}" for k, v in opts.items() if k not in growth]
+    if len(growth) == 3 and len(set(growth.values())) == 1:
+        head = [f"growths {next(iter(growth.values()))}"]
+    else:
+        head = [f"`{k}` {v}" for k, v in growth.items()]
+    return ", ".join(head + rest)
+
+
 # =======================================================================================
 # other explanations: how much E_r grows under the head
 
@@ -473,6 +487,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "plates3d": plates3d,
     "default_shells": default_shells,
     "er_growth": er_growth,
+    "coarse3d": coarse3d,
     # rendered from the measured records (MEASUREMENTS)
     "lps3d_row": lps3d_row,
     "lumping3d": lumping3d,
