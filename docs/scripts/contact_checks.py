@@ -81,14 +81,19 @@ def uncut3d() -> str:
 
 
 @cache
+def _sphere(mu: float, interfaces: bool = True, gap_tol: float | None = None) -> float:
+    """The test's sphere on the coarse PET1 roll (test_layered3d.py's ``pet_roll``)."""
+    t = _layered3d()
+    return float(t.pet_roll(mu, t.SPHERE, interfaces=interfaces, gap_tol=gap_tol))
+
+
+@cache
 def _stick() -> dict[str, float]:
     """mu = 1e6 against the continuum on the same mesh, at two gap tolerances."""
-    t = _layered3d()
     out: dict[str, float] = {}
     for key, gap in (("tight", 1e-6), ("default", None)):
-        stuck = t.pet_roll(1.0, t.SPHERE, interfaces=False, gap_tol=gap)
-        high = t.pet_roll(1e6, t.SPHERE, gap_tol=gap)
-        out[key] = abs(high / stuck - 1)
+        stuck = _sphere(1.0, interfaces=False, gap_tol=gap)
+        out[key] = abs(_sphere(1e6, gap_tol=gap) / stuck - 1)
     return out
 
 
@@ -98,6 +103,36 @@ def stick3d() -> str:
     return (
         f"{_sci(d['tight'], 2)} with the head's gap tolerance at 1e-6 of the first step "
         f"({_sci(d['default'])} at the 3D model's 1e-3)"
+    )
+
+
+def slip3d() -> str:
+    """The sphere at mu 0.1 (test_slip_runs_along_the_force_and_z_matters, whose checks are
+    inline there: the same criteria here): the slipping pairs, how far their forces are
+    from the rim and from the slip direction, the force against the stuck roll (inline)."""
+    import numpy as np
+
+    t = _layered3d()
+    st: list[Any] = []
+    f = float(t.pet_roll(0.1, t.SPHERE, state=st))
+    x = st[0]
+    w, T = x.slip_increment, x.shear
+    nw, nT = np.hypot(w[:, 0], w[:, 1]), np.hypot(T[:, 0], T[:, 1])
+    outside = float(np.max(nT / np.maximum(x.limit, 1e-300)) - 1)
+    slip = nw > 1e-6 * np.max(nw)
+    along_z = int(np.sum(slip & (np.abs(w[:, 1]) > 2 * np.abs(w[:, 0]))))
+    along_t = int(np.sum(slip & (np.abs(w[:, 0]) > 2 * np.abs(w[:, 1]))))
+    big = nw > 1e-2 * np.max(nw)
+    rim = float(np.max(np.abs(nT[big] / x.limit[big] - 1)))
+    cos = np.einsum("ij,ij->i", T[big], w[big]) / (nT[big] * nw[big])
+    angle = float(np.max(np.arccos(np.clip(cos, -1.0, 1.0))))
+    inside = "every force inside its disc"
+    if outside > 1e-9:
+        inside = f"forces up to {outside:.1e} outside their discs"
+    return (
+        f"{int(np.sum(slip))} of {nw.size} pairs slip ({along_z} mostly in z, {along_t} mostly "
+        f"in theta); {inside}; slipping forces on the rim to {_sci(rim)}, along the slip to "
+        f"{_sci(angle)} rad; F = {f / _sphere(1.0, interfaces=False):.3f} x stuck"
     )
 
 
@@ -485,6 +520,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "uncut3d": uncut3d,
     "stick3d": stick3d,
     "plates3d": plates3d,
+    "slip3d": slip3d,
     "default_shells": default_shells,
     "er_growth": er_growth,
     "coarse3d": coarse3d,
