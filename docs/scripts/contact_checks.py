@@ -297,6 +297,68 @@ def coarse3d() -> str:
 
 
 # =======================================================================================
+# the layered roll (2D): the verification rows the tests assert without a number shown
+
+
+def _layered2d() -> Any:
+    return records.test_module("contact/test_layered.py")
+
+
+@cache
+def _slipping2d() -> tuple[float, Any]:
+    """The 5-sheet PET1 test roll at mu 0.3 (test_layered.py's ``slipping`` fixture)."""
+    t = _layered2d()
+    st: list[Any] = []
+    return t.run(0.3, t.small(), st), st[0]
+
+
+def coulomb2d() -> str:
+    """Coulomb's law and the closed interfaces on the 5-sheet roll (inline)."""
+    import numpy as np
+
+    _, st = _slipping2d()
+    slip = st.slip > 0
+    worst = float(np.max(np.abs(st.shear) / st.limit))
+    bound = f"1 - {_sci(1 - worst)}" if worst < 1 else f"1 + {_sci(worst - 1)}"
+    return (
+        f"{int(np.sum(slip))} of {st.slip.size} pairs slip; largest \\|tau\\| / mu P = "
+        f"{bound}; P {np.min(st.pressure) / 1e3:.0f} kPa to "
+        f"{np.max(st.pressure) / 1e6:.0f} MPa"
+    )
+
+
+def softens2d() -> str:
+    """The force at mu 0.05 and 0.3 against the continuum on the 5-sheet roll (inline)."""
+    t = _layered2d()
+    f05 = t.run(0.05, t.small())
+    f3, _ = _slipping2d()
+    cont = t.run(0.3, t.small(interfaces=False))
+    return f"{f05:.2f} < {f3:.2f} < {cont:.2f} N"
+
+
+def onset2d() -> str:
+    """The slip onset of the three-sheet strip (test_layered_plates.py's ``stack``; the
+    test's steps inline there, repeated here) (inline)."""
+    import numpy as np
+
+    t = records.test_module("contact/test_layered_plates.py")
+    st: list[Any] = []
+    stuck = t.stack(1e4, sheets=3, state=st)
+    q = float(np.max(np.abs(st[0].shear) / st[0].pressure))
+    high: list[Any] = []
+    f_high = t.stack(1.5 * q, sheets=3, state=high)
+    low: list[Any] = []
+    f_low = t.stack(q / 3, sheets=3, state=low)
+    n_high, n_low = int(np.sum(high[0].slip > 0)), int(np.sum(low[0].slip > 0))
+    d = abs(f_high / stuck - 1)
+    same = "equal to the stuck force" if d == 0 else f"the stuck force to {_sci(d)}"
+    return (
+        f"q = {q:.3g}; at 1.5 q {n_high} pairs slip, {same}; at q/3 {n_low} pairs slip, "
+        f"{f_low / stuck:.3f} x stuck"
+    )
+
+
+# =======================================================================================
 # other explanations: how much E_r grows under the head
 
 
@@ -524,6 +586,9 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "default_shells": default_shells,
     "er_growth": er_growth,
     "coarse3d": coarse3d,
+    "coulomb2d": coulomb2d,
+    "softens2d": softens2d,
+    "onset2d": onset2d,
     # rendered from the measured records (MEASUREMENTS)
     "lps3d_row": lps3d_row,
     "lumping3d": lumping3d,
