@@ -320,6 +320,8 @@ def coulomb2d() -> str:
     slip = st.slip > 0
     worst = float(np.max(np.abs(st.shear) / st.limit))
     bound = f"1 - {_sci(1 - worst)}" if worst < 1 else f"1 + {_sci(worst - 1)}"
+    if worst == 1:
+        bound = "1 (slipping pairs on the limit to the last bit)"
     return (
         f"{int(np.sum(slip))} of {st.slip.size} pairs slip; largest \\|tau\\| / mu P = "
         f"{bound}; P {np.min(st.pressure) / 1e3:.0f} kPa to "
