@@ -545,6 +545,64 @@ def refinement_bounds() -> str:
     )
 
 
+# =======================================================================================
+# the layered roll's cost (benchmarks/bench_layered.py's rolls, record)
+
+#: benchmarks/bench_layered.py's rolls: (run label, case, overrides)
+COST_ROLLS = (
+    ("PET1 26.7 N", "pet1-26.7N", ()),
+    ("PET2 53.4 N", "pet2-53.4N", ()),
+    ("PET2 53.4 N, H 2 cm", "pet2-53.4N", ("winding.outer_radius=0.0645 m",)),
+)
+COST_MODELS = ("2d", "layered")
+
+
+def _cost_runs() -> list[Run]:
+    return [
+        Run(f"{label} {model}", case, (f"contact.model={model}", "contact.friction=0.3", *over))
+        for label, case, over in COST_ROLLS
+        for model in COST_MODELS
+    ]
+
+
+def _cost_measure(run: Run) -> dict[str, Any]:
+    """The whole pipeline run (bench_layered.py's), its wall time against the yardstick
+    (benchmarks/yardstick.py ``wind_per_layer``) timed before and after in the same run."""
+    import sys
+    import time
+
+    from woundroll.case import load_case
+    from woundroll.pipeline import run as run_pipeline
+
+    sys.path.insert(0, str(records.ROOT / "benchmarks"))
+    from yardstick import wind_per_layer
+
+    yard0 = wind_per_layer()[1]
+    t0 = time.perf_counter()
+    res = run_pipeline(load_case(run.case, list(run.overrides)))
+    wall = time.perf_counter() - t0
+    yard1 = wind_per_layer()[1]
+    return {
+        "rho_fd": float(res.hardness.to_dict()["rho_fd"]),
+        "_yardsticks": wall / min(yard0, yard1),
+        "_load": round(os.getloadavg()[0], 1),
+    }
+
+
+def layered_cost() -> str:
+    """The layered and plane-strain runs in yardsticks (inline; record layered_cost)."""
+    rec = records.results("contact_checks.layered_cost")
+
+    def span(model: str) -> str:
+        y = [rec[f"{label} {model}"]["_yardsticks"] for label, _, _ in COST_ROLLS]
+        return f"{min(y):.1f}-{max(y):.1f}"
+
+    return (
+        f"A layered reading costs {span('layered')} yardsticks on these rolls, a "
+        f"plane-strain one {span('2d')} ({_stamp('layered_cost')})"
+    )
+
+
 MEASUREMENTS: dict[str, Measurement] = {
     "layers3d": Measurement(
         about="the layered 3D roll's layers-per-shell refinement (test_layered3d.py's coarse "
@@ -558,6 +616,17 @@ MEASUREMENTS: dict[str, Measurement] = {
         "rounding, far below the 6-14 % the row reports. The pass count is stored, not "
         "compared (rounding can move it by a pass)",
         cost="12 / 18 / 39 CPU s for 4 / 2 / 1 layers per shell",
+    ),
+    "layered_cost": Measurement(
+        about="the whole `woundroll run` with the layered model (mu 0.3) and with plane "
+        "strain on benchmarks/bench_layered.py's rolls, in yardsticks timed in the same run",
+        runs=_cost_runs,
+        measure=_cost_measure,
+        spot=("PET1 26.7 N 2d",),
+        rtol=1e-3,
+        reason="only the reading is compared (the timings are stored, not compared): "
+        "deterministic solves whose platform rounding is far below 1e-3",
+        cost="a few CPU s the plane-strain runs, 10-20 CPU s the layered ones, two yardsticks each",
     ),
     "refine3d": Measurement(
         about="the 3D model's mesh refinement (test_contact3d.py's slow tests: PET2 26.7 N, "
@@ -597,6 +666,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "admm_passes": admm_passes,
     "refinement3d": refinement3d,
     "refinement_bounds": refinement_bounds,
+    "layered_cost": layered_cost,
 }
 
 if __name__ == "__main__":
