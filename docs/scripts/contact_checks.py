@@ -7,9 +7,10 @@ and nine-sheet slab, test_layered.py's 2D refinement, test_contact3d.py's Rho-me
 26.7 N), loaded with ``records.test_module``. Live (cheap, about 30 CPU s in all): the
 layered-3D stick and plate checks, the default shells, the 2D comparison, two plane-strain
 pipeline runs. Measured records (docs/scripts/records.py, ``MEASUREMENTS``):
-``contact_checks.layers3d``, the layers-per-shell refinement in 3D (about 70 CPU s), and
+``contact_checks.layers3d``, the layers-per-shell refinement in 3D (about 70 CPU s),
 ``contact_checks.refine3d``, the 3D mesh refinement of the slow tests (a 3D solve of
-20-45 CPU s per refinement).
+20-45 CPU s per refinement), and ``contact_checks.layered_cost``, the layered and
+plane-strain runs of benchmarks/bench_layered.py in yardsticks (about 1.5 CPU min).
 """
 
 from __future__ import annotations
@@ -593,13 +594,15 @@ def layered_cost() -> str:
     """The layered and plane-strain runs in yardsticks (inline; record layered_cost)."""
     rec = records.results("contact_checks.layered_cost")
 
-    def span(model: str) -> str:
-        y = [rec[f"{label} {model}"]["_yardsticks"] for label, _, _ in COST_ROLLS]
-        return f"{min(y):.1f}-{max(y):.1f}"
+    def each(model: str, fmt: str) -> str:
+        return " / ".join(
+            f"{rec[f'{label} {model}']['_yardsticks']:{fmt}}" for label, _, _ in COST_ROLLS
+        )
 
     return (
-        f"A layered reading costs {span('layered')} yardsticks on these rolls, a "
-        f"plane-strain one {span('2d')} ({_stamp('layered_cost')})"
+        f"A layered reading (mu 0.3) costs {each('layered', '.1f')} yardsticks on "
+        + " / ".join(label for label, _, _ in COST_ROLLS)
+        + f", a plane-strain one {each('2d', '.2f')} ({_stamp('layered_cost')})"
     )
 
 
