@@ -503,10 +503,17 @@ def _refine_measure(run: Run) -> dict[str, Any]:
     opts = Contact3DOptions() if name == "default" else t._refined(Contact3DOptions(), name)
     res = t._rho_meter_pet2(opts)
     d = np.asarray(REF_FRACTIONS) * 2.1e-3
-    return {
+    out: dict[str, Any] = {
         "force_N": [float(x) for x in np.interp(d, res.delta, res.force)],
         "_dof": float(res.n_dof),
     }
+    if name == "default":  # how far E_r moves from the first increment's K to the last
+        web = records.test_module("contact/test_real_profiles.py").real_roll("pet2-26.7N")[0]
+        sr = res.sigma_r_history
+        first, last = (web.E_r(res.sigma_r_pre + sr[k]) for k in (1, -1))
+        loaded = np.abs(sr[-1]) >= 0.1 * np.abs(sr[-1]).max()
+        out["er_growth_first_to_last"] = float(np.median(last[loaded] / first[loaded]))
+    return out
 
 
 def refinement3d() -> str:
@@ -530,6 +537,17 @@ def refinement3d() -> str:
     lines.append("")
     lines.append(f"The default curve: {cpu['default']:.0f} CPU s; {_stamp('refine3d')}.")
     return "\n".join(lines)
+
+
+def er_growth3d() -> str:
+    """E_r's growth under the head from the first increment to the last (inline; record
+    refine3d's default run)."""
+    g = records.results("contact_checks.refine3d")["default"]["er_growth_first_to_last"]
+    return (
+        f"E_r under the head grows {g:.0f}-fold from the first increment to the last (PET2 "
+        "26.7 N to 2.1 mm, the median over the elements carrying at least a tenth of the "
+        "peak contact stress; record contact_checks.refine3d)"
+    )
 
 
 def refinement_bounds() -> str:
@@ -671,6 +689,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "admm_passes": admm_passes,
     "refinement3d": refinement3d,
     "refinement_bounds": refinement_bounds,
+    "er_growth3d": er_growth3d,
     "layered_cost": layered_cost,
 }
 
