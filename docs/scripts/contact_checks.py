@@ -342,24 +342,19 @@ def softens2d() -> str:
 
 
 def onset2d() -> str:
-    """The slip onset of the three-sheet strip (test_layered_plates.py's ``stack``; the
-    test's steps inline there, repeated here) (inline)."""
+    """The slip onset of the three-sheet strip (test_layered_plates.py's ``slip_onset``)
+    (inline)."""
     import numpy as np
 
-    t = records.test_module("contact/test_layered_plates.py")
-    st: list[Any] = []
-    stuck = t.stack(1e4, sheets=3, state=st)
-    q = float(np.max(np.abs(st[0].shear) / st[0].pressure))
-    high: list[Any] = []
-    f_high = t.stack(1.5 * q, sheets=3, state=high)
-    low: list[Any] = []
-    f_low = t.stack(q / 3, sheets=3, state=low)
-    n_high, n_low = int(np.sum(high[0].slip > 0)), int(np.sum(low[0].slip > 0))
+    r = records.test_module("contact/test_layered_plates.py").slip_onset()
+    stuck = r["stuck"][0]
+    (f_high, high), (f_low, low) = r["high"], r["low"]
+    n_high, n_low = int(np.sum(high.slip > 0)), int(np.sum(low.slip > 0))
     d = abs(f_high / stuck - 1)
     same = "equal to the stuck force" if d == 0 else f"the stuck force to {_sci(d)}"
     return (
-        f"q = {q:.3g}; at 1.5 q {n_high} pairs slip, {same}; at q/3 {n_low} pairs slip, "
-        f"{f_low / stuck:.3f} x stuck"
+        f"q = {r['q']:.3g}; at 1.5 q {n_high} pairs slip, {same}; at q/3 {n_low} pairs "
+        f"slip, {f_low / stuck:.3f} x stuck"
     )
 
 

@@ -27,6 +27,7 @@ where one plate nine sheets thick would give 1. (With a free bottom face the rat
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -112,20 +113,37 @@ def test_frictionless_sheets_bend_as_separate_plates(stiffness: tuple[float, flo
     assert stuck / free > 3.5
 
 
+def slip_onset() -> dict[str, Any]:
+    """The three-sheet strip stuck (mu 1e4), at mu = 1.5 q and at q / 3, q the stuck
+    solution's largest |tau| / P: the forces and the states (docs/scripts/contact_checks.py
+    shows them)."""
+    st: list[LayeredState] = []
+    stuck = stack(1e4, sheets=3, state=st)
+    q = float(np.max(np.abs(st[0].shear) / st[0].pressure))
+    high: list[LayeredState] = []
+    low: list[LayeredState] = []
+    return {
+        "q": q,
+        "stuck": (stuck, st[0]),
+        "high": (stack(1.5 * q, sheets=3, state=high), high[0]),
+        "low": (stack(q / 3, sheets=3, state=low), low[0]),
+    }
+
+
 def test_slip_starts_where_the_stuck_shear_reaches_mu_p() -> None:
     # a derived limit of the partial-slip solution (onset, as Cattaneo-Mindlin's): a
     # three-sheet strip (two interfaces) under the head. The stuck solution gives the
     # largest ratio q = |tau| / P over the interfaces; with mu = 1.5 q nothing may slip
     # and the force is the stuck one (to the stick passes' tolerance, 1e-4 relative); with
     # mu = q / 3 the strip must slip somewhere and be softer than stuck
-    st: list[LayeredState] = []
-    stuck = stack(1e4, sheets=3, state=st)
-    assert np.all(st[0].slip == 0)
-    q = float(np.max(np.abs(st[0].shear) / st[0].pressure))
+    r = slip_onset()
+    stuck, st = r["stuck"]
+    assert np.all(st.slip == 0)
+    q = r["q"]
     assert math.isfinite(q) and q > 0
-    high: list[LayeredState] = []
-    assert stack(1.5 * q, sheets=3, state=high) == pytest.approx(stuck, rel=1e-4)
-    assert np.all(high[0].slip == 0)
-    low: list[LayeredState] = []
-    assert stack(q / 3, sheets=3, state=low) < stuck * (1 - 1e-3)
-    assert np.any(low[0].slip > 0)
+    f_high, high = r["high"]
+    assert f_high == pytest.approx(stuck, rel=1e-4)
+    assert np.all(high.slip == 0)
+    f_low, low = r["low"]
+    assert f_low < stuck * (1 - 1e-3)
+    assert np.any(low.slip > 0)
