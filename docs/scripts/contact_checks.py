@@ -1,16 +1,18 @@
-"""Generators of the checks in docs/contact.md's later sections: the 3D model's refinement,
-the layered roll in 3D (its verification table), the other explanations' stiffening factor
-(docs/scripts/regenerate.py runs them).
+"""Generators of the checks in docs/contact.md's later sections (the 3D model's
+verification, refinement and linear solver; the layered roll's verification and cost; the
+other explanations; the layered roll in 3D) (docs/scripts/regenerate.py runs them).
 
-The checks are the tests' own problems (tests/contact/test_layered3d.py's coarse PET1 roll
-and nine-sheet slab, test_layered.py's 2D refinement, test_contact3d.py's Rho-meter on PET2
-26.7 N), loaded with ``records.test_module``. Live (cheap, about 30 CPU s in all): the
-layered-3D stick and plate checks, the default shells, the 2D comparison, two plane-strain
-pipeline runs. Measured records (docs/scripts/records.py, ``MEASUREMENTS``):
-``contact_checks.layers3d``, the layers-per-shell refinement in 3D (about 70 CPU s),
-``contact_checks.refine3d``, the 3D mesh refinement of the slow tests (a 3D solve of
-20-45 CPU s per refinement), and ``contact_checks.layered_cost``, the layered and
-plane-strain runs of benchmarks/bench_layered.py in yardsticks (about 1.5 CPU min).
+The checks are the tests' own problems, loaded with ``records.test_module``:
+tests/contact/test_contact3d.py (moduli, element, mass, frozen modulus, the Rho-meter on
+PET2 26.7 N), test_layered.py and test_layered_plates.py (the 2D layered rows),
+test_layered3d.py (the coarse PET1 roll and the nine-sheet slab). Live (about 30 CPU s in
+all): those checks, the default shells, two plane-strain pipeline runs, the stored 3D
+references' solver statistics. Measured records (docs/scripts/records.py,
+``MEASUREMENTS``): ``contact_checks.layers3d``, the layers-per-shell refinement in 3D
+(about 70 CPU s), ``contact_checks.refine3d``, the 3D mesh refinement of the slow tests
+(a 3D solve of 20-45 CPU s per refinement), and ``contact_checks.layered_cost``, the
+layered and plane-strain runs of benchmarks/bench_layered.py in yardsticks (about 1.5 CPU
+min).
 """
 
 from __future__ import annotations
