@@ -428,6 +428,23 @@ def mass3d() -> str:
     return "equal to the last bit" if err == 0 else f"relative difference {_sci(err)}"
 
 
+def slip_emulation3d() -> str:
+    """The reduced-shear slip on the test's sphere: no slip at mu 1e9, softer at 0.3
+    (inline)."""
+    import numpy as np
+
+    plain, sticky, slipping = _contact3d_tests().reduced_shear_runs()
+    d = float(np.max(np.abs(sticky.force[1:] / plain.force[1:] - 1)))
+    same = "to the last bit" if d == 0 else f"to {_sci(d)}"
+    n = slipping.stats["slipped_elements"]
+    return (
+        f"with a friction so large that nothing slips the curve equals the no-slip curve "
+        f"{same}; with mu = 0.3 {n} elements slip and the force at "
+        f"{1e3 * plain.delta[-1]:.1f} mm is {slipping.force[-1] / plain.force[-1]:.2f} x "
+        "the no-slip one"
+    )
+
+
 def frozen3d() -> str:
     """E_r frozen against updated, and the frozen run's factorisations (inline)."""
     up, frozen = _contact3d_tests().updated_and_frozen()
@@ -668,6 +685,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "null_space3d": null_space3d,
     "mass3d": mass3d,
     "frozen3d": frozen3d,
+    "slip_emulation3d": slip_emulation3d,
     "solves_per_factorisation": solves_per_factorisation,
     "anisotropy3d": anisotropy3d,
     "uncut3d": uncut3d,
