@@ -1149,6 +1149,36 @@ def text3d_all() -> str:
     return textwrap.fill(text, width=95, break_long_words=False, break_on_hyphens=False)
 
 
+def verdict() -> str:
+    """docs/contact.md's bullet on the layered rolls and the default (every claim from the
+    records)."""
+    lo, hi = _pile_pair()
+    pet2 = [r for r in (*PET2, lo)]
+    below = [_pct(_rho(f"{r}/layered_mu0.3"), _rho(f"{r}/2d")) for r in pet2]
+    q2 = [_ratio(m) for m in LAYERED]
+    rows = _rolls3d()
+    above2 = sum(_rho3d(r, LAYERED_3D) > _rho3d(r, "2d") for _, r in rows)
+    hi3 = hi.split("@")[0] if "@8.89" in hi else hi
+    q3 = _rho3d(lo, LAYERED_3D) / _rho3d(hi3, LAYERED_3D)
+    tall, low = _ladder("pet2-53.4N", None), _ladder("pet2-53.4N", 0.02)
+    p1 = _ladder("pet1-26.7N", None)
+    text = (
+        '- Interlayer friction (the layered rolls, docs/studies.md "Layered") does not change '
+        f"the choice: in plane strain it reads the PET2 rolls {_span([-b for b in below], '.0f')} "
+        f"% below `2d` (mu 0.3) but keeps the pile-height ratio ({_span(q2, '.2f')} over mu "
+        f"0.1-0.5; {low[-1][1] / tall[-1][1]:.2f} with the sheets all the way down); in 3D "
+        f"(`layered-3d`, mu 0.3) it reads above `2d` on {above2} of {len(rows)} rolls, pile "
+        f"ratio {q3:.2f}; with the sheets all the way down (a {p1[-1][0]:g} mm zone) PET1 26.7 N "
+        f"reads {p1[-1][1]:.1f} against `2d`'s {_rho('pet1-26.7N/2d'):.1f}, far from the "
+        "paper's PET1 agreement."
+    )
+    import textwrap
+
+    return textwrap.fill(
+        text, width=95, subsequent_indent="  ", break_long_words=False, break_on_hyphens=False
+    )
+
+
 def text3d() -> str:
     """The paragraph under the 3D table: pile ratio, level, pressure under the head."""
     tall, low = (_run_id("pet2-53.4N", h, "")[:-1] for h in (None, 0.02))
@@ -1215,6 +1245,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "zone": zone,
     "zone_ladder": zone_ladder,
     "zone_converged": zone_converged,
+    "verdict": verdict,
     "zone_provenance": zone_provenance,
     "fit": fit,
     "provenance3d": provenance3d,
