@@ -1168,7 +1168,8 @@ def verdict() -> str:
         '- Interlayer friction (the layered rolls, docs/studies.md "Layered") '
         + ("could change" if pile_ok and pet1_ok else "does not change")
         + " the choice: in plane strain it reads the PET2 rolls "
-        f"{_span([-b for b in below], '.0f')} % below `2d` (mu 0.3) but keeps the pile-height ratio ({_span(q2, '.2f')} over mu "
+        + f"{_span([-b for b in below], '.0f')} % below `2d` (mu 0.3) but keeps the "
+        + f"pile-height ratio ({_span(q2, '.2f')} over mu "
         f"0.1-0.5; {low[-1][1] / tall[-1][1]:.2f} with the sheets all the way down); in 3D "
         f"(`layered-3d`, mu 0.3) it reads above `2d` on {above2} of {len(rows)} rolls, pile "
         f"ratio {q3:.2f}; with the sheets all the way down (a {p1[-1][0]:g} mm zone) PET1 26.7 N "
