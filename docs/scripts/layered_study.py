@@ -136,6 +136,19 @@ def zone_runs() -> list[Run]:
         )
         for case, h, depths in ZONE_LADDER
         for d in depths
+    ] + [
+        # the deepest PET1 zone stuck (mu 1e4): the continuum on the layered mesh, so that
+        # a fall of the ladder is the sheets' slip, not the zone's mesh
+        Run(
+            f"zone/pet1-26.7N/{ZONE_LADDER[-1][2][-1]:g}mm_stuck",
+            "pet1-26.7N",
+            (
+                "contact.no_update=false",
+                "contact.model='layered'",
+                "contact.friction=10000.0",
+                f"contact.layered_depth='{ZONE_LADDER[-1][2][-1]:g} mm'",
+            ),
+        )
     ]
 
 
@@ -794,6 +807,16 @@ def zone_ladder() -> str:
     return "\n".join(lines)
 
 
+def zone_provenance() -> str:
+    """How the zone ladder was measured (inline)."""
+    rec = records.load("layered_study.zone")
+    cpu = rec["cpu_s"]
+    return (
+        f"{_measured('zone')}, {min(cpu.values()):.0f}-{max(cpu.values()):.0f} CPU s a run "
+        f"at load {rec['load_1min']:g}"
+    )
+
+
 def zone_converged() -> str:
     """The bullet on the zone ladder: where the reading converges, and the pile ratio of
     the rolls layered all the way down (every claim computed)."""
@@ -809,6 +832,7 @@ def zone_converged() -> str:
     q_deep = low[-1][1] / tall[-1][1]
     q_default = default_l / default_t
     q_2d = _rho(f"{_pile_pair()[0]}/2d") / _rho("pet2-53.4N/2d")
+    stuck = _by("zone")[f"zone/pet1-26.7N/{p1[-1][0]:g}mm_stuck"]
     text = (
         "- **The zone of sheets all the way down.** Deepening the zone toward the whole pile "
         f"(a continuum of at least a tenth of the wound thickness stays below it): PET2 53.4 N "
@@ -818,7 +842,11 @@ def zone_converged() -> str:
         f"{_pct(r_b, _rho('pet2-53.4N/2d')):+.0f} % against `2d`; at 2 cm "
         f"{' -> '.join(f'{r:.1f}' for _, r in low)} ({low[-1][0]:g} mm: the whole pile but "
         f"its inner tenth); PET1 26.7 N {' -> '.join(f'{r:.1f}' for _, r in p1)} at "
-        f"{' / '.join(f'{d:g}' for d, _ in p1)} mm. With both PET2 rolls layered this deep "
+        f"{' / '.join(f'{d:g}' for d, _ in p1)} mm"
+        + (", not converged" if abs(_pct(p1[-1][1], p1[-2][1])) > 5 else "")
+        + f" (stuck, mu 1e4, the {p1[-1][0]:g} mm zone reads {stuck:.2f} against `2d`'s "
+        f"{_rho('pet1-26.7N/2d'):.2f}: the fall is the sheets' slip, not the zone's mesh). "
+        "With both PET2 rolls layered this deep "
         f"the pile-height ratio is {q_deep:.2f} (default zone {q_default:.2f}, 2d {q_2d:.2f}; "
         "the paper's tests about 1)."
     )
@@ -852,7 +880,7 @@ def zone() -> str:
             if lowers
             else ""
         )
-        + f"; the pile-height ratio moves {'little' if little else 'with it'} "
+        + f"; at these depths the pile-height ratio moves {'little' if little else 'with it'} "
         f"({q[0]:.2f} at the default, {q[1]:.2f} at {d1:g} mm, {q[2]:.2f} at {d2:g} mm; PET2 "
         f"53.4 N reads {p2_deep:.1f} at {d2:g} mm)."
     )
@@ -1121,6 +1149,40 @@ def text3d_all() -> str:
     return textwrap.fill(text, width=95, break_long_words=False, break_on_hyphens=False)
 
 
+def verdict() -> str:
+    """docs/contact.md's bullet on the layered rolls and the default (every claim from the
+    records)."""
+    lo, hi = _pile_pair()
+    pet2 = [r for r in (*PET2, lo)]
+    below = [_pct(_rho(f"{r}/layered_mu0.3"), _rho(f"{r}/2d")) for r in pet2]
+    q2 = [_ratio(m) for m in LAYERED]
+    rows = _rolls3d()
+    above2 = sum(_rho3d(r, LAYERED_3D) > _rho3d(r, "2d") for _, r in rows)
+    hi3 = hi.split("@")[0] if "@8.89" in hi else hi
+    q3 = _rho3d(lo, LAYERED_3D) / _rho3d(hi3, LAYERED_3D)
+    tall, low = _ladder("pet2-53.4N", None), _ladder("pet2-53.4N", 0.02)
+    p1 = _ladder("pet1-26.7N", None)
+    pile_ok = min(*q2, q3, low[-1][1] / tall[-1][1]) < 1 + NEARLY
+    pet1_ok = abs(_pct(p1[-1][1], _rho("pet1-26.7N/2d"))) < 10
+    text = (
+        '- Interlayer friction (the layered rolls, docs/studies.md "Layered") '
+        + ("could change" if pile_ok and pet1_ok else "does not change")
+        + " the choice: in plane strain it reads the PET2 rolls "
+        + f"{_span([-b for b in below], '.0f')} % below `2d` (mu 0.3) but keeps the "
+        + f"pile-height ratio ({_span(q2, '.2f')} over mu "
+        f"0.1-0.5; {low[-1][1] / tall[-1][1]:.2f} with the sheets all the way down); in 3D "
+        f"(`layered-3d`, mu 0.3) it reads above `2d` on {above2} of {len(rows)} rolls, pile "
+        f"ratio {q3:.2f}; with the sheets all the way down (a {p1[-1][0]:g} mm zone) PET1 26.7 N "
+        f"reads {p1[-1][1]:.1f} against `2d`'s {_rho('pet1-26.7N/2d'):.1f}"
+        + (", far from the paper's PET1 agreement." if not pet1_ok else ".")
+    )
+    import textwrap
+
+    return textwrap.fill(
+        text, width=95, subsequent_indent="  ", break_long_words=False, break_on_hyphens=False
+    )
+
+
 def text3d() -> str:
     """The paragraph under the 3D table: pile ratio, level, pressure under the head."""
     tall, low = (_run_id("pet2-53.4N", h, "")[:-1] for h in (None, 0.02))
@@ -1187,6 +1249,8 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "zone": zone,
     "zone_ladder": zone_ladder,
     "zone_converged": zone_converged,
+    "verdict": verdict,
+    "zone_provenance": zone_provenance,
     "fit": fit,
     "provenance3d": provenance3d,
     "table3d": table3d,
