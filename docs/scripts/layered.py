@@ -269,31 +269,6 @@ def shear08() -> str:
     )
 
 
-#: zone depths of the zone study [m] (the default, 1.0 a_geo, is its own column)
-ZONES = (4e-3, 8e-3, 12e-3)
-ZONE_ROLLS = (("pet1-26.7N", "PET1 26.7 N"), ("pet2-53.4N", "PET2 53.4 N, H 8.89 cm"))
-
-
-@cache
-def _zone_rho(case: str, zone: float | None) -> float:
-    over = ["contact.model='layered'", "contact.friction=0.3"]
-    if zone is not None:
-        over.append(f"contact.layered_depth='{1e3 * zone:g} mm'")
-    return _rho(case, *over)
-
-
-def zone() -> str:
-    """Rho FD (mu 0.3) against the depth of the layered zone, with the default beside."""
-    lines = [
-        "| zone depth [mm] | " + " | ".join(f"{1e3 * z:g}" for z in ZONES) + " | default |",
-        "|---|" + "---|" * (len(ZONES) + 1),
-    ]
-    for case, label in ZONE_ROLLS:
-        cells = [f"{_zone_rho(case, z):.2f}" for z in (*ZONES, None)]
-        lines.append(f"| {label} | " + " | ".join(cells) + " |")
-    return "\n".join(lines)
-
-
 def pile_ratios() -> str:
     """The pile-height ratios (2 / 8.89 cm) of the layered roll, frozen shear and a lower
     G/E_r, for the bullet under "Which model reads a roll" (inline)."""
@@ -326,7 +301,6 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "readings": readings,
     "effects": effects,
     "shear08": shear08,
-    "zone": zone,
     "pile_ratios": pile_ratios,
 }
 

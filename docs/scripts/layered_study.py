@@ -817,6 +817,22 @@ def zone_provenance() -> str:
     )
 
 
+def zone_summary() -> str:
+    """docs/contact.md's sentence on the ladder (inline)."""
+    tall, p1 = _ladder("pet2-53.4N", None), _ladder("pet1-26.7N", None)
+    (d_a, r_a), (d_b, r_b) = tall[-2], tall[-1]
+    cpu = records.load("layered_study.zone")["cpu_s"]
+    deep = cpu[f"zone/pet2-53.4N/{d_b:g}mm"]
+    shallow = cpu[f"zone/pet2-53.4N/{tall[0][0]:g}mm"]
+    return (
+        f"PET2 53.4 N reads {r_b:.2f} at a {d_b:g} mm zone ({abs(_pct(r_b, r_a)):.1f} % from "
+        f"{d_a:g} mm; {_pct(r_b, _rho('pet2-53.4N/layered_mu0.3')):+.0f} % against the default "
+        f"zone), PET1 26.7 N {p1[-1][1]:.2f} ({_pct(p1[-1][1], p1[-2][1]):+.0f} % from "
+        f"{p1[-2][0]:g} mm); the {d_b:g} mm run cost {deep:.0f} CPU s against {shallow:.0f} at "
+        f"{tall[0][0]:g} mm ({_measured('zone')})"
+    )
+
+
 def zone_converged() -> str:
     """The bullet on the zone ladder: where the reading converges, and the pile ratio of
     the rolls layered all the way down (every claim computed)."""
@@ -1249,6 +1265,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "zone": zone,
     "zone_ladder": zone_ladder,
     "zone_converged": zone_converged,
+    "zone_summary": zone_summary,
     "verdict": verdict,
     "zone_provenance": zone_provenance,
     "fit": fit,
