@@ -640,6 +640,38 @@ def layered_cost() -> str:
     )
 
 
+#: Load increments of the layered 3D roll's step refinement (test_layered3d.py step_ladder).
+STEPS3D = (4, 8, 16)
+
+
+def _steps3d_runs() -> list[Run]:
+    return [Run(f"{n} increments", NOMINAL, (), (("n_steps", n),)) for n in STEPS3D]
+
+
+def _steps3d_measure(run: Run) -> dict[str, Any]:
+    ((cont, lay),) = _layered3d().step_ladder((int(run.param("n_steps")),))
+    return {"continuum_force_N": cont, "layered_force_N": lay}
+
+
+def steps3d_row() -> str:
+    """The load-step refinement row's measured cell (inline; record steps3d)."""
+    rec = records.results("contact_checks.steps3d")
+    rows = [rec[f"{n} increments"] for n in STEPS3D]
+    c = [r["continuum_force_N"] for r in rows]
+    lay = [r["layered_force_N"] for r in rows]
+
+    def order(x: list[float]) -> float:
+        return math.log2((x[1] - x[0]) / (x[2] - x[1]))
+
+    return (
+        f"continuum {' / '.join(f'{x:.1f}' for x in c)} N, layered "
+        f"{' / '.join(f'{x:.1f}' for x in lay)} N: observed order {order(c):.2f} and "
+        f"{order(lay):.2f}; layered / continuum "
+        f"{' / '.join(f'{b / a:.3f}' for a, b in zip(c, lay, strict=True))} "
+        f"({_stamp('steps3d')})"
+    )
+
+
 MEASUREMENTS: dict[str, Measurement] = {
     "layers3d": Measurement(
         about="the layered 3D roll's layers-per-shell refinement (test_layered3d.py's coarse "
@@ -653,6 +685,17 @@ MEASUREMENTS: dict[str, Measurement] = {
         "rounding, far below the 6-14 % the row reports. The pass count is stored, not "
         "compared (rounding can move it by a pass)",
         cost="12 / 18 / 39 CPU s for 4 / 2 / 1 layers per shell",
+    ),
+    "steps3d": Measurement(
+        about="the layered 3D roll's load-step refinement (test_layered3d.py's coarse PET1 "
+        "roll, cylinder head, 4 sheets a shell in a 1.2 mm zone, mu 0.3, and its continuum): "
+        "4, 8, 16 increments",
+        runs=_steps3d_runs,
+        measure=_steps3d_measure,
+        spot=("4 increments",),
+        rtol=1e-3,
+        reason="deterministic solves; the ADMM tolerance moves a force by ~1e-5 (as layers3d)",
+        cost="about 20 / 35 / 70 CPU s for 4 / 8 / 16 increments (both rolls)",
     ),
     "layered_cost": Measurement(
         about="the whole `woundroll run` with the layered model (mu 0.3) and with plane "
@@ -681,6 +724,7 @@ MEASUREMENTS: dict[str, Measurement] = {
 
 
 BLOCKS: dict[str, Callable[[], str]] = {
+    "steps3d_row": steps3d_row,
     "moduli3d": moduli3d,
     "null_space3d": null_space3d,
     "mass3d": mass3d,

@@ -7,6 +7,8 @@ Coarse meshes keep the default suite fast; each tolerance says why it is what it
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -225,6 +227,40 @@ def test_layers_per_shell_refinement_converges() -> None:
     print("layers per shell 4, 2, 1:", f)
     assert f[0] > f[1] > f[2]
     assert abs(f[2] - f[1]) < abs(f[1] - f[0])
+
+
+def step_ladder(steps: tuple[int, ...] = (4, 8, 16)) -> list[tuple[float, float]]:
+    """(continuum, mu 0.3) force [N] of the coarse PET1 roll under the Rho-meter-sized
+    cylinder (4 sheets a shell, 1.2 mm zone) at each number of load increments."""
+    head = Head("cylinder", 0.00635, 0.0254)
+    kw = {"layers_per_shell": 4, "layered_depth": 1.2e-3}
+    return [
+        (
+            pet_roll(0.3, head, interfaces=False, n_steps=n, **kw),  # type: ignore[arg-type]
+            pet_roll(0.3, head, n_steps=n, **kw),  # type: ignore[arg-type]
+        )
+        for n in steps
+    ]
+
+
+@pytest.mark.slow
+def test_load_step_refinement_converges() -> None:
+    """Halving the load increments (4, 8, 16) on the coarse PET1 roll. Both the continuum
+    (the hypoelastic E_r at a predicted mid-step stress) and the layered roll (plus the
+    explicit Coulomb bound per increment) converge at about first order or better: measured
+    (2026-11-26) continuum 277.2 / 326.3 / 347.4 N, layered 248.0 / 296.0 / 317.7 N,
+    observed orders 1.2 and 1.1 (32 increments: 353.9 and 324.7, order 1.7 and 1.6). What
+    the layered study compares, the layered roll against the continuum on the same steps,
+    moves far less: 0.895 / 0.907 / 0.914. Bounds: monotone, an observed order above 0.8,
+    the ratio's last change under 1.5 %."""
+    f = step_ladder()
+    for k in (0, 1):
+        x = [row[k] for row in f]
+        assert x[0] < x[1] < x[2]
+        assert math.log2((x[1] - x[0]) / (x[2] - x[1])) > 0.8
+    ratio = [lay / cont for cont, lay in f]
+    assert all(r < 1 for r in ratio)
+    assert abs(ratio[2] / ratio[1] - 1) < 0.015
 
 
 # ---------------------------------------------------------------------------- bad input
