@@ -14,7 +14,6 @@ Hertz sphere and plane-strain slab, and one 3D reading with the reduced-shear sl
 
 from __future__ import annotations
 
-import importlib.util
 import json
 from collections.abc import Callable
 from functools import cache
@@ -38,15 +37,11 @@ ROLLS = (
 )
 
 
-@cache
 def _test_module(name: str) -> Any:
     """tests/contact/<name>.py as a module: the page shows the tests' own problems."""
-    path = ROOT / "tests" / "contact" / f"{name}.py"
-    spec = importlib.util.spec_from_file_location(f"docs3d_{name}", path)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    import records
+
+    return records.test_module(f"contact/{name}.py")
 
 
 def _head(t: Any) -> str:
