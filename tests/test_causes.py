@@ -159,11 +159,14 @@ def test_posterior_sds_scaled_by_the_residuals():
     assert ok.sd_scale < 1.6
 
 
-def full_profile_round_trip(tmp_path, seed=0, full_level=3):  # noqa: ANN001, ANN201
+def full_profile_round_trip(tmp_path, seed=0, full_level=3, cache=None, verify=True):  # noqa: ANN001, ANN201
     """Readings made by the full profile model of the 24 in PET2 roll with two bands at 110 %
     tension (noise draw ``seed``), fitted by the reduced model with ``full_level`` full-model
     level corrections: ``(fit, model, true band coefficients)`` (the test below;
-    docs/scripts/diagnosis.py renders the same numbers)."""
+    docs/scripts/diagnosis.py's record of 30 noise draws). ``cache`` (a dict, kept between
+    calls) shares the truth's full profile run and the fit's forward curve and starting
+    Jacobian between draws; those are always draw 0's (a draw other than 0 first fits draw 0
+    into an empty cache), so that a draw's numbers do not depend on the draws before it."""
     case = load_case("pet2-53.4N", ["web.width='24 in'", "profile.workers=1"])
     m = small_model()
     c = np.zeros(6)
@@ -186,13 +189,23 @@ def full_profile_round_trip(tmp_path, seed=0, full_level=3):  # noqa: ANN001, AN
             f"winding.tension='{1.1 * t} Pa'",
         ],
     )
-    prof = run(truth_case).profile
     x = np.linspace(1, 23, 12) * 0.0254
-    truth = np.interp(x, prof.z, prof.rho)
-    rng = np.random.default_rng(seed)
-    xs = np.repeat(x, 3)
-    r = readings_from_arrays(xs, np.repeat(truth, 3) + 0.4 * rng.standard_normal(xs.size))
-    fit = fit_causes(case, r, n_bands=6, full_level=full_level)
+    if cache is not None and "truth" in cache:
+        truth = cache["truth"]
+    else:
+        prof = run(truth_case).profile
+        truth = np.interp(x, prof.z, prof.rho)
+        if cache is not None:
+            cache["truth"] = truth
+
+    def draw(s):  # noqa: ANN001, ANN202
+        rng = np.random.default_rng(s)
+        xs = np.repeat(x, 3)
+        return readings_from_arrays(xs, np.repeat(truth, 3) + 0.4 * rng.standard_normal(xs.size))
+
+    if cache is not None and seed != 0 and "curve" not in cache:
+        fit_causes(case, draw(0), n_bands=6, verify=False, cache=cache)
+    fit = fit_causes(case, draw(seed), n_bands=6, full_level=full_level, verify=verify, cache=cache)
     return fit, m, c
 
 
