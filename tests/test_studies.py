@@ -194,7 +194,15 @@ def test_pile_height_study_is_consistent(piles):
 
 
 def test_registry_rejects_unknown_name():
-    assert set(STUDIES) == {"tension", "pile-height", "slip", "all", "dynamic", "layered"}
+    assert set(STUDIES) == {
+        "tension",
+        "pile-height",
+        "slip",
+        "all",
+        "dynamic",
+        "layered",
+        "layered-3d",
+    }
     with pytest.raises(InputError) as exc:
         run_study("hardness")
     assert exc.value.field == "study"

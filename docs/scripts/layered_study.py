@@ -212,26 +212,27 @@ def measure_check(run: Run) -> dict[str, Any]:
 
 # ------------------------------------------------------------- the layered roll in 3D
 
-#: The coarse 3D mesh of both 3D models (h-layered3d's runs, docs/contact.md "The layered
-#: roll in 3D").
-COARSE_3D = (
-    "contact.options3d.radial_growth=1.6",
-    "contact.options3d.tangential_growth=1.6",
-    "contact.options3d.axial_growth=1.6",
-    "contact.options3d.n_fine=5",
-    "contact.options3d.n_steps=8",
-)
-#: The 3D table's rolls: (case, pile height [m] or None for the case's own).
+#: The 3D table's first rolls (the pressure under the head, finer shells): (case, pile height
+#: [m] or None for the case's own).
 ROLLS_3D: tuple[tuple[str, float | None], ...] = (
     ("pet1-26.7N", None),
     ("pet1-26.7N", 0.02),
     ("pet2-53.4N", None),
     ("pet2-53.4N", 0.02),
 )
-MODELS_3D: dict[str, tuple[str, ...]] = {
-    "3d": ("contact.model='3d'", *COARSE_3D),
-    "layered-3d": ("contact.model='layered-3d'", "contact.friction=0.3", *COARSE_3D),
-}
+
+
+def _models_3d() -> dict[str, tuple[str, ...]]:
+    """The 3D columns of `woundroll study layered-3d` (its coarse mesh, one definition:
+    ``woundroll.studies.layered.COARSE_3D``): ``{name: overrides}``."""
+    from woundroll.studies.layered import study_models
+
+    return {n: o for n, o in study_models(explanations=(), three_d=True) if "3d" in n}
+
+
+#: The friction of the 3D table's layered-3d column (the others: the mu sweep's rows).
+MU_3D = 0.3
+LAYERED_3D = f"layered-3d_mu{MU_3D:g}"
 #: Sheets a shell of the finer layered-3d runs (PET2 only: 4x the rings' cost).
 LPS_FINE = 2
 #: The depth both 3D models are pressed to for the pressure under the head [m], and where
@@ -254,8 +255,12 @@ def _wound_to(case: str, h: float | None) -> tuple[str, ...]:
 
 
 def roll3d_runs() -> list[Run]:
-    """PET1's 2 cm pile in 2d and layered (the other rolls' are the table's), then each
-    roll in 3d and layered-3d on the coarse mesh (mu 0.3)."""
+    """PET1's 2 cm pile in 2d and layered (the other rolls' are the table's); the 3d and
+    layered-3d (mu :data:`MU_3D`) runs of `woundroll study layered-3d` (its own list, the
+    8.89 cm pile left out: it is the Table 2 roll) and of the uniform PET3 roll; the mu
+    sweep (layered-3d at the study's other frictions) on PET2 53.4 N at both pile heights."""
+    from woundroll.studies.layered import study_jobs
+
     runs = [
         Run(
             _run_id("pet1-26.7N", 0.02, name),
@@ -267,8 +272,23 @@ def roll3d_runs() -> list[Run]:
             ("layered_mu0.3", ("contact.model='layered'", "contact.friction=0.3")),
         )
     ]
-    for name, over in MODELS_3D.items():
-        runs += [Run(_run_id(c, h, name), c, (*_wound_to(c, h), *over)) for c, h in ROLLS_3D]
+    sweep = [_run_id(c, h, "")[:-1] for c, h in ROLLS_3D if c == "pet2-53.4N"]
+    for j in study_jobs(explanations=(), three_d=True):
+        roll = _run_id(j.case, j.pile_height_m, "")[:-1]
+        if "3d" not in j.model or roll == "pet2-53.4N@8.89cm":
+            continue
+        if j.model in ("3d", LAYERED_3D) or roll in sweep:
+            runs.append(Run(_run_id(j.case, j.pile_height_m, j.model), j.case, j.overrides))
+    runs += [
+        Run(
+            f"{PET3_ID}/{name}",
+            PET3,
+            ("contact.no_update=false", *over),
+            (("thickness_profile", None),),
+        )
+        for name, over in _models_3d().items()
+        if name in ("3d", LAYERED_3D)
+    ]
     return runs
 
 
@@ -279,7 +299,12 @@ def lps_runs() -> list[Run]:
         Run(
             _run_id(c, h, f"layered-3d_lps{LPS_FINE}"),
             c,
-            (*_wound_to(c, h), *MODELS_3D["layered-3d"], f"contact.layers_per_shell={LPS_FINE}"),
+            (
+                *_wound_to(c, h),
+                "contact.no_update=false",
+                *_models_3d()[LAYERED_3D],
+                f"contact.layers_per_shell={LPS_FINE}",
+            ),
         )
         for c, h in ROLLS_3D
         if c == "pet2-53.4N"
@@ -294,7 +319,7 @@ def head_runs() -> list[Run]:
             "pet2-53.4N",
             (*over, f"contact.depth_max='{1e3 * HEAD_DEPTH:g} mm'"),
         )
-        for name, over in MODELS_3D.items()
+        for name, over in (("3d", _models_3d()["3d"]), ("layered-3d", _models_3d()[LAYERED_3D]))
     ]
 
 
@@ -776,13 +801,24 @@ def _reading3d(roll: str, model: str) -> dict[str, Any]:
 
 
 def _rolls3d() -> list[tuple[str, str]]:
-    """(label, roll id) of the 3D table's rows."""
+    """(label, roll id) of the 3D table's rows: the study's rolls (Table 2, then the pile
+    series with its tallest pile the Table 2 roll), PET1's 2 cm pile, the uniform PET3."""
+    rows = []
+    for label, roll in _rolls():
+        if roll == _pile_pair()[1]:
+            roll = roll.split("@")[0]  # the tallest pile is the Table 2 roll (8.89 cm)
+        rows.append((label, roll))
+    rows.append((_label("pet1-26.7N"), _run_id("pet1-26.7N", 0.02, "")[:-1]))
+    rows.append(("PET3 uniform, 2.3 MPa", PET3_ID))
     out = []
-    for case, h in ROLLS_3D:
-        roll = _run_id(case, h, "")[:-1]
+    for label, roll in rows:
         cm = 100 * _reading3d(roll, "3d")["pile_height_m"]
-        out.append((f"{_label(case)}, H {cm:.3g} cm", roll))
+        out.append((f"{label}, H {cm:.3g} cm", roll))
     return out
+
+
+def _rho3d(roll: str, model: str) -> float:
+    return float(_reading3d(roll, model)["rho_fd"])
 
 
 def provenance3d() -> str:
@@ -797,18 +833,151 @@ def provenance3d() -> str:
 
 
 def table3d() -> str:
-    """Rho FD of the four rolls in 2d, layered, 3d and layered-3d (mu 0.3, coarse 3D)."""
-    lines = ["| roll | 2d | layered | 3d | layered-3d |", "|---|---|---|---|---|"]
+    """Rho FD of every roll in 2d, layered, 3d and layered-3d (mu :data:`MU_3D`, coarse 3D
+    mesh), layered-3d against 3d, and the pile ratio."""
+    models = ("2d", f"layered_mu{MU_3D:g}", "3d", LAYERED_3D)
+    lines = [
+        "| roll | 2d | layered | 3d | layered-3d | layered-3d / 3d |",
+        "|---|---|---|---|---|---|",
+    ]
     for label, roll in _rolls3d():
-        cells = [
-            f"{_reading3d(roll, m)['rho_fd']:.1f}"
-            for m in ("2d", "layered_mu0.3", "3d", "layered-3d")
-        ]
+        cells = [f"{_rho3d(roll, m):.1f}" for m in models]
         fine = _rec("lps3d").get(f"{roll}/layered-3d_lps{LPS_FINE}")
         if fine is not None:
             cells[-1] += f" ({LPS_FINE} layers a shell: {fine['rho_fd']:.1f})"
+        cells.append(f"{_pct(_rho3d(roll, LAYERED_3D), _rho3d(roll, '3d')):+.1f} %")
         lines.append(f"| {label} | " + " | ".join(cells) + " |")
+    lo, hi = (roll.split("@")[0] if "@8.89" in roll else roll for roll in _pile_pair())
+    lo_cm, hi_cm = _heights()
+    lines.append(
+        f"| PET2 pile ratio {lo_cm:.3g} / {hi_cm:.3g} cm | "
+        + " | ".join(f"{_rho3d(lo, m) / _rho3d(hi, m):.2f}" for m in models)
+        + " | |"
+    )
     return "\n".join(lines)
+
+
+def _frictions() -> tuple[float, ...]:
+    from woundroll.studies.layered import FRICTIONS
+
+    return FRICTIONS
+
+
+def mu3d() -> str:
+    """The mu sweep on PET2 53.4 N at both pile heights: layered and layered-3d."""
+    lo, hi = (roll.split("@")[0] if "@8.89" in roll else roll for roll in _pile_pair())
+    mus = _frictions()
+    lines = [
+        "| roll | "
+        + " | ".join(f"layered mu {m:g}" for m in mus)
+        + " | "
+        + " | ".join(f"layered-3d mu {m:g}" for m in mus)
+        + " |",
+        "|---|" + "---|" * (2 * len(mus)),
+    ]
+    label = dict(_rolls3d())
+    label = {v: k for k, v in label.items()}
+    for roll in (hi, lo):
+        cells = [f"{_rho3d(roll, f'layered_mu{m:g}'):.1f}" for m in mus]
+        cells += [f"{_rho3d(roll, f'layered-3d_mu{m:g}'):.1f}" for m in mus]
+        lines.append(f"| {label[roll]} | " + " | ".join(cells) + " |")
+    lo_cm, hi_cm = _heights()
+    cells = [
+        f"{_rho3d(lo, f'{k}_mu{m:g}') / _rho3d(hi, f'{k}_mu{m:g}'):.2f}"
+        for k in ("layered", "layered-3d")
+        for m in mus
+    ]
+    lines.append(f"| pile ratio {lo_cm:.3g} / {hi_cm:.3g} cm | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def cost3d() -> str:
+    """CPU time of the 3D table's runs (inline)."""
+    cpu = records.load("layered_study.roll3d")["cpu_s"]
+    d3 = [v for k, v in cpu.items() if k.endswith("/3d")]
+    l3 = [v for k, v in cpu.items() if "/layered-3d" in k]
+    return (
+        f"3d {min(d3):.0f}-{max(d3):.0f} CPU s a roll, layered-3d {min(l3):.0f}-{max(l3):.0f}"
+        f" (at load {records.load('layered_study.roll3d')['load_1min']:g})"
+    )
+
+
+def cost_ratio3d() -> str:
+    """CPU time of layered-3d against 3d on the same roll and mesh (inline)."""
+    cpu = records.load("layered_study.roll3d")["cpu_s"]
+    rolls = [k[: -len("/3d")] for k in cpu if k.endswith("/3d")]
+    x = [cpu[f"{r}/{LAYERED_3D}"] / cpu[f"{r}/3d"] for r in rolls if f"{r}/{LAYERED_3D}" in cpu]
+    return f"{_span(x, '.1f')}x over {len(x)} rolls ({_measured('roll3d')})"
+
+
+def head3d_table() -> str:
+    """The pressure under the head and the CMD spread of both 3D models (PET2 53.4 N
+    pressed :data:`HEAD_DEPTH`)."""
+    head = _rec("head3d")
+    depths = " / ".join(f"{1e3 * d:g}" for d in PRESSURE_DEPTHS)
+    where = " / ".join("the surface" if d == 0 else f"{1e3 * d:g} mm" for d in SPREAD_DEPTHS)
+    lines = [
+        f"| | force [N] | p at {depths} mm depth [MPa] | CMD {100 * SPREAD_LEVEL:g} % "
+        f"half-width at {where} deep [mm] |",
+        "|---|---|---|---|",
+    ]
+    for name, label in (("3d", "3d"), ("layered-3d", f"layered-3d (mu {MU_3D:g})")):
+        r = head[f"pet2-53.4N/{name}@{1e3 * HEAD_DEPTH:g}mm"]
+        p_ = " / ".join(f"{r[f'pressure_{k}_Pa'] / 1e6:.2f}" for k in range(len(PRESSURE_DEPTHS)))
+        w = " / ".join(
+            f"{1e3 * r[f'spread_half_width_{k}_m']:.1f}" for k in range(len(SPREAD_DEPTHS))
+        )
+        lines.append(f"| {label} | {r['force_N']:.1f} | {p_} | {w} |")
+    return "\n".join(lines)
+
+
+def text3d_all() -> str:
+    """The paragraph on the whole 3D table and the mu sweep: every claim computed."""
+    from woundroll.instruments.definitions import READING_RANGES
+
+    low, top = READING_RANGES["rho"]
+    rows = _rolls3d()
+    vs3 = [_pct(_rho3d(r, LAYERED_3D), _rho3d(r, "3d")) for _, r in rows]
+    vs2 = [_pct(_rho3d(r, LAYERED_3D), _rho3d(r, "2d")) for _, r in rows]
+    below3 = all(v < 0 for v in vs3)
+    above2 = sum(v > 0 for v in vs2)
+    lo, hi = (roll.split("@")[0] if "@8.89" in roll else roll for roll in _pile_pair())
+    series = [r for _, r in rows if r.startswith("pet2-53.4N@")] + [hi]
+    series = sorted(series, key=lambda r: _reading3d(r, "3d")["pile_height_m"])
+    falls = all(
+        _rho3d(a, LAYERED_3D) > _rho3d(b, LAYERED_3D)
+        for a, b in zip(series, series[1:], strict=False)
+    )
+    mus = _frictions()
+    q = {m: _rho3d(lo, f"layered-3d_mu{m:g}") / _rho3d(hi, f"layered-3d_mu{m:g}") for m in mus}
+    keeps = min(q.values()) > 1 + NEARLY
+    m0, m1 = mus[0], mus[-1]
+
+    def span_mu(kind: str, roll: str) -> float:
+        return _pct(_rho3d(roll, f"{kind}_mu{m0:g}"), _rho3d(roll, f"{kind}_mu{m1:g}"))
+
+    d3, d2 = span_mu("layered-3d", hi), span_mu("layered", hi)
+    p3 = {m: _rho3d(PET3_ID, m) for m in ("2d", f"layered_mu{MU_3D:g}", "3d", LAYERED_3D)}
+    on = p3[LAYERED_3D] <= top
+    text = (
+        f"Over the study's rolls, the layered roll in 3D (mu {MU_3D:g}, default shells) reads "
+        + ("below" if below3 else "not always below")
+        + f" the 3D continuum ({_span(vs3, '+.1f')} %) and above `2d` on {above2} of "
+        f"{len(rows)} rolls ({_span(vs2, '+.0f')} %). Along PET2's pile series it "
+        + ("falls with every taller pile" if falls else "does not fall steadily with the pile")
+        + f", and the 2 cm / 8.89 cm ratio is {_span(list(q.values()), '.2f')} at mu "
+        f"{m0:g}-{m1:g}"
+        + (" (the paper's tests: about 1)" if keeps else "")
+        + f". Friction matters less in 3D than in plane strain: from mu {m0:g} to {m1:g} the "
+        f"8.89 cm roll reads {d3:+.1f} % in layered-3d against {d2:+.1f} % in the 2D layered "
+        f"roll. The uniform PET3 roll at 2.3 MPa reads {p3[LAYERED_3D]:.1f} in layered-3d "
+        f"({p3['3d']:.1f} in 3d, {p3['2d']:.1f} in 2d), "
+        + ("inside" if on else "beyond")
+        + f" the dial's {low:g}-{top:g}."
+    )
+    import textwrap
+
+    return textwrap.fill(text, width=95, break_long_words=False, break_on_hyphens=False)
 
 
 def text3d() -> str:
@@ -819,12 +988,12 @@ def text3d() -> str:
         return float(_reading3d(roll, m)["rho_fd"])
 
     fine = f"layered-3d_lps{LPS_FINE}"
-    variants = ("3d", "layered-3d", fine)
+    variants = ("3d", LAYERED_3D, fine)
     q = {m: rho(low, m) / rho(tall, m) for m in (*variants, "2d")}
     q3 = [q[m] for m in variants]
     keeps = min(q3) > 1 + NEARLY
     above_fine = _pct(rho(tall, fine), rho(tall, "2d"))
-    above_default = _pct(rho(tall, "layered-3d"), rho(tall, "2d"))
+    above_default = _pct(rho(tall, LAYERED_3D), rho(tall, "2d"))
     stays_above = above_fine > 10.0
     h_lo = 100 * _reading3d(low, "3d")["pile_height_m"]
     h_hi = 100 * _reading3d(tall, "3d")["pile_height_m"]
@@ -878,7 +1047,12 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "fit": fit,
     "provenance3d": provenance3d,
     "table3d": table3d,
+    "mu3d": mu3d,
+    "head3d_table": head3d_table,
+    "cost_ratio3d": cost_ratio3d,
+    "cost3d": cost3d,
     "text3d": text3d,
+    "text3d_all": text3d_all,
 }
 
 if __name__ == "__main__":

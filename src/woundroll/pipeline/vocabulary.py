@@ -624,6 +624,7 @@ _TERMS: tuple[Term, ...] = (
     _t("pile_height_m", "m", "pile height: outer minus core radius"),
     _s("series", "which series of a study a roll belongs to"),
     _o("model_readings", "per roll model (and friction): the reading it gives", "objects"),
+    _o("overrides_3d", "the --set overrides of a study's 3D columns (their mesh)", "objects"),
     _t("elastic_impulse_bound_N_s", "N s", "2 m_s v_0: the elastic bound of the impulse"),
     _t("peak_contact_pressure_Pa", "Pa", "peak contact pressure at impact_depth_m"),
     _r("rho_fd_no_update", "rho", "rho_fd with E_r frozen"),

@@ -68,6 +68,7 @@ STUDIES: dict[str, Callable[..., Any]] = {
     "all": all_studies.run,
     "dynamic": dynamic.run,
     "layered": layered.run,
+    "layered-3d": layered.run_3d,
 }
 
 

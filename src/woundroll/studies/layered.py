@@ -8,6 +8,10 @@ them the other explanations (item 4): G_r_theta frozen at its pre-impact value
 (``contact.shear_frozen``) and a lower G/E_r (``contact.shear_ratio``). The facts to compare
 with (docs/studies.md): the paper's tests read nearly the same at every pile height, and
 soft PET2 reads below the continuum models.
+
+The same study in 3D (``woundroll study layered-3d``, :func:`run_3d`): beside 2d and the
+layered roll in plane strain, the 3D continuum (``"3d"``) and the layered roll in 3D
+(``"layered-3d"``) at each mu, on the coarser 3D mesh :data:`COARSE_3D` (cost).
 """
 
 from __future__ import annotations
@@ -58,6 +62,19 @@ EXPLANATIONS: dict[str, tuple[str, tuple[str, ...], dict[str, Any]]] = {
         {"model": "layered", "friction": 0.3, "shear_frozen": True},
     ),
 }
+#: The 3D mesh of the study's 3D columns (both 3D models, :func:`run_3d`): the default
+#: gradings, half the fine zone's elements and a third of the increments of
+#: ``Contact3DOptions`` (a layered-3d roll costs 40-110 CPU s on it, several times that on
+#: the default mesh). **Assumption**: the two 3D models' difference, which is what the
+#: columns compare, depends little on the mesh; the 3d column's own offset against the
+#: default mesh is measured in docs/studies.md (layered section).
+COARSE_3D: tuple[str, ...] = (
+    "contact.options3d.radial_growth=1.6",
+    "contact.options3d.tangential_growth=1.6",
+    "contact.options3d.axial_growth=1.6",
+    "contact.options3d.n_fine=5",
+    "contact.options3d.n_steps=8",
+)
 
 
 @dataclass(frozen=True)
@@ -68,14 +85,37 @@ class LayeredStudy:
     ----------
     rows : tuple of dict
         ``case``, ``pile_height_m``, ``series`` ("table2" or "pile-height"), ``rho_2d`` and
-        ``rho_layered_mu<mu>`` per friction [-], and ``delta_max_m`` of each.
+        ``rho_layered_mu<mu>`` per friction [-], and ``delta_max_m`` of each; with
+        ``three_d`` also ``rho_3d`` and ``rho_layered-3d_mu<mu>``.
     frictions : tuple of float
+    three_d : bool
+        The 3D columns (:func:`run_3d`, on the mesh :data:`COARSE_3D`).
     """
 
     rows: tuple[dict[str, Any], ...]
     frictions: tuple[float, ...] = FRICTIONS
     explanations: tuple[str, ...] = ()
+    three_d: bool = False
     name: str = field(default="layered")
+
+    def _columns(self) -> list[tuple[str, str, dict[str, Any]]]:
+        """Every model column after 2d: (row key suffix, title, the JSON reading's fields)."""
+        cols = [
+            (f"layered_mu{m:g}", f"layered mu={m:g}", {"model": "layered", "friction": m})
+            for m in self.frictions
+        ]
+        cols += [(e, EXPLANATIONS[e][0], dict(EXPLANATIONS[e][2])) for e in self.explanations]
+        if self.three_d:
+            cols.append(("3d", "3d", {"model": "3d"}))
+            cols += [
+                (
+                    f"layered-3d_mu{m:g}",
+                    f"layered-3d mu={m:g}",
+                    {"model": "layered-3d", "friction": m},
+                )
+                for m in self.frictions
+            ]
+        return cols
 
     def to_dict(self) -> dict[str, Any]:
         rolls = []
@@ -83,23 +123,10 @@ class LayeredStudy:
             readings = [
                 {"model": "2d", "rho_fd": r["rho_2d"], "impact_depth_m": r["delta_max_2d_m"]}
             ]
-            for m in self.frictions:
-                readings.append(
-                    {
-                        "model": "layered",
-                        "friction": m,
-                        "rho_fd": r[f"rho_layered_mu{m:g}"],
-                        "impact_depth_m": r[f"delta_max_layered_mu{m:g}_m"],
-                    }
-                )
-            for e in self.explanations:
-                readings.append(
-                    {
-                        **EXPLANATIONS[e][2],
-                        "rho_fd": r[f"rho_{e}"],
-                        "impact_depth_m": r[f"delta_max_{e}_m"],
-                    }
-                )
+            readings += [
+                {**fields, "rho_fd": r[f"rho_{key}"], "impact_depth_m": r[f"delta_max_{key}_m"]}
+                for key, _, fields in self._columns()
+            ]
             rolls.append(
                 {
                     "case": r["case"],
@@ -108,19 +135,18 @@ class LayeredStudy:
                     "model_readings": readings,
                 }
             )
-        return {"study": self.name, "rolls": rolls}
+        out: dict[str, Any] = {"study": self.name, "rolls": rolls}
+        if self.three_d:
+            out["overrides_3d"] = list(COARSE_3D)
+        return out
 
     def summary(self) -> list[SummaryTable]:
-        header = (
-            "case",
-            "H [cm]",
-            "Rho 2d [-]",
-            *(f"Rho layered mu={m:g} [-]" for m in self.frictions),
-            *(f"Rho {EXPLANATIONS[e][0]} [-]" for e in self.explanations),
-        )
+        cols = self._columns()
+        header = ("case", "H [cm]", "Rho 2d [-]", *(f"Rho {title} [-]" for _, title, _ in cols))
         tables = []
+        kind = "continuum (2d, 3d) and layered" if self.three_d else "continuum (2d) and layered"
         for series, title in (
-            ("table2", "Table 2 rolls: continuum (2d) and layered"),
+            ("table2", f"Table 2 rolls: {kind}"),
             ("pile-height", f"Pile heights of {PILE_CASE}: continuum and layered"),
         ):
             rows = [
@@ -128,8 +154,7 @@ class LayeredStudy:
                     r["case"],
                     f"{r['pile_height_m'] * 100:.2f}",
                     _fmt(r["rho_2d"]),
-                    *(_fmt(r[f"rho_layered_mu{m:g}"]) for m in self.frictions),
-                    *(_fmt(r[f"rho_{e}"]) for e in self.explanations),
+                    *(_fmt(r[f"rho_{key}"]) for key, _, _ in cols),
                 )
                 for r in self.rows
                 if r["series"] == series
@@ -145,16 +170,18 @@ class LayeredStudy:
             lo, hi = pile[0], pile[-1]
             out.append(
                 f"pile height {lo['pile_height_m'] * 100:.2f} -> {hi['pile_height_m'] * 100:.2f}"
-                f" cm: 2d {lo['rho_2d'] / hi['rho_2d']:.2f}x; layered "
-                + ", ".join(
-                    f"mu={m:g} {lo[f'rho_layered_mu{m:g}'] / hi[f'rho_layered_mu{m:g}']:.2f}x"
-                    for m in self.frictions
-                )
-                + "".join(
-                    f"; {EXPLANATIONS[e][0]} {lo[f'rho_{e}'] / hi[f'rho_{e}']:.2f}x"
-                    for e in self.explanations
+                f" cm: 2d {lo['rho_2d'] / hi['rho_2d']:.2f}x; "
+                + "; ".join(
+                    f"{title} {lo[f'rho_{key}'] / hi[f'rho_{key}']:.2f}x"
+                    for key, title, _ in self._columns()
                 )
                 + " (the paper's tests: nearly 1x)"
+            )
+        if self.three_d:
+            out.append(
+                "3d and layered-3d on a coarser 3D mesh than the default ("
+                + ", ".join(o.removeprefix("contact.options3d.") for o in COARSE_3D)
+                + "): compare the 3D columns with each other"
             )
         return out
 
@@ -162,7 +189,8 @@ class LayeredStudy:
         return _write(self, out_dir)
 
     def plot(self, out_dir: str | Path) -> list[Path]:
-        """``layered_pile_height.png``: Rho against pile height, 2d and layered."""
+        """``layered_pile_height.png``: Rho against pile height, 2d and layered (and the 3D
+        models with ``three_d``)."""
         import matplotlib.pyplot as plt
 
         pile = [r for r in self.rows if r["series"] == "pile-height"]
@@ -173,6 +201,11 @@ class LayeredStudy:
         ax.plot(h, [r["rho_2d"] for r in pile], "ko-", label="2d continuum")
         for m in self.frictions:
             ax.plot(h, [r[f"rho_layered_mu{m:g}"] for r in pile], "s--", label=f"layered mu={m:g}")
+        if self.three_d:
+            ax.plot(h, [r["rho_3d"] for r in pile], "k^-", label="3d continuum (coarse)")
+            for m in self.frictions:
+                key = f"rho_layered-3d_mu{m:g}"
+                ax.plot(h, [r[key] for r in pile], "d:", label=f"layered-3d mu={m:g} (coarse)")
         ax.set_xlabel("pile height H [cm]")
         ax.set_ylabel("Rho (FD) [-]")
         ax.set_title(f"{PILE_CASE}: continuum against layered")
@@ -205,14 +238,27 @@ class StudyJob:
 
 
 def study_models(
-    frictions: Sequence[float] = FRICTIONS, explanations: Sequence[str] = tuple(EXPLANATIONS)
+    frictions: Sequence[float] = FRICTIONS,
+    explanations: Sequence[str] = tuple(EXPLANATIONS),
+    three_d: bool = False,
 ) -> list[tuple[str, tuple[str, ...]]]:
-    """The model columns: ``(name, overrides)`` of 2d, layered per mu, each explanation."""
+    """The model columns: ``(name, overrides)`` of 2d, layered per mu, each explanation,
+    and with ``three_d`` 3d and layered-3d per mu on the mesh :data:`COARSE_3D`."""
     models = [("2d", ("contact.model='2d'",))] + [
         (f"layered_mu{m:g}", ("contact.model='layered'", f"contact.friction={m!r}"))
         for m in frictions
     ]
-    return models + [(e, EXPLANATIONS[e][1]) for e in explanations]
+    models += [(e, EXPLANATIONS[e][1]) for e in explanations]
+    if three_d:
+        models.append(("3d", ("contact.model='3d'", *COARSE_3D)))
+        models += [
+            (
+                f"layered-3d_mu{m:g}",
+                ("contact.model='layered-3d'", f"contact.friction={m!r}", *COARSE_3D),
+            )
+            for m in frictions
+        ]
+    return models
 
 
 def study_rolls(
@@ -237,13 +283,14 @@ def study_jobs(
     pile_heights: Sequence[float] = DEFAULT_PILE_HEIGHTS,
     frictions: Sequence[float] = FRICTIONS,
     explanations: Sequence[str] = tuple(EXPLANATIONS),
+    three_d: bool = False,
 ) -> list[StudyJob]:
     """Every run of :func:`layered_study` (roll-major: each roll's models in
     :func:`study_models` order); docs/scripts/layered_study.py measures the same list."""
     return [
         StudyJob(case, series, h, name, (*over, "contact.no_update=false", *m_over))
         for case, series, h, over in study_rolls(cases, pile_heights)
-        for name, m_over in study_models(frictions, explanations)
+        for name, m_over in study_models(frictions, explanations, three_d)
     ]
 
 
@@ -255,12 +302,14 @@ def layered_study(
     *,
     workers: int = 1,
     explanations: Sequence[str] = tuple(EXPLANATIONS),
+    three_d: bool = False,
 ) -> LayeredStudy:
     """Rho by ``"2d"``, ``"layered"`` (each mu of ``frictions``) and the ``explanations``
     (keys of :data:`EXPLANATIONS`) for ``cases`` and for :data:`PILE_CASE` wound to core
-    radius + each of ``pile_heights`` [m]."""
-    jobs = study_jobs(cases, pile_heights, frictions, explanations)
-    models = study_models(frictions, explanations)
+    radius + each of ``pile_heights`` [m]; with ``three_d`` also ``"3d"`` and
+    ``"layered-3d"`` (each mu) on the mesh :data:`COARSE_3D`."""
+    jobs = study_jobs(cases, pile_heights, frictions, explanations, three_d)
+    models = study_models(frictions, explanations, three_d)
     rolls = study_rolls(cases, pile_heights)
     out = _map(
         _job,
@@ -282,7 +331,11 @@ def layered_study(
             row[f"delta_max_{name}_m"] = g["delta_max_m"]
         rows.append(row)
     return LayeredStudy(
-        rows=tuple(rows), frictions=tuple(frictions), explanations=tuple(explanations)
+        rows=tuple(rows),
+        frictions=tuple(frictions),
+        explanations=tuple(explanations),
+        three_d=three_d,
+        name="layered-3d" if three_d else "layered",
     )
 
 
@@ -292,3 +345,13 @@ def run(
     """The registry's entry (``woundroll study layered``); ``model`` is not used (the
     study fixes its models: 2d and layered)."""
     return layered_study(progress=progress, workers=workers)
+
+
+def run_3d(
+    progress: Progress | None = None, *, workers: int = 1, model: str | None = None
+) -> LayeredStudy:
+    """The registry's entry ``woundroll study layered-3d``: the study's rolls in 2d, layered,
+    3d and layered-3d (each mu of :data:`FRICTIONS`; the 2D explanations are the layered
+    study's). About 50 CPU min (11 rolls; a layered-3d roll 40-110 CPU s); ``model`` is
+    not used."""
+    return layered_study(progress=progress, workers=workers, explanations=(), three_d=True)
