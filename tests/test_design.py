@@ -75,9 +75,17 @@ def test_design_reads_the_target_and_reports_what_it_cannot_meet():
     from woundroll.inverse.diagnosis import RollModel
     from woundroll.winding.tension import Taper
 
+    # the target is what the case's own roll reads on the default path, so that a design
+    # exists inside the pressure window: PET1 26.7 N reads 51.2 Rho FD with today's plane
+    # strain default and the 7.820 mm head (docs/studies.md). The test was set at 80 when
+    # that roll read 80.8 on the former default path (2d+cmd-spread); today 80 Rho needs
+    # 57 N untapered and 333 kPa near the core (measured), above the 200 kPa window. At 51
+    # (measured): the best compromise is a 40 % taper, 35.4 N, hoop -34 kPa binding; with
+    # negative hoop allowed, untapered 26.5 N (the case's own 26.7 N), 40-83 kPa.
+    target = 51.0
     case = load_case("pet1-26.7N")
     tgt = DesignTarget(
-        reading=80.0,
+        reading=target,
         pressure_min=10e3,
         pressure_max=200e3,
         tension_min=0.3e6,
@@ -88,7 +96,7 @@ def test_design_reads_the_target_and_reports_what_it_cannot_meet():
     # an independent full forward run at the designed setpoints reads the target
     model = RollModel.from_case(case)
     model = replace(model, schedule=replace(model.schedule, taper=Taper("linear", d.taper)))
-    assert abs(model.evaluate(d.web_tension).reading - 80.0) <= 1.0
+    assert abs(model.evaluate(d.web_tension).reading - target) <= 1.0
     # PET1 on its steel core keeps a negative hoop stress near the core for every linear
     # taper up to 60 %: reported as infeasible, with the reason, not hidden
     assert not d.feasible
@@ -109,7 +117,7 @@ def test_design_reads_the_target_and_reports_what_it_cannot_meet():
     d2 = design_setpoints(case, replace(tgt, allow_negative_hoop=True))
     assert d2.feasible
     assert 10e3 <= d2.margins["min_pressure_Pa"] and d2.margins["max_pressure_Pa"] <= 200e3
-    assert np.isfinite(d2.reading) and abs(d2.reading - 80.0) <= 1.0
+    assert np.isfinite(d2.reading) and abs(d2.reading - target) <= 1.0
 
 
 def test_table_taper_parameters_round_trip():

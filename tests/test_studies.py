@@ -253,7 +253,9 @@ def test_full_table2_study_and_all(tmp_path):
         "slip_factor.png",
     }
     data = json.loads((tmp_path / "study.json").read_text(encoding="utf-8"))
-    assert set(data) == {"study", "tension", "pile-height", "slip"}
+    # schema_version: every JSON document's top level carries it (vocabulary.DOCUMENTS
+    # "study", issue 20's vocabulary)
+    assert set(data) == {"schema_version", "study", "tension", "pile-height", "slip"}
 
 
 @pytest.mark.slow

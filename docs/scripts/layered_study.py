@@ -111,6 +111,47 @@ ZONE_ROLLS: tuple[tuple[str, float | None, tuple[float, ...]], ...] = (
 )
 
 
+#: The zone-depth ladder (layered, mu 0.3): (case, pile height [m] or None for the case's
+#: own, depths [mm]); each ends near the deepest zone the model takes (a continuum of at
+#: least a tenth of the wound thickness must stay below it).
+ZONE_LADDER: tuple[tuple[str, float | None, tuple[float, ...]], ...] = (
+    ("pet2-53.4N", None, (4.0, 8.0, 12.0, 20.0, 30.0, 45.0, 70.0)),
+    ("pet2-53.4N", 0.02, (4.0, 8.0, 12.0, 17.0)),
+    ("pet1-26.7N", None, (12.0, 30.0, 70.0)),
+)
+
+
+def zone_runs() -> list[Run]:
+    """The layered roll (mu 0.3) with its zone of sheets deepened toward the whole pile."""
+    base = ("contact.no_update=false", "contact.model='layered'", "contact.friction=0.3")
+    return [
+        Run(
+            f"zone/{_run_id(case, h, f'{d:g}mm')}",
+            case,
+            (
+                *(_pile_overrides(h) if h is not None else ()),
+                *base,
+                f"contact.layered_depth='{d:g} mm'",
+            ),
+        )
+        for case, h, depths in ZONE_LADDER
+        for d in depths
+    ] + [
+        # the deepest PET1 zone stuck (mu 1e4): the continuum on the layered mesh, so that
+        # a fall of the ladder is the sheets' slip, not the zone's mesh
+        Run(
+            f"zone/pet1-26.7N/{ZONE_LADDER[-1][2][-1]:g}mm_stuck",
+            "pet1-26.7N",
+            (
+                "contact.no_update=false",
+                "contact.model='layered'",
+                "contact.friction=10000.0",
+                f"contact.layered_depth='{ZONE_LADDER[-1][2][-1]:g} mm'",
+            ),
+        )
+    ]
+
+
 def _pile_overrides(h: float) -> tuple[str, ...]:
     """The study's overrides of :data:`PILE_CASE` wound to pile height ``h`` [m]."""
     from woundroll.studies.layered import study_rolls
@@ -255,7 +296,8 @@ def _wound_to(case: str, h: float | None) -> tuple[str, ...]:
 
 
 def roll3d_runs() -> list[Run]:
-    """PET1's 2 cm pile in 2d and layered (the other rolls' are the table's); the 3d and
+    """PET1's 2 cm pile in 2d, layered, 3d and layered-3d (the other rolls' 2d and layered
+    are the table's); the 3d and
     layered-3d (mu :data:`MU_3D`) runs of `woundroll study layered-3d` (its own list, the
     8.89 cm pile left out: it is the Table 2 roll) and of the uniform PET3 roll; the mu
     sweep (layered-3d at the study's other frictions) on PET2 53.4 N at both pile heights."""
@@ -270,6 +312,8 @@ def roll3d_runs() -> list[Run]:
         for name, over in (
             ("2d", ("contact.model='2d'",)),
             ("layered_mu0.3", ("contact.model='layered'", "contact.friction=0.3")),
+            ("3d", _models_3d()["3d"]),
+            (LAYERED_3D, _models_3d()[LAYERED_3D]),
         )
     ]
     sweep = [_run_id(c, h, "")[:-1] for c, h in ROLLS_3D if c == "pet2-53.4N"]
@@ -288,6 +332,11 @@ def roll3d_runs() -> list[Run]:
         )
         for name, over in _models_3d().items()
         if name in ("3d", LAYERED_3D)
+    ]
+    # the coarse mesh's own offset: 3d on the default 3D mesh
+    runs += [
+        Run(f"{c}/3d_default_mesh", c, ("contact.no_update=false", "contact.model='3d'"))
+        for c in ("pet1-26.7N", "pet2-53.4N")
     ]
     return runs
 
@@ -411,6 +460,15 @@ MEASUREMENTS: dict[str, Measurement] = {
             "crosses its target at a bisection step, a change of code the check should catch"
         ),
         cost="about 6 CPU min: five deep-zone layered runs (30-75 CPU s), two fits of 12 2d runs",
+    ),
+    "zone": Measurement(
+        about="the layered roll (mu 0.3) with its zone of sheets deepened toward the whole pile",
+        runs=zone_runs,
+        measure=measure_reading,
+        spot=("zone/pet2-53.4N@2cm/4mm",),
+        rtol=1e-3,
+        reason="deterministic solves (as the table)",
+        cost="about 15 CPU min: 10-30 CPU s a run at 4-12 mm, ~2-3 CPU min at 70 mm",
     ),
     "roll3d": Measurement(
         about="the layered roll in 3D beside 3d (coarse 3D mesh, mu 0.3), Rho FD",
@@ -717,6 +775,84 @@ def pet3() -> str:
     return _wrap(text)
 
 
+def _ladder(case: str, h: float | None) -> list[tuple[float, float]]:
+    """(zone depth [mm], Rho FD) of one roll of :data:`ZONE_LADDER`."""
+    z = _by("zone")
+    depths = next(d for c, hh, d in ZONE_LADDER if (c, hh) == (case, h))
+    return [(d, z[f"zone/{_run_id(case, h, f'{d:g}mm')}"]) for d in depths]
+
+
+def zone_ladder() -> str:
+    """The zone-depth ladder: Rho FD against the depth of the zone of sheets."""
+    depths = sorted({d for _, _, ds in ZONE_LADDER for d in ds})
+    lines = [
+        "| roll | 2d | default zone | " + " | ".join(f"{d:g} mm" for d in depths) + " |",
+        "|---|---|---|" + "---|" * len(depths),
+    ]
+    for case, h, _ in ZONE_LADDER:
+        roll = _run_id(case, h, "")[:-1]
+        got = dict(_ladder(case, h))
+        cells = [f"{got[d]:.2f}" if d in got else "" for d in depths]
+        cm = (
+            100 * _rec("table")[f"{roll}/2d"]["pile_height_m"]
+            if f"{roll}/2d" in _rec("table")
+            else None
+        )
+        label = _label(case) + (f", H {cm:.3g} cm" if cm is not None else "")
+        lines.append(
+            f"| {label} | {_rho(f'{roll}/2d'):.2f} | {_rho(f'{roll}/layered_mu0.3'):.2f} | "
+            + " | ".join(cells)
+            + " |"
+        )
+    return "\n".join(lines)
+
+
+def zone_provenance() -> str:
+    """How the zone ladder was measured (inline)."""
+    rec = records.load("layered_study.zone")
+    cpu = rec["cpu_s"]
+    return (
+        f"{_measured('zone')}, {min(cpu.values()):.0f}-{max(cpu.values()):.0f} CPU s a run "
+        f"at load {rec['load_1min']:g}"
+    )
+
+
+def zone_converged() -> str:
+    """The bullet on the zone ladder: where the reading converges, and the pile ratio of
+    the rolls layered all the way down (every claim computed)."""
+    tall = _ladder("pet2-53.4N", None)
+    low = _ladder("pet2-53.4N", 0.02)
+    p1 = _ladder("pet1-26.7N", None)
+    (d_a, r_a), (d_b, r_b) = tall[-2], tall[-1]
+    last_step = abs(_pct(r_b, r_a))
+    default_t, default_l = (
+        _rho("pet2-53.4N/layered_mu0.3"),
+        _rho(f"{_pile_pair()[0]}/layered_mu0.3"),
+    )
+    q_deep = low[-1][1] / tall[-1][1]
+    q_default = default_l / default_t
+    q_2d = _rho(f"{_pile_pair()[0]}/2d") / _rho("pet2-53.4N/2d")
+    stuck = _by("zone")[f"zone/pet1-26.7N/{p1[-1][0]:g}mm_stuck"]
+    text = (
+        "- **The zone of sheets all the way down.** Deepening the zone toward the whole pile "
+        f"(a continuum of at least a tenth of the wound thickness stays below it): PET2 53.4 N "
+        f"at 8.89 cm reads {' -> '.join(f'{r:.1f}' for _, r in tall)} at "
+        f"{' / '.join(f'{d:g}' for d, _ in tall)} mm, the last step {d_a:g} -> {d_b:g} mm "
+        f"{last_step:.1f} %, {_pct(r_b, default_t):+.0f} % against the default zone and "
+        f"{_pct(r_b, _rho('pet2-53.4N/2d')):+.0f} % against `2d`; at 2 cm "
+        f"{' -> '.join(f'{r:.1f}' for _, r in low)} ({low[-1][0]:g} mm: the whole pile but "
+        f"its inner tenth); PET1 26.7 N {' -> '.join(f'{r:.1f}' for _, r in p1)} at "
+        f"{' / '.join(f'{d:g}' for d, _ in p1)} mm"
+        + (", not converged" if abs(_pct(p1[-1][1], p1[-2][1])) > 5 else "")
+        + f" (stuck, mu 1e4, the {p1[-1][0]:g} mm zone reads {stuck:.2f} against `2d`'s "
+        f"{_rho('pet1-26.7N/2d'):.2f}: the fall is the sheets' slip, not the zone's mesh). "
+        "With both PET2 rolls layered this deep "
+        f"the pile-height ratio is {q_deep:.2f} (default zone {q_default:.2f}, 2d {q_2d:.2f}; "
+        "the paper's tests about 1)."
+    )
+    return _wrap(text)
+
+
 def zone() -> str:
     """The bullet on the layered zone's depth (the checks record)."""
     z = _by("checks")
@@ -744,7 +880,7 @@ def zone() -> str:
             if lowers
             else ""
         )
-        + f"; the pile-height ratio moves {'little' if little else 'with it'} "
+        + f"; at these depths the pile-height ratio moves {'little' if little else 'with it'} "
         f"({q[0]:.2f} at the default, {q[1]:.2f} at {d1:g} mm, {q[2]:.2f} at {d2:g} mm; PET2 "
         f"53.4 N reads {p2_deep:.1f} at {d2:g} mm)."
     )
@@ -902,6 +1038,36 @@ def cost3d() -> str:
     )
 
 
+def study3d_cost() -> str:
+    """The whole `woundroll study layered-3d`'s CPU time from the records' run times: the
+    2d and layered runs from the table record, each 3D run from roll3d (a layered-3d run at
+    another mu costed as the same roll's at mu 0.3 where it was not measured) (inline)."""
+    from woundroll.studies.layered import study_jobs
+
+    table = records.load("layered_study.table")["cpu_s"]
+    r3 = records.load("layered_study.roll3d")["cpu_s"]
+    total = 0.0
+    for j in study_jobs(explanations=(), three_d=True):
+        rid = _run_id(j.case, j.pile_height_m, j.model)
+        roll = rid.rsplit("/", 1)[0].replace("@8.89cm", "")
+        if "3d" not in j.model:
+            total += table[rid]
+        else:
+            total += r3.get(
+                f"{roll}/{j.model}", r3[f"{roll}/{LAYERED_3D}"] if "layered" in j.model else 0.0
+            )
+    return f"about {total / 60:.0f} CPU min"
+
+
+def mesh_offset3d() -> str:
+    """The study's coarse 3D mesh against the default one, 3d on two rolls (inline)."""
+    parts = []
+    for c in ("pet1-26.7N", "pet2-53.4N"):
+        fine, coarse = _rho3d(c, "3d_default_mesh"), _rho3d(c, "3d")
+        parts.append(f"{_label(c)} {coarse:.1f} against {fine:.1f} ({_pct(coarse, fine):+.1f} %)")
+    return "; ".join(parts)
+
+
 def cost_ratio3d() -> str:
     """CPU time of layered-3d against 3d on the same roll and mesh (inline)."""
     cpu = records.load("layered_study.roll3d")["cpu_s"]
@@ -954,7 +1120,7 @@ def text3d_all() -> str:
     m0, m1 = mus[0], mus[-1]
 
     def span_mu(kind: str, roll: str) -> float:
-        return _pct(_rho3d(roll, f"{kind}_mu{m0:g}"), _rho3d(roll, f"{kind}_mu{m1:g}"))
+        return _pct(_rho3d(roll, f"{kind}_mu{m1:g}"), _rho3d(roll, f"{kind}_mu{m0:g}"))
 
     d3, d2 = span_mu("layered-3d", hi), span_mu("layered", hi)
     p3 = {m: _rho3d(PET3_ID, m) for m in ("2d", f"layered_mu{MU_3D:g}", "3d", LAYERED_3D)}
@@ -962,14 +1128,17 @@ def text3d_all() -> str:
     text = (
         f"Over the study's rolls, the layered roll in 3D (mu {MU_3D:g}, default shells) reads "
         + ("below" if below3 else "not always below")
-        + f" the 3D continuum ({_span(vs3, '+.1f')} %) and above `2d` on {above2} of "
-        f"{len(rows)} rolls ({_span(vs2, '+.0f')} %). Along PET2's pile series it "
+        + f" the 3D continuum (by {_span([-v for v in vs3], '.1f')} %) and above `2d` on "
+        f"{above2} of {len(rows)} rolls (from {min(vs2):+.0f} to {max(vs2):+.0f} %). Along "
+        "PET2's pile series it "
         + ("falls with every taller pile" if falls else "does not fall steadily with the pile")
         + f", and the 2 cm / 8.89 cm ratio is {_span(list(q.values()), '.2f')} at mu "
         f"{m0:g}-{m1:g}"
         + (" (the paper's tests: about 1)" if keeps else "")
-        + f". Friction matters less in 3D than in plane strain: from mu {m0:g} to {m1:g} the "
-        f"8.89 cm roll reads {d3:+.1f} % in layered-3d against {d2:+.1f} % in the 2D layered "
+        + ". Friction matters "
+        + ("less" if abs(d3) < abs(d2) else "no less")
+        + f" in 3D than in plane strain: raising mu from {m0:g} to {m1:g} moves the 8.89 cm "
+        f"roll's reading {d3:+.1f} % in layered-3d against {d2:+.1f} % in the 2D layered "
         f"roll. The uniform PET3 roll at 2.3 MPa reads {p3[LAYERED_3D]:.1f} in layered-3d "
         f"({p3['3d']:.1f} in 3d, {p3['2d']:.1f} in 2d), "
         + ("inside" if on else "beyond")
@@ -978,6 +1147,40 @@ def text3d_all() -> str:
     import textwrap
 
     return textwrap.fill(text, width=95, break_long_words=False, break_on_hyphens=False)
+
+
+def verdict() -> str:
+    """docs/contact.md's bullet on the layered rolls and the default (every claim from the
+    records)."""
+    lo, hi = _pile_pair()
+    pet2 = [r for r in (*PET2, lo)]
+    below = [_pct(_rho(f"{r}/layered_mu0.3"), _rho(f"{r}/2d")) for r in pet2]
+    q2 = [_ratio(m) for m in LAYERED]
+    rows = _rolls3d()
+    above2 = sum(_rho3d(r, LAYERED_3D) > _rho3d(r, "2d") for _, r in rows)
+    hi3 = hi.split("@")[0] if "@8.89" in hi else hi
+    q3 = _rho3d(lo, LAYERED_3D) / _rho3d(hi3, LAYERED_3D)
+    tall, low = _ladder("pet2-53.4N", None), _ladder("pet2-53.4N", 0.02)
+    p1 = _ladder("pet1-26.7N", None)
+    pile_ok = min(*q2, q3, low[-1][1] / tall[-1][1]) < 1 + NEARLY
+    pet1_ok = abs(_pct(p1[-1][1], _rho("pet1-26.7N/2d"))) < 10
+    text = (
+        '- Interlayer friction (the layered rolls, docs/studies.md "Layered") '
+        + ("could change" if pile_ok and pet1_ok else "does not change")
+        + " the choice: in plane strain it reads the PET2 rolls "
+        + f"{_span([-b for b in below], '.0f')} % below `2d` (mu 0.3) but keeps the "
+        + f"pile-height ratio ({_span(q2, '.2f')} over mu "
+        f"0.1-0.5; {low[-1][1] / tall[-1][1]:.2f} with the sheets all the way down); in 3D "
+        f"(`layered-3d`, mu 0.3) it reads above `2d` on {above2} of {len(rows)} rolls, pile "
+        f"ratio {q3:.2f}; with the sheets all the way down (a {p1[-1][0]:g} mm zone) PET1 26.7 N "
+        f"reads {p1[-1][1]:.1f} against `2d`'s {_rho('pet1-26.7N/2d'):.1f}"
+        + (", far from the paper's PET1 agreement." if not pet1_ok else ".")
+    )
+    import textwrap
+
+    return textwrap.fill(
+        text, width=95, subsequent_indent="  ", break_long_words=False, break_on_hyphens=False
+    )
 
 
 def text3d() -> str:
@@ -1044,12 +1247,18 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "shear08": shear08,
     "pet3": pet3,
     "zone": zone,
+    "zone_ladder": zone_ladder,
+    "zone_converged": zone_converged,
+    "verdict": verdict,
+    "zone_provenance": zone_provenance,
     "fit": fit,
     "provenance3d": provenance3d,
     "table3d": table3d,
     "mu3d": mu3d,
     "head3d_table": head3d_table,
     "cost_ratio3d": cost_ratio3d,
+    "study3d_cost": study3d_cost,
+    "mesh_offset3d": mesh_offset3d,
     "cost3d": cost3d,
     "text3d": text3d,
     "text3d_all": text3d_all,

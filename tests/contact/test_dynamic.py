@@ -292,12 +292,18 @@ def test_dynamic_study_is_registered_and_checks_its_input():
 
 @pytest.mark.slow
 def test_dynamic_study_row_pet2():
-    # one roll of the study (PET2 80 N): the FE and FD readings within 5 % (measured 0.1 %,
-    # docs/studies.md), the FE impulse below the FD one (energy left in the roll), the
-    # measured active mass within a factor 2 of the tapered column's
+    # one roll of the study (PET2 80 N) with an elastic stack, the paper's roll and the
+    # setting in which the FE impact and the FD model {4}-{13} describe the same collision:
+    # the FE and FD readings within 5 % (the FD model's lumped active mass; measured 28.8
+    # against 28.6, docs/studies.md's elastic table), the FE impulse below the FD one
+    # (energy left in the roll), the measured active mass within a factor 2 of the tapered
+    # column's (7.9 against 8.5 g). With the preset's unloading law (issue 24) the FE roll
+    # unloads along it and reads 31.2 against the same FD 28.6, m_r FE 1.6 g: a different
+    # collision from the FD model's, not this comparison (docs/studies.md's first table)
     from woundroll.studies.dynamic import dynamic_study
 
-    r = dynamic_study(["pet2-80N"], block=False).rolls[0]
+    elastic = ("web.radial_unloading='elastic'",)
+    r = dynamic_study(["pet2-80N"], block=False, overrides=elastic).rolls[0]
     assert r["rho_dynamic"] == pytest.approx(r["rho_fd"], rel=0.05)
     assert r["impulse_dynamic_N_s"] < r["impulse_fd_N_s"]
     assert 0.5 < r["active_mass_fe_kg"] / r["active_mass_column_kg"] < 2.0

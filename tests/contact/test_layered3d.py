@@ -127,6 +127,15 @@ def beam_stiffness(EI: float) -> float:
     return 2 * K_W / (K_W / (4 * EI)) ** 0.25
 
 
+#: The slab's mesh grading, 1.3 rather than the 3D default 1.6 (MESH_GROWTH): the closed
+#: forms are a continuous beam whose deflection decays over 1/beta ~ 5 mm along the hoop,
+#: and 1.6 coarsens the hoop elements too fast to resolve it. Measured (stuck / frictionless
+#: against the closed forms): growth 1.6 +3.7 % / +3.3 %, 1.3 +1.4 % / +0.8 %, 1.14 +0.7 % /
+#: -0.2 % (the mesh error falls with the grading; same on the commit before the layered
+#: set-up's split, dc46381^).
+SLAB_GROWTH = {"radial_growth": 1.3, "tangential_growth": 1.3, "axial_growth": 1.3}
+
+
 def slab(mu: float, interfaces: bool = True) -> float:
     """Secant stiffness F / (W d) [N/m^2] of the slab pressed 0.02 mm deep."""
     r = np.linspace(R_W, R_W + N * H, 50)
@@ -139,6 +148,7 @@ def slab(mu: float, interfaces: bool = True) -> float:
         locality_cut=True,
         tangential_size=5e-5,
         fine_halfwidth=2e-4,
+        **SLAB_GROWTH,
     )
     opts = Layered3DOptions(
         base=base, layered_depth=(N - 1) * H, layers_per_shell=1, interfaces=interfaces
@@ -158,10 +168,10 @@ def slab(mu: float, interfaces: bool = True) -> float:
 
 @pytest.mark.slow
 def test_frictionless_sheets_bend_as_separate_plates() -> None:
-    # measured (n_steps 4, tangential growth 1.3): stuck +1.4 %, frictionless +0.9 %
-    # against the closed forms, ratio 3.970 against 3.948, mu = 1e6 equal to the stuck
-    # stack to 3e-5. Tolerance 2 % as in 2D (the ring's hoop stiffness, the head's
-    # finite contact, the coarser 3D hoop mesh)
+    # measured (n_steps 2, growth 1.3: SLAB_GROWTH): stuck +1.44 %, frictionless +0.81 %
+    # against the closed forms, ratio 3.973 against 3.948 (n_steps 4: +1.44 %, +0.88 %,
+    # 3.970), mu = 1e6 equal to the stuck stack to 3e-5. Tolerance 2 % as in 2D (the
+    # ring's hoop stiffness, the head's finite contact, the coarser 3D hoop mesh)
     stuck, free = slab(1.0, interfaces=False), slab(1e-6)
     assert stuck == pytest.approx(beam_stiffness(EI_STICK), rel=0.02)
     assert free == pytest.approx(beam_stiffness(EI_SLIP), rel=0.02)

@@ -867,13 +867,10 @@ def _predict_profile(
                 sector_contacts(_cheap_contact(contact), w.slack), profiles,
                 workers=workers, progress=stage("contact (plane strain)"), pool=pool,
             )  # fmt: skip
-        widths = np.full(len(profiles), np.nan)  # of the sectors solved in full
         contact_stage = _interpolated_contact(
-            fns, profiles, readout, w, web, pool, workers, tolerance, stage("contact"),
-            None if base is None else (base.alpha, base.beta), widths,
-        )  # fmt: skip
-        alpha, beta = contact_stage.alpha, contact_stage.beta
-        width = _fill_widths(widths, w.z)
+            fns, profiles, readout, w, web, pool, workers, tolerance, stage("contact"), base
+        )
+        alpha, beta, width = contact_stage.alpha, contact_stage.beta, contact_stage.width
     timings["contact"] = time.perf_counter() - t2
     # 3. the reading: the instrument's own (FD), the energy model beside it
     rho, rho_energy, scale = _sector_readings(readout, alpha, beta, w, web, pool, workers, width)
@@ -915,38 +912,33 @@ def _interpolated_contact(
     workers: int,
     tolerance: float,
     progress: Callable[[int, int], None] | None,
-    base: tuple[FloatArray, FloatArray] | None = None,
-    widths: FloatArray | None = None,
+    base: SectorSprings | None = None,
 ) -> InterpolatedContact:
-    """The springs by :func:`woundroll.profile.interpolated.interpolated_springs`: full
-    solves by :func:`map_sectors` on the pool, readings of the checked sectors with their
-    own pile heights and semi-contact widths (the solved ones', interpolated along the CMD
-    between them elsewhere); anchored on the cheap model's springs ``base`` when given.
-    ``widths`` (one per sector, NaN): filled in with the solved sectors' widths."""
+    """The springs and semi-contact widths by
+    :func:`woundroll.profile.interpolated.interpolated_springs`: full solves by
+    :func:`map_sectors` on the pool (alpha, beta and width, in the order asked), readings
+    of the checked sectors with their own pile heights and their widths (the solved
+    sectors' own, interpolated like the springs elsewhere); anchored on the cheap model's
+    springs and widths ``base`` when given."""
     pile = w.build_radius - w.core_radius
     scale = None
-    solved_width = np.full(len(profiles), np.nan) if widths is None else widths
-    sector_of = {id(p): j for j, p in enumerate(profiles)}
     if isinstance(readout, InstrumentReadout):
         setup = readout.setup
         scale = setup.instrument.reading_range
 
-        def readings(a: FloatArray, b: FloatArray, sel: NDArray[np.intp]) -> FloatArray:
-            width = readout.widths(_fill_widths(solved_width, w.z))
-            return FdReadout(setup, pile[sel], web.density, None if width is None else width[sel])(
-                a, b
-            )
+        def readings(
+            a: FloatArray, b: FloatArray, width: FloatArray, sel: NDArray[np.intp]
+        ) -> FloatArray:
+            return FdReadout(setup, pile[sel], web.density, readout.widths(width))(a, b)
     else:
 
-        def readings(a: FloatArray, b: FloatArray, sel: NDArray[np.intp]) -> FloatArray:
+        def readings(
+            a: FloatArray, b: FloatArray, width: FloatArray, sel: NDArray[np.intp]
+        ) -> FloatArray:
             return np.asarray(readout(a, b), dtype=float).reshape(-1)
 
-    def solve(
-        f: Sequence[ContactFn], p: Sequence[tuple[FloatArray, FloatArray]]
-    ) -> tuple[FloatArray, FloatArray]:
-        springs = map_sectors(list(f), list(p), workers=workers, pool=pool)
-        solved_width[[sector_of[id(q)] for q in p]] = springs.width
-        return springs.alpha, springs.beta
+    def solve(f: Sequence[ContactFn], p: Sequence[tuple[FloatArray, FloatArray]]) -> SectorSprings:
+        return map_sectors(list(f), list(p), workers=workers, pool=pool)
 
     return interpolated_springs(
         fns,
@@ -1018,16 +1010,6 @@ def _sector_readings(
             "the readout must return one finite reading per sector", "tester.instrument"
         )
     return rho, rho_energy, scale
-
-
-def _fill_widths(width: FloatArray, z: FloatArray) -> FloatArray:
-    """The semi-contact width of every sector: the given (finite) ones, linearly
-    interpolated along the CMD between them elsewhere (the nearest at the ends); all NaN
-    when none is given (the FD reading then takes the tester's own)."""
-    known = np.isfinite(width)
-    if known.all() or not known.any():
-        return width
-    return np.where(known, width, np.interp(z, z[known], width[known]))
 
 
 def sector_contacts(contact: ContactFn, slack: NDArray[np.bool_]) -> list[ContactFn]:

@@ -15,9 +15,11 @@ striker, and the roll spring {3} of a sector is a smooth function of it. So inst
    a group of sectors with one descriptor (a uniform web) is solved once and copied, so its
    profile is exactly flat;
 4. interpolates ``alpha`` and ``beta`` linearly in ``x`` between the nodes (linear in
-   (alpha, beta) is linear in the whole curve ``F(d) = alpha d^2 + beta d``); the active-mass
-   inputs of the FD reading (each sector's pile height) are the sector's own, not
-   interpolated;
+   (alpha, beta) is linear in the whole curve ``F(d) = alpha d^2 + beta d``), and so the
+   semi-contact width ``a`` the contact model gives beside them (the FD reading's active
+   mass {14}-{18}), with the same nodes and descriptor, so that the checks below judge the
+   reading of the interpolated spring *and* width; the other active-mass input (each
+   sector's pile height) is the sector's own, not interpolated;
 5. **checks**: an error estimate per interpolated sector (the larger of the interpolation's
    curvature term ``0.5 |R''| (x - x_a)(x_b - x)`` from the node readings and the
    difference between the reading of the interpolated spring and the reading interpolated
@@ -61,12 +63,14 @@ from numpy.typing import NDArray
 from woundroll.errors import InputError
 
 FloatArray = NDArray[np.float64]
-ContactFn = Callable[[FloatArray, FloatArray], tuple[float, float]]
-#: ``readings(alpha, beta, sectors) -> reading`` of the given sectors (their own pile heights)
-ReadingFn = Callable[[FloatArray, FloatArray, NDArray[np.intp]], FloatArray]
-#: ``solve(fns, profiles) -> (alpha, beta)``: full contact solves (map_sectors on the pool)
+ContactFn = Callable[[FloatArray, FloatArray], tuple[float, ...]]
+#: ``readings(alpha, beta, width, sectors) -> reading`` of the given sectors (their own pile
+#: heights; ``width`` their semi-contact widths [m], NaN where the contact gives none)
+ReadingFn = Callable[[FloatArray, FloatArray, FloatArray, NDArray[np.intp]], FloatArray]
+#: ``solve(fns, profiles) -> (alpha, beta)`` or ``(alpha, beta, width)``: full contact
+#: solves (map_sectors on the pool), in the order given
 SolveFn = Callable[
-    [Sequence[ContactFn], Sequence[tuple[FloatArray, FloatArray]]], tuple[FloatArray, FloatArray]
+    [Sequence[ContactFn], Sequence[tuple[FloatArray, FloatArray]]], tuple[FloatArray, ...]
 ]
 
 #: The contact stage of a profile: ``"every-sector"`` (one full contact solve per sector,
@@ -115,6 +119,9 @@ class InterpolatedContact:
     Attributes
     ----------
     alpha, beta : ndarray   roll spring {3} per sector [N/m^2], [N/m].
+    width : ndarray         semi-contact width a per sector [m] (the solved sectors' own,
+                            interpolated like alpha and beta elsewhere; NaN where the
+                            contact callable gives none).
     solved : ndarray[bool]  sectors whose contact was solved fully (nodes and checks).
     x : ndarray             the interpolation parameter per sector (ln of the geometric-mean
                             pressure over the reach, ln Pa).
@@ -126,6 +133,7 @@ class InterpolatedContact:
 
     alpha: FloatArray
     beta: FloatArray
+    width: FloatArray
     solved: NDArray[np.bool_]
     x: FloatArray
     rounds: int
@@ -166,21 +174,21 @@ def descriptors(profiles: Sequence[tuple[FloatArray, FloatArray]]) -> FloatArray
 
 
 def _interpolate(
-    x: FloatArray, nodes: list[int], a: FloatArray, b: FloatArray, members: NDArray[np.intp]
+    x: FloatArray, nodes: list[int], coefs: Sequence[FloatArray], members: NDArray[np.intp]
 ) -> None:
-    """alpha, beta (or, anchored, their relation to the cheap model's) of the group's
-    ``members`` linear in x between its ``nodes`` (in place; nodes at one x averaged)."""
+    """alpha, beta and the width (or, anchored, their relations to the cheap model's) of
+    the group's ``members`` linear in x between its ``nodes`` (in place; nodes at one x
+    averaged; a NaN width stays NaN)."""
     xn = x[nodes]
     order = np.argsort(xn, kind="stable")
     xs, idx = np.unique(xn[order], return_inverse=True)
-    an = np.bincount(idx, a[nodes][order]) / np.bincount(idx)
-    bn = np.bincount(idx, b[nodes][order]) / np.bincount(idx)
     rest = np.setdiff1d(members, nodes)
     if rest.size:
         # linear in (alpha, beta) is linear in the whole curve F(d); (measured: linear in
         # ln(alpha + c) instead solves all 61 sectors of pet3-3.45MPa, against 49)
-        a[rest] = np.interp(x[rest], xs, an)
-        b[rest] = np.interp(x[rest], xs, bn)
+        for c in coefs:
+            cn = np.bincount(idx, c[nodes][order]) / np.bincount(idx)
+            c[rest] = np.interp(x[rest], xs, cn)
 
 
 def _estimates(
@@ -306,50 +314,59 @@ def _pick(cand: list[tuple[float, int, int, int]], batch: int) -> list[int]:
 
 @dataclass
 class _Anchor:
-    """The anchored stage's bookkeeping: the cheap model's springs ``base`` and the
-    relation of each solved sector's spring to them, per coefficient a ratio (``alpha /
-    alpha_base``). A cheap coefficient fitted to 0 (the fit keeps alpha, beta >= 0) is
-    divided as :data:`ANCHOR_FLOOR` of the coefficient's median instead, so every ratio is
-    finite and >= 0 and so is every spring made from one. Without a base it is the
-    identity (the plain interpolation)."""
+    """The anchored stage's bookkeeping: the cheap model's springs ``base`` (and widths)
+    and the relation of each solved sector's coefficient to them, a ratio (``alpha /
+    alpha_base``, ``a / a_base``). A cheap spring coefficient fitted to 0 (the fit keeps
+    alpha, beta >= 0) is divided as :data:`ANCHOR_FLOOR` of the coefficient's median
+    instead, so every ratio is finite and >= 0 and so is every spring made from one. A
+    coefficient without a base (no base at all: the plain interpolation; the width when
+    the cheap model gives none) is interpolated as itself (``denominators`` entry None)."""
 
-    denominators: tuple[FloatArray, FloatArray]
-    rel: tuple[FloatArray, FloatArray]
-    active: bool
+    denominators: tuple[FloatArray | None, ...]
+    rel: tuple[FloatArray, ...]
 
     @classmethod
-    def of(cls, base: tuple[FloatArray, FloatArray] | None, n: int) -> _Anchor:
+    def of(cls, base: Sequence[FloatArray] | None, n: int) -> _Anchor:
+        rel = (np.zeros(n), np.zeros(n), np.zeros(n))
         if base is None:
-            z = np.zeros(n)
-            return cls((z, z), (z, z), False)
+            return cls((None, None, None), rel)
         b = [np.asarray(c, dtype=float).reshape(-1) for c in base]
-        if any(c.shape != (n,) or not np.all(np.isfinite(c)) or np.any(c < 0) for c in b):
+        if len(b) not in (2, 3) or any(
+            c.shape != (n,) or not np.all(np.isfinite(c)) or np.any(c < 0) for c in b[:2]
+        ):
             raise InputError(
                 "the anchored stage needs one finite cheap spring >= 0 per sector",
                 "profile.contact",
             )
-        den = []
-        for c in b:
+        den: list[FloatArray | None] = []
+        for c in b[:2]:
             pos = c[c > 0]
             floor = ANCHOR_FLOOR * float(np.median(pos)) if pos.size else 1.0
             den.append(np.maximum(c, floor))
-        return cls((den[0], den[1]), (np.zeros(n), np.zeros(n)), True)
+        width = b[2] if len(b) > 2 else None
+        ok = width is not None and width.shape == (n,) and bool(np.all(width > 0))
+        den.append(width if ok else None)  # (NaN > 0 is False: no width, plain)
+        return cls(tuple(den), rel)
 
-    def relate(self, alpha: FloatArray, beta: FloatArray, sel: NDArray[np.intp]) -> None:
+    def relate(self, coefs: Sequence[FloatArray], sel: NDArray[np.intp]) -> None:
         """Record the solved sectors' relation to the base."""
-        if self.active:
-            for c, full, rel in zip(self.denominators, (alpha, beta), self.rel, strict=True):
+        for c, full, rel in zip(self.denominators, coefs, self.rel, strict=True):
+            if c is not None:
                 rel[sel] = full[sel] / c[sel]
 
-    def interpolated(self, alpha: FloatArray, beta: FloatArray) -> tuple[FloatArray, FloatArray]:
-        """The arrays interpolated in x: the relations (anchored) or the springs."""
-        return self.rel if self.active else (alpha, beta)
+    def interpolated(self, coefs: Sequence[FloatArray]) -> list[FloatArray]:
+        """The arrays interpolated in x: the relations (anchored) or the coefficients."""
+        return [
+            full if c is None else rel
+            for c, full, rel in zip(self.denominators, coefs, self.rel, strict=True)
+        ]
 
-    def apply(self, alpha: FloatArray, beta: FloatArray, rest: NDArray[np.intp]) -> None:
-        """The interpolated sectors' springs from their interpolated relations."""
-        if self.active and rest.size:
-            for c, full, rel in zip(self.denominators, (alpha, beta), self.rel, strict=True):
-                full[rest] = c[rest] * rel[rest]
+    def apply(self, coefs: Sequence[FloatArray], rest: NDArray[np.intp]) -> None:
+        """The interpolated sectors' coefficients from their interpolated relations."""
+        if rest.size:
+            for c, full, rel in zip(self.denominators, coefs, self.rel, strict=True):
+                if c is not None:
+                    full[rest] = c[rest] * rel[rest]
 
 
 def interpolated_springs(
@@ -362,16 +379,19 @@ def interpolated_springs(
     batch: int = 2,
     scale: tuple[float, float] | None = None,
     progress: Callable[[int, int], None] | None = None,
-    base: tuple[FloatArray, FloatArray] | None = None,
+    base: Sequence[FloatArray] | None = None,
 ) -> InterpolatedContact:
-    """The roll spring of every sector from full contact solves on a few (module docstring).
+    """The roll spring (and semi-contact width) of every sector from full contact solves on
+    a few (module docstring).
 
     Parameters
     ----------
     fns : one contact callable per sector (sectors with equal callables form a group).
     profiles : ``(radius, sigma_r)`` per sector (core to surface).
-    solve : the full contact solves of some sectors (``map_sectors`` on the pool).
-    readings : the reading of some sectors from their springs (their own pile heights).
+    solve : the full contact solves of some sectors (``map_sectors`` on the pool):
+        ``(alpha, beta)`` or ``(alpha, beta, width)``.
+    readings : the reading of some sectors from their springs and widths (their own pile
+        heights).
     tolerance : float
         Largest reading change a check round may find before the interpolation is accepted.
     batch : int
@@ -379,15 +399,17 @@ def interpolated_springs(
     scale : (lo, hi), optional
         The instrument's scale: a sector interpolated beyond it by more than its estimate
         is not checked (it shows the scale's end).
-    base : (alpha, beta) per sector, optional
-        Anchored (module docstring): a cheaper model's springs on every sector; what is
-        interpolated is the full solves' spring relative to these.
+    base : (alpha, beta) or (alpha, beta, width) per sector, optional
+        Anchored (module docstring): a cheaper model's springs (and widths) on every
+        sector; what is interpolated is the full solves' spring and width relative to
+        these.
     """
     run = _Interpolation(fns, profiles, solve, readings, progress, base)
     first, copies = _first_nodes(run.x, run.members)
     run.full(first)
     for k, j0 in copies.items():
-        run.alpha[run.members[k]], run.beta[run.members[k]] = run.alpha[j0], run.beta[j0]
+        for c in run.coefs:
+            c[run.members[k]] = c[j0]
     run.live = {k: m for k, m in run.members.items() if k not in copies}
     while True:
         run.interpolate()
@@ -408,6 +430,7 @@ def interpolated_springs(
     return InterpolatedContact(
         alpha=run.alpha,
         beta=run.beta,
+        width=run.width,
         solved=run.solved,
         x=run.x,
         rounds=run.rounds,
@@ -427,7 +450,7 @@ class _Interpolation:
         solve: SolveFn,
         readings: ReadingFn,
         progress: Callable[[int, int], None] | None,
-        base: tuple[FloatArray, FloatArray] | None,
+        base: Sequence[FloatArray] | None,
     ) -> None:
         n = len(profiles)
         self.fns, self.profiles, self.solve_fn, self.readings = fns, profiles, solve, readings
@@ -435,6 +458,8 @@ class _Interpolation:
         self.x_all = descriptors(profiles)
         self.x = self.x_all.mean(axis=1)
         self.alpha, self.beta = np.zeros(n), np.zeros(n)
+        self.width = np.full(n, np.nan)  # the semi-contact width a [m] (NaN: none given)
+        self.coefs = (self.alpha, self.beta, self.width)
         self.solved = np.zeros(n, dtype=bool)
         self.reading = np.full(n, np.nan)  # readings of solved sectors
         # the nodes: extremes and median of each group (one sector for one descriptor)
@@ -444,41 +469,53 @@ class _Interpolation:
         # anchored: the cheap springs' readings (what the checks correct)
         self.offset = np.zeros(n)
         if base is not None:
-            self.offset = readings(*(np.asarray(c, dtype=float) for c in base), np.arange(n))
+            a0, b0, *w0 = (np.asarray(c, dtype=float) for c in base)
+            self.offset = readings(a0, b0, w0[0] if w0 else np.full(n, np.nan), np.arange(n))
         self.rounds, self.largest_check, self.largest_change = 0, 0.0, 0.0
         self.calibration = 1.0
-        self.memo: dict[int, tuple[float, float, float]] = {}
+        self.memo: dict[int, tuple[tuple[float, float, float], float]] = {}
 
     def full(self, idx: list[int]) -> None:
         """Full contact solves of the sectors ``idx`` not solved yet."""
         idx = [j for j in idx if not self.solved[j]]
         if not idx:
             return
-        a, b = self.solve_fn([self.fns[j] for j in idx], [self.profiles[j] for j in idx])
+        out = self.solve_fn([self.fns[j] for j in idx], [self.profiles[j] for j in idx])
         sel = np.asarray(idx, dtype=np.intp)
-        self.alpha[sel], self.beta[sel] = a, b
-        self.anchor.relate(self.alpha, self.beta, sel)
+        self.alpha[sel], self.beta[sel] = out[0], out[1]
+        self.width[sel] = out[2] if len(out) > 2 else np.nan
+        self.anchor.relate(self.coefs, sel)
         self.solved[sel] = True
-        self.reading[sel] = self.readings(self.alpha[sel], self.beta[sel], sel)
+        self.reading[sel] = self.readings(self.alpha[sel], self.beta[sel], self.width[sel], sel)
         if self.progress is not None:
             self.progress(int(self.solved.sum()), self.n)
 
     def cached(self, js: NDArray[np.intp]) -> FloatArray:
-        """Readings of interpolated springs (the FD reading is 2 ms a sector: a sector whose
-        interval did not change is not read again)."""
-        alpha, beta, memo = self.alpha, self.beta, self.memo
-        new = [j for j in js if memo.get(int(j), (None, None))[:2] != (alpha[j], beta[j])]
+        """Readings of interpolated springs and widths (the FD reading is 2 ms a sector: a
+        sector whose interval did not change is not read again)."""
+        memo = self.memo
+
+        def key(j: int) -> tuple[float, float, float]:
+            return float(self.alpha[j]), float(self.beta[j]), float(self.width[j])
+
+        def same(j: int) -> bool:
+            if j not in memo:
+                return False
+            return bool(np.array_equal(memo[j][0], key(j), equal_nan=True))
+
+        new = [int(j) for j in js if not same(int(j))]
         if new:
             sel = np.asarray(new, dtype=np.intp)
-            for j, r in zip(new, self.readings(alpha[sel], beta[sel], sel), strict=True):
-                memo[int(j)] = (float(alpha[j]), float(beta[j]), float(r))
-        return np.array([memo[int(j)][2] for j in js])
+            got = self.readings(self.alpha[sel], self.beta[sel], self.width[sel], sel)
+            for j, r in zip(new, got, strict=True):
+                memo[j] = (key(j), float(r))
+        return np.array([memo[int(j)][1] for j in js])
 
     def interpolate(self) -> None:
         for m in self.live.values():
             nodes = [int(j) for j in m if self.solved[j]]
-            _interpolate(self.x, nodes, *self.anchor.interpolated(self.alpha, self.beta), m)
-            self.anchor.apply(self.alpha, self.beta, np.setdiff1d(m, nodes))
+            _interpolate(self.x, nodes, self.anchor.interpolated(self.coefs), m)
+            self.anchor.apply(self.coefs, np.setdiff1d(m, nodes))
 
     def check(
         self,

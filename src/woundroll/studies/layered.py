@@ -64,10 +64,10 @@ EXPLANATIONS: dict[str, tuple[str, tuple[str, ...], dict[str, Any]]] = {
 }
 #: The 3D mesh of the study's 3D columns (both 3D models, :func:`run_3d`): the default
 #: gradings, half the fine zone's elements and a third of the increments of
-#: ``Contact3DOptions`` (a layered-3d roll costs 40-110 CPU s on it, several times that on
+#: ``Contact3DOptions`` (a layered-3d roll costs about ten 3d solves on it, several times that on
 #: the default mesh). **Assumption**: the two 3D models' difference, which is what the
 #: columns compare, depends little on the mesh; the 3d column's own offset against the
-#: default mesh is measured in docs/studies.md (layered section).
+#: default mesh is measured in docs/studies.md (layered section, a record).
 COARSE_3D: tuple[str, ...] = (
     "contact.options3d.radial_growth=1.6",
     "contact.options3d.tangential_growth=1.6",
@@ -352,6 +352,6 @@ def run_3d(
 ) -> LayeredStudy:
     """The registry's entry ``woundroll study layered-3d``: the study's rolls in 2d, layered,
     3d and layered-3d (each mu of :data:`FRICTIONS`; the 2D explanations are the layered
-    study's). About 50 CPU min (11 rolls; a layered-3d roll 40-110 CPU s); ``model`` is
-    not used."""
+    study's). Tens of CPU minutes (docs/studies.md gives the measured cost); ``model``
+    is not used."""
     return layered_study(progress=progress, workers=workers, explanations=(), three_d=True)

@@ -18,7 +18,7 @@ def study(
         typer.Argument(
             help="tension (Figures 14/15), pile-height (16/17), slip (18), all, dynamic "
             "(the FE impact in time against the 1.5D models), layered (interlayer friction "
-            "beside the continuum) or layered-3d (the same rolls in 3D too; ~50 CPU min)."
+            "beside the continuum) or layered-3d (the same rolls in 3D too: tens of CPU minutes)."
         ),
     ],
     out_dir: out_option("study.json and PNG plots") = None,  # type: ignore[valid-type]

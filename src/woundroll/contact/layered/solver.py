@@ -48,7 +48,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from woundroll.contact.plane_strain.fem import Assembler
+from woundroll.contact.plane_strain.fem import Assembler, ring_major_order
 from woundroll.contact.plane_strain.mesh import RollMesh, build_mesh, graded_sizes
 from woundroll.contact.plane_strain.solver import (
     FINE_ZONE,
@@ -277,9 +277,16 @@ class _CutAssembler(Assembler):
     the mean stiffness diagonal of the pair, set at each assembly (:attr:`rho`)."""
 
     def __init__(
-        self, basis: Any, free: Any, diagonal: Any, fa: IntArray, fb: IntArray, penalty: float
+        self,
+        basis: Any,
+        free: Any,
+        diagonal: Any,
+        fa: IntArray,
+        fb: IntArray,
+        penalty: float,
+        order: IntArray | None = None,
     ) -> None:
-        super().__init__(basis, free, diagonal)
+        super().__init__(basis, free, diagonal, order)
         self.fa, self.fb, self.penalty = fa, fb, penalty
         self.rho = np.zeros(fa.size)
         #: the pairs augmented (the stick set of the active-set passes)
@@ -385,10 +392,14 @@ class _LayeredRoll(_Roll):
         self.pair_b = 2 * (jj * nr2 + upper[kk]) + 1
         self.pair_ring, self.pair_j = kk, jj
         self.free = free
+        # the unknowns ring by ring (surface first) where the mesh has more rings than
+        # nodes on a ring, as a layered zone of many sheets does: the band narrows from
+        # ~2 (n_r + cuts) to ~3 n_theta, the same equations (fem.ring_major_order)
+        order = ring_major_order(nr2, nt, free, dofs)
         fi = np.full(n_dof, -1, dtype=np.int64)
-        fi[free] = np.arange(int(free.sum()))
+        fi[np.flatnonzero(free) if order is None else order] = np.arange(int(free.sum()))
         self.assembler = _CutAssembler(
-            self.basis, free, diagonal, fi[self.pair_a], fi[self.pair_b], opts.penalty
+            self.basis, free, diagonal, fi[self.pair_a], fi[self.pair_b], opts.penalty, order
         )
         self.mesh = lmesh
         self.uncut_mesh = mesh

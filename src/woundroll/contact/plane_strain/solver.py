@@ -585,7 +585,7 @@ def _step(
     g_pred, normal = _gap(pos, centre, head_radius)
     cand = (g_pred < 0) | (lam_old > 0)
     # the old contact forces are released and re-applied along the current normals
-    release = -f_contact[roll.free]
+    release = -f_contact[roll.assembler.free_dofs]
     released = np.flatnonzero(release)
     n_free = roll.assembler.n_free
     for _ in range(8):
@@ -615,7 +615,7 @@ def _step(
         lam_c = _solve_lcp(W, q, start=lam_old[idx] > 0)
         du_free = solve_for(np.append(lam_c, 1.0))
         du = np.zeros(u.size)
-        du[roll.free] = du_free
+        du[roll.assembler.free_dofs] = du_free
         gap, _ = _gap(pos + roll.cartesian(du, surf), centre, head_radius)
         outside = np.ones(surf.size, dtype=bool)
         outside[idx] = False
@@ -826,7 +826,7 @@ def _newton_increment(
             continue
         err_prev, du_prev = err, step.du
         dm = tuple(a - b for a, b in zip(mod0, mod_used, strict=True))
-        step = solve(mod0, lu0, extra=roll.assembler.matvec(*dm, step.du[roll.free]))
+        step = solve(mod0, lu0, extra=roll.assembler.matvec(*dm, step.du[roll.assembler.free_dofs]))
         exact = False
     raise _ModuliNotSettled(
         f"an increment's moduli did not settle in {8 * NEWTON_ITERATIONS} passes; use more n_steps"
