@@ -5,7 +5,8 @@ The benchmarks with a table in docs/ rewrite it (``--write-docs``, benchmarks/do
 --table3``, ``bench_contact3d.py --ratio`` and ``bench_dynamic3d.py`` their tables in
 docs/performance.md, ``bench_winding.py``, ``bench_storage.py`` and ``bench_air.py`` their
 blocks in docs/winding.md, ``bench_diagnosis.py`` its paragraph in docs/diagnosis.md,
-``bench_report.py`` its sentences in docs/report.md and docs/web.md. The others print."""
+``bench_report.py`` its sentences in docs/report.md and docs/web.md, ``bench_limits.py`` the
+winding estimate's fit in docs/case-files.md. The others print."""
 
 import subprocess
 import sys
@@ -23,6 +24,7 @@ DOCS = {
     "bench_report.py": ["--write-docs"],
     "bench_storage.py": ["--write-docs"],
     "bench_air.py": ["--write-docs"],
+    "bench_limits.py": ["--write-docs"],
 }
 
 for script in sorted(Path(__file__).parent.glob("bench_*.py")):

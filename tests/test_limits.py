@@ -45,3 +45,49 @@ def test_check_hard_and_plausible():
     with pytest.raises(InputError) as info:
         check("web.thickness", lim.hard[1] * 2)
     assert info.value.field == "web.thickness" and "physical range" in info.value.message
+
+
+def test_winding_estimate_form():
+    # the estimate's form, not its seconds (no timed assertions; the fit against measured
+    # times is benchmarks/bench_limits.py's table in docs/case-files.md)
+    from woundroll.limits import winding_estimate
+
+    ns = [1_000, 10_000, 100_000, 1_000_000]
+    for kernels in ("compiled", "numpy"):
+        t = [winding_estimate(n, 2, kernels).seconds for n in ns]
+        assert all(b > a > 0 for a, b in zip(t, t[1:], strict=False))
+        assert winding_estimate(10_000, 2, kernels).kernels == kernels
+        # proportional to the nodes per layer
+        assert winding_estimate(10_000, 6, kernels).seconds == pytest.approx(3 * t[1])
+    # the compiled kernels' cost per increment grows slowly with the roll (the lazy deep
+    # part's levels); the NumPy twin's is constant and larger (a Python loop per increment)
+    per = [winding_estimate(n, 2).seconds / n for n in ns]
+    assert all(b > a for a, b in zip(per, per[1:], strict=False)) and per[-1] < 2 * per[0]
+    assert winding_estimate(2_000, 2, "numpy").seconds > 10 * winding_estimate(2_000).seconds
+    # a roll that runs compiled only if the kernels are built is estimated as the NumPy twin
+    either = winding_estimate(1_000, 2, "compiled if built, else numpy")
+    assert either.seconds == winding_estimate(1_000, 2, "numpy").seconds
+
+
+def test_winding_path_is_the_one_wind_takes():
+    from woundroll.winding.hakiel import WindingOptions
+
+    o = WindingOptions()
+    assert o.kernels(50) == "numpy"  # 101 nodes: no load of compiled code
+    assert o.kernels(1_000) == "compiled if built, else numpy"  # no one-off build
+    assert o.kernels(100_000) == "compiled"
+    assert WindingOptions(subdivisions=41).kernels(100) == "compiled"  # above 4,001 nodes
+
+
+def test_long_run_warning_names_the_kernels():
+    from woundroll.case import load_case
+
+    # 5 um film to 1 m radius (~190,000 layers) with 30 elements a layer: 15x the work of
+    # the default 2, estimated above the 20 s of a long run
+    case = load_case(
+        "pet1-26.7N",
+        ["web.thickness='5 um'", "winding.outer_radius='1 m'", "winding.options.subdivisions=30"],
+    )
+    (w,) = [w for w in case.warnings if w.startswith("long run:") and "to wind" in w]
+    assert "with the compiled kernels" in w and "layers_per_increment" in w
+    assert not any(w.startswith("long run:") for w in load_case("pet1-26.7N").warnings)

@@ -7,7 +7,6 @@ solves, a few minutes on a quiet 2-core machine."""
 
 from __future__ import annotations
 
-import importlib.util
 from collections.abc import Callable
 from functools import cache
 from pathlib import Path
@@ -16,15 +15,11 @@ from typing import Any
 ROOT = Path(__file__).resolve().parents[2]
 
 
-@cache
 def _test_module(name: str) -> Any:
     """tests/contact/<name>.py as a module: the page shows the tests' own problems."""
-    path = ROOT / "tests" / "contact" / f"{name}.py"
-    spec = importlib.util.spec_from_file_location(f"docs_{name}", path)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    import records
+
+    return records.test_module(f"contact/{name}.py")
 
 
 def _tests() -> Any:

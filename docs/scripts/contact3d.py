@@ -14,7 +14,6 @@ Hertz sphere and plane-strain slab, and one 3D reading with the reduced-shear sl
 
 from __future__ import annotations
 
-import importlib.util
 import json
 from collections.abc import Callable
 from functools import cache
@@ -38,15 +37,11 @@ ROLLS = (
 )
 
 
-@cache
 def _test_module(name: str) -> Any:
     """tests/contact/<name>.py as a module: the page shows the tests' own problems."""
-    path = ROOT / "tests" / "contact" / f"{name}.py"
-    spec = importlib.util.spec_from_file_location(f"docs3d_{name}", path)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    import records
+
+    return records.test_module(f"contact/{name}.py")
 
 
 def _head(t: Any) -> str:
@@ -391,6 +386,21 @@ def ref_cost() -> str:
     return f"{min(cpu):.0f}-{max(cpu):.0f} CPU s a roll when they were made"
 
 
+def sector_cost() -> str:
+    """What a 3D reading costs a profile sector (the registry table, inline): the CPU
+    seconds of the default-mesh rolls of the record studies3d.slip (no slip emulation)."""
+    import records
+
+    rec = records.load("studies3d.slip")
+    runs = {k: v for k, v in rec["cpu_s"].items() if k.endswith(" default none")}
+    rolls = sorted({k.split("-")[0].upper() for k in runs})
+    return (
+        f"{min(runs.values()):.0f}-{max(runs.values()):.0f} CPU s a sector (the "
+        f"{'/'.join(rolls)} rolls on the default mesh, measured {rec['measured']} by "
+        "`docs/scripts/records.py studies3d.slip`)"
+    )
+
+
 def pile_effect() -> str:
     """How much more the 2 cm pile reads than 8.89 cm, 2D (live) and 3D (stored) (inline)."""
     ref = _ref()["cases"]
@@ -442,6 +452,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "constants": constants,
     "ref_cost": ref_cost,
     "pile_effect": pile_effect,
+    "sector_cost": sector_cost,
     "mesh_growth": mesh_growth,
     "validation_max": validation_max,
 }

@@ -257,17 +257,11 @@ def default_step() -> str:
 # elastic PET1 26.7 N roll, and its _run), imported from the test module
 
 
-@cache
 def _dyn_tests() -> Any:
-    import importlib.util
-    from pathlib import Path
+    """tests/contact/test_dynamic.py as a module (records.test_module)."""
+    import records
 
-    path = Path(__file__).resolve().parents[2] / "tests" / "contact" / "test_dynamic.py"
-    spec = importlib.util.spec_from_file_location("docs_test_dynamic", path)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return records.test_module("contact/test_dynamic.py")
 
 
 @cache

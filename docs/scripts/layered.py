@@ -10,7 +10,6 @@ machine (16 layered pipeline runs of 10-60 s each, a few 2D runs, ~20 small laye
 
 from __future__ import annotations
 
-import importlib.util
 from collections.abc import Callable
 from functools import cache
 from pathlib import Path
@@ -20,15 +19,11 @@ ROOT = Path(__file__).resolve().parents[2]
 MUS = (1e4, 0.5, 0.3, 0.1)
 
 
-@cache
 def _test_module(name: str) -> Any:
     """tests/contact/<name>.py as a module: the page shows the tests' own problems."""
-    path = ROOT / "tests" / "contact" / f"{name}.py"
-    spec = importlib.util.spec_from_file_location(f"docslayered_{name}", path)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    import records
+
+    return records.test_module(f"contact/{name}.py")
 
 
 @cache

@@ -36,11 +36,22 @@ def sweep_surrogate() -> str:
 
 
 def winding_estimate() -> str:
-    """``limits.winding_seconds`` at three roll sizes (the estimate the warning uses)."""
-    from woundroll.limits import fmt_seconds, winding_seconds
+    """``limits.winding_estimate`` on both paths (the estimate the warning uses) and its
+    constants."""
+    from woundroll import limits
 
-    cells = [f"{fmt_seconds(winding_seconds(n))} for {n:,}" for n in (30_000, 60_000, 100_000)]
-    return f"{', '.join(cells[:-1])} and {cells[-1]} increments"
+    def est(n: int, kernels: str = "compiled") -> str:
+        t = limits.winding_estimate(n, 2, kernels).seconds
+        return f"{t:.2g} s" if t < 120 else limits.fmt_seconds(t)
+
+    big = [f"{est(n)} for {n:,}" for n in (10_000, 100_000, limits.MAX_INCREMENTS)]
+    return (
+        f"compiled, {limits.WINDING_COMPILED_SECONDS * 1e6:.2g} us an increment times 1 + n / "
+        f"{limits.WINDING_COMPILED_DOUBLING:.0e}: {', '.join(big[:-1])} and {big[-1]} "
+        f"increments; the NumPy twin {1e3 * limits.WINDING_NUMPY_SECONDS:.2g} ms an "
+        f"increment: {est(2_000, 'numpy')} for 2,000. Both for 2 elements a layer, in seconds "
+        f"of the development machine when quiet (its yardstick {limits.YARDSTICK_SECONDS:g} s)"
+    ).replace("e+0", "e")
 
 
 def long_runs() -> str:

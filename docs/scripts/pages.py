@@ -24,15 +24,12 @@ TEMPLATE = ROOT / "src" / "woundroll" / "app" / "web" / "templates" / "index.htm
 PLOT_CODE_START = "// --- a small SVG plot"
 
 
-@cache
 def _web_tests() -> Any:
-    """tests/web/test_api.py as a module: its fast roll (``FAST_TOML``)."""
-    path = ROOT / "tests" / "web" / "test_api.py"
-    spec = importlib.util.spec_from_file_location("docs_web_test_api", path)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    """tests/web/test_api.py as a module (records.test_module): its fast roll
+    (``FAST_TOML``)."""
+    import records
+
+    return records.test_module("web/test_api.py")
 
 
 def _roughness(y: Any) -> float:
@@ -117,15 +114,12 @@ def _script(name: str) -> Any:
     return mod
 
 
-@cache
 def _test_fd() -> Any:
-    """tests/instruments/test_fd.py as a module: its springs (``BLOCK_LIKE``)."""
-    path = ROOT / "tests" / "instruments" / "test_fd.py"
-    spec = importlib.util.spec_from_file_location("docs_pages_test_fd", path)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    """tests/instruments/test_fd.py as a module (records.test_module): its springs
+    (``BLOCK_LIKE``)."""
+    import records
+
+    return records.test_module("instruments/test_fd.py")
 
 
 def _rho_meter() -> Any:

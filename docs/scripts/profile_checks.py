@@ -8,24 +8,18 @@ most of it the slow Table 3 grouping check (61 sectors, 200 and 400 groups)."""
 
 from __future__ import annotations
 
-import importlib.util
 from collections.abc import Callable
-from functools import cache
 from pathlib import Path
 from typing import Any
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
-@cache
 def _test_module(rel: str) -> Any:
     """tests/<rel>.py as a module: the page shows the tests' own problems."""
-    path = ROOT / "tests" / f"{rel}.py"
-    spec = importlib.util.spec_from_file_location("docs_" + rel.replace("/", "_"), path)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    import records
+
+    return records.test_module(f"{rel}.py")
 
 
 def _ax() -> Any:

@@ -255,18 +255,12 @@ def layer_thickness() -> str:
     return "\n".join(lines)
 
 
-@cache
 def _hakiel_tests() -> Any:
-    """tests/winding/test_hakiel.py as a module (its rolls of the lazy-part test)."""
-    import importlib.util
-    from pathlib import Path
+    """tests/winding/test_hakiel.py as a module (its rolls of the lazy-part test;
+    records.test_module)."""
+    import records
 
-    path = Path(__file__).resolve().parents[2] / "tests" / "winding" / "test_hakiel.py"
-    spec = importlib.util.spec_from_file_location("docs_test_hakiel", path)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return records.test_module("winding/test_hakiel.py")
 
 
 def lazy() -> str:

@@ -6,25 +6,19 @@ seconds."""
 
 from __future__ import annotations
 
-import importlib.util
 import math
 from collections.abc import Callable
-from functools import cache
 from pathlib import Path
 from typing import Any
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
-@cache
 def _test_module(name: str) -> Any:
     """tests/winding/<name>.py as a module: the page shows the tests' own problems."""
-    path = ROOT / "tests" / "winding" / f"{name}.py"
-    spec = importlib.util.spec_from_file_location(f"docs_{name}", path)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    import records
+
+    return records.test_module(f"winding/{name}.py")
 
 
 def _fixture(fn: Any) -> Any:

@@ -10,12 +10,14 @@ Two ranges per quantity (SI), each with its reason (docs/case-files.md lists the
   before the run and the result records.
 
 Work bounds: the 1D winding solves one increment per layer (``layers_per_increment`` lumps
-them); its time was measured on the development machine (2 cores, loaded) at 2.3 s for 29,560
-layers, 4.8 s for 62,057 and 11.5 s for 99,888 (12 um film, 2 subdivisions), which
-:func:`winding_seconds` models as ``6e-5 s x n (1 + n / 1e5)`` for ``n`` increments (the
-per-increment cost grows slowly with the roll). A run estimated above
-:data:`LONG_RUN_SECONDS` gets a warning with the estimate; more than :data:`MAX_INCREMENTS`
-increments are rejected.
+them). :func:`winding_estimate` estimates its time on the path ``wind`` will take
+(``WindingOptions.kernels``): the compiled kernels, ``a n (1 + n / n0)`` for ``n``
+increments (the per-increment cost grows slowly with the roll: the lazy deep part's levels),
+or the NumPy twin of a small roll, linear in ``n``; both scale with the nodes per layer. The
+constants are fitted to benchmarks/bench_limits.py (its table in docs/case-files.md) as
+multiples of the yardstick, converted to seconds by the development machine's quiet
+yardstick. A run estimated above :data:`LONG_RUN_SECONDS` gets a warning with the estimate;
+more than :data:`MAX_INCREMENTS` increments are rejected.
 """
 
 from __future__ import annotations
@@ -168,7 +170,8 @@ LIMITS: dict[str, Limit] = {
 #: FD error falls as 1/N^2 and is below 1e-6 of the reading at 2,000; 100,000 steps take about
 #: 0.3 s per reading.
 MAX_STEPS_PER_CONTACT = 100_000
-#: Winding increments at most (about 10 minutes on the development machine, module docstring).
+#: Winding increments at most (a bound on the work and the result's size; the compiled
+#: winding takes :func:`winding_estimate` of it, about 10 s, docs/case-files.md).
 MAX_INCREMENTS = 1_000_000
 #: A run estimated longer than this gets a warning with the estimate [s].
 LONG_RUN_SECONDS = 20.0
@@ -195,10 +198,52 @@ def check(key: str, value: float, *, field: str | None = None, what: str = "") -
     return None
 
 
-def winding_seconds(increments: int, nodes_per_layer: int = 2) -> float:
-    """Estimated time [s] of the 1D winding solve (module docstring)."""
+#: The yardstick (benchmarks/yardstick.py) on the development machine when it is quiet [s]
+#: (2.46-2.76 s in the benchmarks of docs/performance.md and docs/diagnosis.md): the
+#: estimates below are fitted as multiples of it and converted to seconds by it. Machines
+#: differ up to 2.5x in speed from one to the next and from hour to hour (yardstick.py), so
+#: an estimate may be off by that factor either way on another machine or under load: the
+#: warnings say "about".
+YARDSTICK_SECONDS = 2.5
+#: The compiled winding per increment of 2 nodes a layer, ``a`` [s], and the increments
+#: ``n0`` over which its per-increment cost doubles: fitted on 2026-11-26 to
+#: benchmarks/bench_limits.py (10,000-1,000,000 layers: 2.75-3.4e-6 yardsticks a layer,
+#: growing with the lazy deep part's levels), 2.9e-6 x YARDSTICK_SECONDS.
+WINDING_COMPILED_SECONDS = 7.3e-6
+WINDING_COMPILED_DOUBLING = 5e6
+#: The NumPy twin per increment of 2 nodes a layer [s] (a small roll, or a roll of up to
+#: 2,000 layers on a machine that has not built the compiled kernels): 1.8e-4 yardsticks a
+#: layer over 500-4,000 layers (bench_limits.py, 2026-11-26).
+WINDING_NUMPY_SECONDS = 4.5e-4
+
+
+@dataclass(frozen=True)
+class WindingEstimate:
+    """The 1D winding's estimated time [s] and the kernels it was estimated for."""
+
+    seconds: float
+    kernels: str
+
+
+def winding_estimate(
+    increments: int, nodes_per_layer: int = 2, kernels: str = "compiled"
+) -> WindingEstimate:
+    """Estimated time of the 1D winding solve on the path ``kernels`` (what
+    ``WindingOptions.kernels`` says ``wind`` will run: ``"compiled"``, ``"numpy"`` or
+    ``"compiled if built, else numpy"``, estimated as the slower NumPy twin), module
+    docstring. Without the compiled kernels' one-off build on a new machine (~15 s)."""
     n = float(increments)
-    return 6e-5 * n * (1.0 + n / 1e5) * max(nodes_per_layer, 1) / 2.0
+    scale = max(nodes_per_layer, 1) / 2.0
+    if kernels == "compiled":
+        t = WINDING_COMPILED_SECONDS * n * (1.0 + n / WINDING_COMPILED_DOUBLING)
+    else:
+        t = WINDING_NUMPY_SECONDS * n
+    return WindingEstimate(t * scale, kernels)
+
+
+def winding_seconds(increments: int, nodes_per_layer: int = 2) -> float:
+    """Estimated time [s] of the compiled 1D winding solve (:func:`winding_estimate`)."""
+    return winding_estimate(increments, nodes_per_layer).seconds
 
 
 def fmt_seconds(t: float) -> str:
@@ -353,11 +398,12 @@ def _check_solve_size(
             "smaller roll",
             size_field if n else "web.thickness",
         )
-    t = winding_seconds(inc, options.subdivisions)
-    if t > LONG_RUN_SECONDS:
+    est = winding_estimate(inc, options.subdivisions, options.kernels(n))
+    if est.seconds > LONG_RUN_SECONDS:
         warnings.append(
             f"long run: {n:,} layers ({inc:,} winding increments) take about "
-            f"{fmt_seconds(t)} to wind (winding.options.layers_per_increment lumps layers)"
+            f"{fmt_seconds(est.seconds)} to wind with the {est.kernels} kernels "
+            "(winding.options.layers_per_increment lumps layers)"
         )
 
 

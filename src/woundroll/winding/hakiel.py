@@ -203,6 +203,11 @@ class WindingOptions:
     def to_dict(self) -> dict[str, Any]:
         return asdict(self)
 
+    def kernels(self, n_layers: int) -> str:
+        """Which kernels :func:`wind` winds ``n_layers`` with under these options
+        (:func:`kernel_path`; :mod:`woundroll.limits` asks, which may not import winding)."""
+        return kernel_path(n_layers * self.subdivisions + 1, self)
+
 
 @dataclass(frozen=True)
 class _Problem:
@@ -371,21 +376,32 @@ def _numpy_work(n_nodes: int, options: WindingOptions) -> float:
     return n_nodes * options.load_substeps * max(window / 8.0, 1.0)
 
 
-def _kernels_for(n_nodes: int, options: WindingOptions) -> Any:
-    """The kernels for a roll of ``n_nodes``: NumPy for a small roll, else numba's machine
-    code loaded without numba (:mod:`woundroll.winding._kernels_aot`, ~0.1 s), else numba's
-    dispatcher (if llvmlite cannot load the code here)."""
-    from woundroll.winding import _kernels_numpy
-
+def kernel_path(n_nodes: int, options: WindingOptions) -> str:
+    """Which kernels :func:`wind` runs a roll of ``n_nodes`` with (decided without loading
+    them): ``"numpy"`` (a small roll), ``"compiled"`` (built first on a machine that has not
+    built them yet) or ``"compiled if built, else numpy"`` (in between: no one-off build for
+    a small roll). :mod:`woundroll.limits` estimates the winding's time by it."""
     work = _numpy_work(n_nodes, options)
     if work <= _NUMPY_MAX_NODES:
+        return "numpy"
+    return "compiled" if work > _BUILD_MIN_NODES else "compiled if built, else numpy"
+
+
+def _kernels_for(n_nodes: int, options: WindingOptions) -> Any:
+    """The kernels for a roll of ``n_nodes`` (:func:`kernel_path`): NumPy for a small roll,
+    else numba's machine code loaded without numba (:mod:`woundroll.winding._kernels_aot`,
+    ~0.1 s), else numba's dispatcher (if llvmlite cannot load the code here)."""
+    from woundroll.winding import _kernels_numpy
+
+    path = kernel_path(n_nodes, options)
+    if path == "numpy":
         return _kernels_numpy  # no load cost (docs/winding.md)
     from woundroll.winding import _kernels_aot
 
-    aot = _kernels_aot.load(build=work > _BUILD_MIN_NODES)
+    aot = _kernels_aot.load(build=path == "compiled")
     if aot is not None:
         return aot
-    if work <= _BUILD_MIN_NODES:
+    if path != "compiled":
         return _kernels_numpy
     from woundroll.winding import _kernels
 
