@@ -37,20 +37,16 @@ from typing import Any  # noqa: E402
 sys.path.insert(0, str(Path(__file__).parent))
 
 from docs_block import load_note, write_block  # noqa: E402
-from yardstick import wind_per_layer  # noqa: E402
+from yardstick import film, wind_per_layer  # noqa: E402
 
-from woundroll.materials import Core, Pfeiffer, Web  # noqa: E402
 from woundroll.winding.air import AirSettings, wind_with_air  # noqa: E402
 from woundroll.winding.hakiel import wind  # noqa: E402
-from woundroll.winding.tension import TensionSchedule  # noqa: E402
 
 PAGE = Path(__file__).resolve().parent.parent / "docs" / "winding.md"
-H = 12e-6
+WEB, CORE, SCHED = film()  # the yardstick's roll (benchmarks/yardstick.py)
+H = WEB.thickness
 N = 10_000
-WEB = Web(thickness=H, width=1.0, E_theta=5e9, radial_modulus=Pfeiffer(10e3, 100.0))
-CORE = Core(0.076)
-SCHED = TensionSchedule(1.5e6)
-R = 0.076 + N * H
+R = CORE.outer_radius + N * H
 
 CASE = {
     "title": "bench",

@@ -40,18 +40,14 @@ from pathlib import Path  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from docs_block import load_note, write_block  # noqa: E402
-from yardstick import wind_per_layer  # noqa: E402
+from yardstick import film, wind_per_layer  # noqa: E402
 
 from woundroll import limits  # noqa: E402
-from woundroll.materials import Core, Pfeiffer, Web  # noqa: E402
 from woundroll.winding import hakiel  # noqa: E402
 from woundroll.winding.hakiel import WindingOptions, wind  # noqa: E402
-from woundroll.winding.tension import TensionSchedule  # noqa: E402
 
-H = 12e-6
-WEB = Web(thickness=H, width=1.0, E_theta=5e9, radial_modulus=Pfeiffer(10e3, 100.0))
-CORE = Core(0.076)
-SCHED = TensionSchedule(1.5e6)
+WEB, CORE, SCHED = film()  # the yardstick's roll (benchmarks/yardstick.py)
+H = WEB.thickness
 PAGE = Path(__file__).resolve().parent.parent / "docs" / "case-files.md"
 
 

@@ -50,17 +50,13 @@ import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from docs_block import write_block  # noqa: E402
-from yardstick import wind_per_layer  # noqa: E402
+from yardstick import film, wind_per_layer  # noqa: E402
 
-from woundroll.materials import Core, Pfeiffer, Web  # noqa: E402
 from woundroll.winding.hakiel import WindingOptions, wind, wind_reference  # noqa: E402
 from woundroll.winding.result import WindingResult  # noqa: E402
-from woundroll.winding.tension import TensionSchedule  # noqa: E402
 
-H = 12e-6
-WEB = Web(thickness=H, width=1.0, E_theta=5e9, radial_modulus=Pfeiffer(10e3, 100.0))
-CORE = Core(0.076)
-SCHED = TensionSchedule(1.5e6)
+WEB, CORE, SCHED = film()  # the yardstick's roll (benchmarks/yardstick.py)
+H = WEB.thickness
 PAGE = Path(__file__).resolve().parent.parent / "docs" / "winding.md"
 
 
@@ -96,8 +92,8 @@ def main() -> None:
     print(f"load average at start: {load0:.2f}")
     threads = {v: os.environ[v] for v in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS")}
     print(f"options {WindingOptions().to_dict()}; threads {threads}")
-    wind(WEB, CORE, 0.076 + 50 * H, SCHED)  # warm-up: numba compile (or cache load)
-    wind(WEB, CORE, 0.076 + 50 * H, SCHED, options=WindingOptions(window_layers=None))
+    wind(WEB, CORE, CORE.outer_radius + 50 * H, SCHED)  # warm-up: numba compile (or cache load)
+    wind(WEB, CORE, CORE.outer_radius + 50 * H, SCHED, options=WindingOptions(window_layers=None))
     yard = min(wind_per_layer()[1] for _ in range(2))
     print(f"yardstick (per-layer banded winding, 10,000 layers, best of 2): {yard:.2f} s wall")
 
@@ -114,7 +110,7 @@ def main() -> None:
     ]
     speedups = []
     for n in args.layers:
-        R = 0.076 + n * H
+        R = CORE.outer_radius + n * H
         fast, w_fast, c_fast = timed(lambda R=R: wind(WEB, CORE, R, SCHED), args.repeat)
         ev = (
             fast.stats["element_evaluations_window"] + fast.stats["element_evaluations_refresh"]

@@ -43,6 +43,17 @@ K1, K2 = 10e3, 100.0
 WOUND_ON_STRESS = 1.5e6
 
 
+def film() -> tuple[object, object, object]:
+    """The yardstick's roll as woundroll's inputs, ``(Web, Core, TensionSchedule)``: one
+    definition for the benchmarks that wind it with the library (bench_winding, bench_air,
+    bench_limits). woundroll is imported here only, not by the yardstick's own solve."""
+    from woundroll.materials import Core, Pfeiffer, Web
+    from woundroll.winding.tension import TensionSchedule
+
+    web = Web(thickness=THICKNESS, width=1.0, E_theta=E_THETA, radial_modulus=Pfeiffer(K1, K2))
+    return web, Core(CORE_RADIUS), TensionSchedule(WOUND_ON_STRESS)
+
+
 def import_yardstick(repeat: int = 5) -> float:
     """The smallest wall time [s] of ``repeat`` fresh ``import numpy, scipy.linalg``."""
     best = float("inf")
