@@ -412,7 +412,12 @@ def half_bandwidth(dofs: IntArray, free: NDArray[np.bool_], order: IntArray | No
     ``order`` (default: the free DOFs in increasing number)."""
     index = np.full(free.size, -1, dtype=np.int64)
     index[np.flatnonzero(free) if order is None else order] = np.arange(int(free.sum()))
-    d = index[dofs]
+    return _band_of(index[dofs])
+
+
+def _band_of(d: IntArray) -> int:
+    """Half-bandwidth of K from the unknowns' indices per element ``d`` (n_el, k; -1 for
+    a constrained DOF): the widest spread of one element's unknowns."""
     valid = d >= 0
     hi = np.where(valid, d, -1).max(axis=1)
     lo = np.where(valid, d, np.iinfo(np.int64).max).min(axis=1)
@@ -492,9 +497,7 @@ class Assembler:
             self._diag_vals = np.asarray(diagonal)[fd]
         self._diag_low = self._diag_vals  # spring entries are diagonal: all lower
         #: half-bandwidth of K in the free numbering
-        both = (d[:, :, None] >= 0) & (d[:, None, :] >= 0)
-        span = np.abs(d[:, :, None] - d[:, None, :])
-        self.bandwidth = int(np.max(span[both])) if np.any(both) else 0
+        self.bandwidth = _band_of(d)
         self._scatter_ready = False  # the general scatter map (:meth:`_scatter`), on first use
         self._slots: IntArray | None = None  # free index per element DOF (:meth:`matvec`)
         self._band_index_reversed: NDArray[np.int64] | None = None
