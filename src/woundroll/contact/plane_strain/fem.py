@@ -579,7 +579,9 @@ class Assembler:
             idx = np.concatenate([idx, sidx])
             vals = np.concatenate([vals.ravel(), self._diag_low])
         ab = np.bincount(idx, weights=vals.ravel(), minlength=size + 1)
-        return ab[:size].reshape(bw + 1, n)
+        # column-major slots (j (bw + 1) + d): the band is built Fortran-ordered, as LAPACK
+        # takes it, so ``dpbtrf`` does not copy it first (the same numbers)
+        return ab[:size].reshape(n, bw + 1).T
 
     def _pad_pattern(self) -> tuple[FloatArray, tuple[Any, Any], tuple[Any, Any]]:
         """The element matrices' lower triangles (4, n_el, 36) and their positions in the
@@ -599,13 +601,14 @@ class Assembler:
             hi, lo = np.maximum(ga, gb), np.minimum(ga, gb)
             ok = (ga >= 0) & (gb >= 0)
             dummy = (bw + 1) * n
-            fwd = np.where(ok, (hi - lo) * n + lo, dummy).ravel()
-            rev = np.where(ok, (hi - lo) * n + (n - 1 - hi), dummy).ravel()
+            # band entry (hi - lo, column) at the column-major slot column (bw + 1) + hi - lo
+            fwd = np.where(ok, lo * (bw + 1) + (hi - lo), dummy).ravel()
+            rev = np.where(ok, (n - 1 - hi) * (bw + 1) + (hi - lo), dummy).ravel()
             index = (fwd, rev)
             _PAD_INDEX.clear()  # one numbering at a time (a profile's sectors share it)
             _PAD_INDEX[key] = index
         r = self._diag_idx
-        springs = (r, n - 1 - r)  # diagonal: band row 0
+        springs = (r * (bw + 1), (n - 1 - r) * (bw + 1))  # diagonal: band row 0
         return A, index, springs
 
     def matvec(

@@ -360,6 +360,8 @@ class _Roll:
         self.linear_law: tuple[float, float] | None = (
             (float(lin[0]), float(lin[1])) if use and lin is not None else None
         )
+        #: the last increment's contact geometry (:class:`_ContactGeometry`)
+        self._contact_geometry: Any = None
 
     def radial_modulus(self, sigma_r_total: FloatArray) -> FloatArray:
         """E_r [Pa] of the elements at total radial stress ``sigma_r_total`` (law {2},
@@ -475,6 +477,9 @@ class _Factor:
     def __init__(self, banded: FloatArray | None = None, lu: Any = None) -> None:
         self._cb = banded
         self._lu = lu
+        #: the last ``(B, Y, G)`` of :meth:`flexibility` (banded): a modified-Newton pass
+        #: on this factor asks again for the same contact columns
+        self._flex: tuple[FloatArray, FloatArray, FloatArray] | None = None
 
     def solve(self, b: FloatArray) -> FloatArray:
         if self._cb is not None:
@@ -517,11 +522,18 @@ class _Factor:
                 return B[rows].T @ X[rows], None, lambda c: X @ c
             return B[rows].T @ X[rows], B[rows].T @ pre[rows], lambda c: X @ c + pre
         # the leading rows are the trailing ones of the reversed order
-        Br = np.asfortranarray(B[::-1])
-        ab = np.asfortranarray(self._cb[:, n - top :])
-        Y, info = _dtbtrs(ab, Br, uplo="L", trans="N", diag="N")
-        if info != 0:
-            raise ConvergenceError(f"banded triangular solve failed (LAPACK info {info})")
+        last = self._flex
+        if last is not None and (last[0] is B or np.array_equal(last[0], B)):
+            Y, G = last[1], last[2]  # the same columns on the same factor: the same numbers
+        else:
+            Br = np.asfortranarray(B[::-1])
+            ab = np.asfortranarray(self._cb[:, n - top :])
+            Y, info = _dtbtrs(ab, Br, uplo="L", trans="N", diag="N")
+            if info != 0:
+                raise ConvergenceError(f"banded triangular solve failed (LAPACK info {info})")
+            G = Y.T @ Y
+            Y.flags.writeable = G.flags.writeable = False  # shared by the passes
+            self._flex = (B, Y, G)
         cb = self._cb
 
         def solve_for(c: FloatArray) -> FloatArray:
@@ -532,7 +544,7 @@ class _Factor:
                 raise ConvergenceError(f"banded triangular solve failed (LAPACK info {info})")
             return x[::-1]
 
-        return Y.T @ Y, (None if pre is None else Y.T @ pre[n - top :]), solve_for
+        return G, (None if pre is None else Y.T @ pre[n - top :]), solve_for
 
 
 def _dtbtrs(*args: Any, **kw: Any) -> tuple[FloatArray, int]:
@@ -561,6 +573,97 @@ def _factorize(roll: _Roll, moduli: tuple[FloatArray, ...]) -> _Factor:
     return _Factor(lu=lu)
 
 
+class _ContactGeometry:
+    """What :func:`_step` derives from the start of an increment (displacements ``u``,
+    contact forces ``f_contact`` and ``lam_old``, head centre): the surface nodes'
+    positions, predicted gaps and normals, the first candidates, the release load, and the
+    right-hand sides of each candidate set. The passes of one increment share them (the
+    last one is kept on the roll, recognised by equal inputs): the same numbers, built
+    once."""
+
+    def __init__(
+        self,
+        roll: _Roll,
+        u: FloatArray,
+        f_contact: FloatArray,
+        lam_old: FloatArray,
+        centre: FloatArray,
+        head_radius: float,
+    ) -> None:
+        self.roll = roll
+        self.key = (u.copy(), f_contact.copy(), lam_old.copy(), np.array(centre), head_radius)
+        surf = roll.surface
+        self.pos = roll.xy[surf] + roll.cartesian(u, surf)
+        self.g_pred, self.normal = _gap(self.pos, centre, head_radius)
+        self.cand = (self.g_pred < 0) | (lam_old > 0)
+        # the old contact forces are released and re-applied along the current normals
+        self.release = -f_contact[roll.assembler.free_dofs]
+        self.released = np.flatnonzero(self.release)
+        self._columns: dict[bytes, tuple[NDArray[np.int64], NDArray[np.int64], FloatArray]] = {}
+
+    @classmethod
+    def of(
+        cls,
+        roll: _Roll,
+        u: FloatArray,
+        f_contact: FloatArray,
+        lam_old: FloatArray,
+        centre: FloatArray,
+        head_radius: float,
+    ) -> _ContactGeometry:
+        """The geometry of these inputs: the roll's last one if they are equal."""
+        last = getattr(roll, "_contact_geometry", None)
+        if last is not None:
+            ku, kf, kl, kc, kh = last.key
+            if (
+                kh == head_radius
+                and np.array_equal(kc, centre)
+                and np.array_equal(kl, lam_old)
+                and np.array_equal(ku, u)
+                and np.array_equal(kf, f_contact)
+            ):
+                return last
+        geo = cls(roll, u, f_contact, lam_old, centre, head_radius)
+        roll._contact_geometry = geo
+        return geo
+
+    def columns(
+        self, cand: NDArray[np.bool_]
+    ) -> tuple[NDArray[np.int64], NDArray[np.int64], FloatArray]:
+        """The candidate set ``cand`` widened by two nodes each side (``idx``), the unknowns
+        its loads touch (``rows``) and the right-hand sides: a unit load along each
+        candidate's normal, and the release load last."""
+        key = cand.tobytes()
+        got = self._columns.get(key)
+        if got is not None:
+            return got
+        roll = self.roll
+        fi = roll.assembler.free_index
+        surf = roll.surface
+        band = np.flatnonzero(cand)
+        idx = np.unique(
+            np.clip(np.concatenate([band + k for k in (-2, -1, 0, 1, 2)]), 0, surf.size - 1)
+        )
+        nodes = surf[idx]
+        n_r, n_t = roll.polar(self.normal[idx], nodes)
+        m = idx.size
+        rows_r, rows_t = fi[2 * nodes], fi[2 * nodes + 1]
+        # a node on the symmetry line has no tangential DOF (free index -1; its normal is
+        # radial there)
+        t_ok = rows_t >= 0
+        # the release forces sit on nodes in contact before, all among the candidates
+        rows = np.unique(np.concatenate([rows_r, rows_t[t_ok], self.released]))
+        # the right-hand sides touch the leading rows only (the contact axis's nodes come
+        # first in the mesh's numbering)
+        rhs = np.zeros((int(rows.max()) + 1, m + 1))
+        rhs[rows_r, np.arange(m)] = n_r
+        rhs[rows_t[t_ok], np.arange(m)[t_ok]] = n_t[t_ok]
+        rhs[:, m] = self.release[: rhs.shape[0]]
+        rhs.flags.writeable = False  # shared by the passes (and the factor's cache)
+        self._columns[key] = got = (idx, rows, rhs)
+        return got
+
+
 def _step(
     roll: _Roll,
     moduli: tuple[FloatArray, ...],
@@ -578,36 +681,14 @@ def _step(
     roll, the modified-Newton correction of :func:`_newton_increment` (``moduli`` are then
     those of ``lu``, and the returned ``dsig`` is empty: the caller computes it at its own
     moduli)."""
-    fi = roll.assembler.free_index
     pre = lu.forward(extra) if extra is not None else None
-    surf = roll.surface
-    pos = roll.xy[surf] + roll.cartesian(u, surf)
-    g_pred, normal = _gap(pos, centre, head_radius)
-    cand = (g_pred < 0) | (lam_old > 0)
-    # the old contact forces are released and re-applied along the current normals
-    release = -f_contact[roll.assembler.free_dofs]
-    released = np.flatnonzero(release)
+    geo = _ContactGeometry.of(roll, u, f_contact, lam_old, centre, head_radius)
+    surf, pos, g_pred, normal = roll.surface, geo.pos, geo.g_pred, geo.normal
+    cand = geo.cand.copy()
     n_free = roll.assembler.n_free
     for _ in range(8):
-        band = np.flatnonzero(cand)
-        idx = np.unique(
-            np.clip(np.concatenate([band + k for k in (-2, -1, 0, 1, 2)]), 0, surf.size - 1)
-        )
-        nodes = surf[idx]
-        n_r, n_t = roll.polar(normal[idx], nodes)
+        idx, rows, rhs = geo.columns(cand)
         m = idx.size
-        rows_r, rows_t = fi[2 * nodes], fi[2 * nodes + 1]
-        # a node on the symmetry line has no tangential DOF (free index -1; its normal is
-        # radial there)
-        t_ok = rows_t >= 0
-        # the release forces sit on nodes in contact before, all among the candidates
-        rows = np.unique(np.concatenate([rows_r, rows_t[t_ok], released]))
-        # the right-hand sides touch the leading rows only (the contact axis's nodes come
-        # first in the mesh's numbering)
-        rhs = np.zeros((int(rows.max()) + 1, m + 1))
-        rhs[rows_r, np.arange(m)] = n_r
-        rhs[rows_t[t_ok], np.arange(m)[t_ok]] = n_t[t_ok]
-        rhs[:, m] = release[: rhs.shape[0]]
         G, gq, solve_for = lu.flexibility(rows, rhs, n_free, pre)
         W, q = G[:m, :m], g_pred[idx] + G[:m, m]
         if gq is not None:  # the extra load's displacement along the normals
