@@ -362,6 +362,9 @@ class _Roll:
         )
         #: the last increment's contact geometry (:class:`_ContactGeometry`)
         self._contact_geometry: Any = None
+        #: ``(start, eps(start))`` of the last :meth:`secant_modulus` (``start`` kept
+        #: alive, so ``is`` recognises it)
+        self._start_strain: tuple[FloatArray, FloatArray] | None = None
 
     def radial_modulus(self, sigma_r_total: FloatArray) -> FloatArray:
         """E_r [Pa] of the elements at total radial stress ``sigma_r_total`` (law {2},
@@ -378,7 +381,14 @@ class _Roll:
         e0, b = self.linear_law
         p0, p1 = -start, -end
         dp = p1 - p0
-        eps = self._strain_of_pressure(p1, e0, b) - self._strain_of_pressure(p0, e0, b)
+        # the passes of an increment share its start (the same array): its strain once
+        last = self._start_strain
+        if last is not None and last[0] is start:
+            eps0 = last[1]
+        else:
+            eps0 = self._strain_of_pressure(p0, e0, b)
+            self._start_strain = (start, eps0)
+        eps = self._strain_of_pressure(p1, e0, b) - eps0
         small = np.abs(dp) <= 1e-9 * (np.abs(p0) + np.abs(p1) + 1.0)
         with np.errstate(divide="ignore", invalid="ignore"):
             sec = np.where(small, 1.0, dp / np.where(small, 1.0, eps))
