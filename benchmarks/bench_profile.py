@@ -138,13 +138,16 @@ def run_process(args: list[str], env: dict[str, str]) -> tuple[float, float, dic
 
 
 def whole_process(cases: list[str], before: str | None, repeat: int) -> None:
-    """``woundroll run CASE --json``: current tree and ``before``, interleaved."""
+    """``woundroll run CASE --json``: current tree and ``before``, interleaved, each run
+    right after the yardstick (the 10k-layer winding, benchmarks/yardstick.py) in this
+    process: the ratios to it of the same run (wall to its wall, CPU to its CPU)."""
     import os
     import sys
     import tempfile
 
     sys.path.insert(0, str(Path(__file__).resolve().parent))
     from bench_startup import source_of
+    from yardstick import wind_per_layer
 
     env_now = dict(os.environ)
     trees = {"now": env_now}
@@ -156,17 +159,26 @@ def whole_process(cases: list[str], before: str | None, repeat: int) -> None:
             args = ["-m", "woundroll.app.cli", "run", case, "--json"]
             best: dict[str, tuple] = {}
             loads = [os.getloadavg()[0]]
+            ratio: dict[str, tuple[float, float]] = {}
             for _ in range(repeat):
                 for tree, env in trees.items():
+                    c0, w0 = time.process_time(), time.perf_counter()
+                    wind_per_layer()
+                    y_cpu, y_wall = time.process_time() - c0, time.perf_counter() - w0
                     wall, cpu, js = run_process(args, env)
                     tm = js["profile"].get("timings_s", {})
                     if tree not in best or wall < best[tree][0]:
                         best[tree] = (wall, cpu, tm, np.asarray(js["profile"]["reading_model"]))
+                    r = ratio.get(tree, (np.inf, np.inf))
+                    ratio[tree] = (min(r[0], wall / y_wall), min(r[1], cpu / y_cpu))
                     loads.append(os.getloadavg()[0])
             print(f"  {case}  (load average {min(loads):.1f}-{max(loads):.1f} during the runs)")
             for tree, (wall, cpu, tm, _) in best.items():
                 parts = ", ".join(f"{k} {v:.1f}" for k, v in tm.items())
-                print(f"    {tree:10s} wall {wall:6.1f} s  CPU {cpu:6.1f} s  ({parts})")
+                print(
+                    f"    {tree:10s} wall {wall:6.1f} s  CPU {cpu:6.1f} s  ({parts});"
+                    f" x yardstick: wall {ratio[tree][0]:.2f}, CPU {ratio[tree][1]:.2f}"
+                )
             if before:
                 (w1, c1, _, r1), (w0, c0, _, r0) = best["now"], best[before]
                 dev = np.max(np.abs(r1 / r0 - 1))
