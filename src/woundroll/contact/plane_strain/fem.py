@@ -574,11 +574,11 @@ class Assembler:
         n, bw = self.n_free, self.bandwidth
         size = (bw + 1) * n
         idx = index[1] if reverse else index[0]
-        if springs and self._diag_low.size:
-            sidx = spring_index[1] if reverse else spring_index[0]
-            idx = np.concatenate([idx, sidx])
-            vals = np.concatenate([vals.ravel(), self._diag_low])
         ab = np.bincount(idx, weights=vals.ravel(), minlength=size + 1)
+        if springs and self._diag_low.size:
+            # the core's springs after the elements, as a bincount of the two lists joined
+            # would add them (one spring a node: distinct slots), without copying the lists
+            ab[spring_index[1] if reverse else spring_index[0]] += self._diag_low
         # column-major slots (j (bw + 1) + d): the band is built Fortran-ordered, as LAPACK
         # takes it, so ``dpbtrf`` does not copy it first (the same numbers)
         return ab[:size].reshape(n, bw + 1).T
