@@ -427,6 +427,7 @@ def partial_slip3d_row() -> str:
         f"friction's softening to {np.abs(c['softening'] - 1).max():.2%}"
     )
 
+
 # =======================================================================================
 # other explanations: how much E_r grows under the head
 
