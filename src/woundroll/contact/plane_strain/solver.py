@@ -41,13 +41,18 @@ from woundroll.contact.plane_strain.fem import (
 )
 from woundroll.contact.plane_strain.mesh import RollMesh, build_mesh
 from woundroll.contact.result import ContactResult
-from woundroll.contact.stepping import LoadHistory, depth_schedule, result_fields
+from woundroll.contact.stepping import (
+    SLIP_SHEAR_FRACTION,
+    LoadHistory,
+    depth_schedule,
+    result_fields,
+)
 from woundroll.contact.stepping import check_profile as _check_profile
 from woundroll.contact.stepping import check_scalar as _check_scalar
 from woundroll.contact.stepping import half_width as _half_width
 from woundroll.contact.stepping import solve_lcp as _solve_lcp
 from woundroll.errors import ConvergenceError, InputError
-from woundroll.materials.web import Core, Web
+from woundroll.materials.web import INTERLAYER_FRICTION, Core, Web
 from woundroll.units import to_si
 from woundroll.util.blas import one_blas_thread
 
@@ -171,7 +176,7 @@ class ContactOptions:
     half_model: bool = True
     step_exponent: float = 1.5
     slip: str = "none"
-    slip_shear_fraction: float = 0.01
+    slip_shear_fraction: float = SLIP_SHEAR_FRACTION
     slip_max_passes: int = 50
     shear_ratio: float | None = None
     shear_frozen: bool = False
@@ -1309,7 +1314,7 @@ def indent(
     head_radius: float | str,
     head_length: float | str,
     depth_max: float | str = 1e-3,
-    friction: float = 0.3,
+    friction: float = INTERLAYER_FRICTION,
     update_modulus: bool = True,
     options: ContactOptions | None = None,
     stop: Callable[[FloatArray, FloatArray], bool] | None = None,
