@@ -167,6 +167,8 @@ def test_module(rel: str) -> Any:
     """A test file (``rel`` relative to tests/, e.g. ``"contact/test_dynamic3d.py"``) as a
     module, loaded once: generators show the tests' own problems through it."""
     path = ROOT / "tests" / rel
+    if str(path.parent) not in sys.path:  # as pytest's pythonpath (pyproject.toml): a
+        sys.path.append(str(path.parent))  # test file may import another's problem
     name = "docs_tests_" + rel.removesuffix(".py").replace("/", "_")
     spec = importlib.util.spec_from_file_location(name, path)
     assert spec is not None and spec.loader is not None

@@ -44,28 +44,18 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
+# the plates' stiff, near-isotropic web and 20 m core radius (derived there)
+from test_layered_plates import E_P, R_CORE, H
+from test_layered_plates import STIFF as WEB
+
 from woundroll.contact.layered.solver import (
     ContactOptions,
     LayeredOptions,
     LayeredState,
     indent_layered,
 )
-from woundroll.materials import Core, Web
-from woundroll.materials.radial_modulus import Constant
+from woundroll.materials import Core
 
-H = 1e-4
-R_CORE = 20.0
-E_T = 5e9
-NU = 0.3
-E_P = E_T / (1 - NU**2)
-WEB = Web(
-    thickness=H,
-    width=0.1,
-    E_theta=E_T,
-    radial_modulus=Constant(E_T),
-    G_r_theta=E_T / 2.6,
-    nu_theta_z=NU,
-)
 D_SLIP = E_P * H**3 / 12 + E_P * H**3 / 3
 D_STICK = E_P * (2 * H) ** 3 / 3
 #: Winkler modulus [N/m^3]: the frictionless pair's bending length 1/beta = 5 mm

@@ -15,23 +15,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from test_step_control import table3_roll
 
-from woundroll.case import load_case
 from woundroll.contact import roll_stiffness
 from woundroll.contact.plane_strain import solver as solver_mod
 from woundroll.instruments import get_instrument
-
-
-def _table3_roll(slack_depth: float | None) -> tuple:
-    from woundroll.winding.hakiel import wind
-
-    case = load_case("pet3-2.3MPa")
-    web, core = case.web.build(), case.core.build()
-    w = wind(web, core, case.winding.final_radius(web, core), case.winding.schedule(web))
-    r, s = np.asarray(w.radius), np.asarray(w.sigma_r)
-    if slack_depth is not None:
-        s = s * np.clip((r[-1] - r) / slack_depth, 0.0, 1.0)
-    return web, core, r, s
 
 
 def _solve(roll: tuple, start: float) -> object:
@@ -72,7 +60,7 @@ def _defeat_reuse(monkeypatch: pytest.MonkeyPatch) -> dict[str, int]:
 def test_kept_quantities_give_the_numbers_of_a_fresh_computation(
     monkeypatch: pytest.MonkeyPatch, slack_depth: float | None, start: float
 ) -> None:
-    roll = _table3_roll(slack_depth)
+    roll = table3_roll(slack_depth)
     kept = _solve(roll, start)
     with monkeypatch.context() as m:
         calls = _defeat_reuse(m)
