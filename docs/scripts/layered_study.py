@@ -338,6 +338,15 @@ def roll3d_runs() -> list[Run]:
         Run(f"{c}/3d_default_mesh", c, ("contact.no_update=false", "contact.model='3d'"))
         for c in ("pet1-26.7N", "pet2-53.4N")
     ]
+    # and layered-3d's (its ratio to 3d on the default mesh)
+    runs += [
+        Run(
+            f"{c}/{LAYERED_3D}_default_mesh",
+            c,
+            ("contact.no_update=false", "contact.model='layered-3d'", f"contact.friction={MU_3D}"),
+        )
+        for c in ("pet1-26.7N", "pet2-53.4N")
+    ]
     return runs
 
 
@@ -480,7 +489,10 @@ MEASUREMENTS: dict[str, Measurement] = {
             "deterministic solves (as the table); the 3D head contact's gap tolerance moves "
             "a force by ~4e-4 between two runs of the same equations (docs/contact.md)"
         ),
-        cost="about 5 CPU min: layered-3d 37-107 CPU s a roll, 3d 4-12 CPU s",
+        cost=(
+            "about 35 CPU min: layered-3d 37-107 CPU s a roll on the coarse mesh, 3d 4-12 CPU "
+            "s; on the default 3D mesh 3d 19-41 CPU s, layered-3d ~8-20 CPU min"
+        ),
     ),
     "head3d": Measurement(
         about=(
@@ -1047,7 +1059,7 @@ def cost3d() -> str:
     """CPU time of the 3D table's runs (inline)."""
     cpu = records.load("layered_study.roll3d")["cpu_s"]
     d3 = [v for k, v in cpu.items() if k.endswith("/3d")]
-    l3 = [v for k, v in cpu.items() if "/layered-3d" in k]
+    l3 = [v for k, v in cpu.items() if "/layered-3d" in k and not k.endswith("_default_mesh")]
     return (
         f"3d {min(d3):.0f}-{max(d3):.0f} CPU s a roll, layered-3d {min(l3):.0f}-{max(l3):.0f}"
         f" (at load {records.load('layered_study.roll3d')['load_1min']:g})"
@@ -1076,12 +1088,25 @@ def study3d_cost() -> str:
 
 
 def mesh_offset3d() -> str:
-    """The study's coarse 3D mesh against the default one, 3d on two rolls (inline)."""
+    """The study's coarse 3D mesh against the default one, 3d and layered-3d on two rolls,
+    and the two models' ratio on each mesh (inline)."""
     parts = []
+    for model, name in (("3d", "3d"), (LAYERED_3D, "layered-3d")):
+        rolls = []
+        for c in ("pet1-26.7N", "pet2-53.4N"):
+            fine, coarse = _rho3d(c, f"{model}_default_mesh"), _rho3d(c, model)
+            rolls.append(
+                f"{_label(c)} {coarse:.1f} against {fine:.1f} ({_pct(coarse, fine):+.1f} %)"
+            )
+        parts.append(f"{name} {'; '.join(rolls)}")
+    ratio = []
     for c in ("pet1-26.7N", "pet2-53.4N"):
-        fine, coarse = _rho3d(c, "3d_default_mesh"), _rho3d(c, "3d")
-        parts.append(f"{_label(c)} {coarse:.1f} against {fine:.1f} ({_pct(coarse, fine):+.1f} %)")
-    return "; ".join(parts)
+        fine = _pct(_rho3d(c, f"{LAYERED_3D}_default_mesh"), _rho3d(c, "3d_default_mesh"))
+        coarse = _pct(_rho3d(c, LAYERED_3D), _rho3d(c, "3d"))
+        ratio.append(
+            f"{_label(c)} {fine:+.1f} % on the default mesh, {coarse:+.1f} % on the coarse"
+        )
+    return "; ".join(parts) + "; layered-3d against 3d: " + ", ".join(ratio)
 
 
 def cost_ratio3d() -> str:
