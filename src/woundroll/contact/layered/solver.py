@@ -82,6 +82,8 @@ BACK_TOL = 1e-5
 #: active-set passes correct the factor by a low-rank (Woodbury) update instead of
 #: factorising again (:class:`_Woodbury`); measured on PET1 26.7 N (benchmarks/bench_layered.py).
 WOODBURY_MAX = 16
+#: Coulomb's bound of a pair that always sticks (outside ``LayeredOptions.slip_region``) [N/m].
+_NO_LIMIT = 1e300
 
 
 class _Woodbury:
@@ -191,6 +193,13 @@ class LayeredOptions:
         Passes per increment before :class:`ConvergenceError`.
     interfaces : bool
         False: no cut (the continuum on the layered mesh, for verification).
+    slip_region : (float, float) or None
+        ``(depth [m], half-angle [rad])``: only the interfaces no deeper than ``depth``
+        and within ``half-angle`` of the head's centre line may slip; the others stick
+        (mu infinite there, the continuum to the passes' tolerance) on the same mesh.
+        None: every interface of the zone may slip. A diagnostic of where the slip that
+        softens the roll happens (docs/contact.md, "Zone depth"), also a zone bounded in
+        angle as well as depth.
     """
 
     base: ContactOptions = field(default_factory=lambda: ContactOptions(newton=False))
@@ -200,6 +209,7 @@ class LayeredOptions:
     tol: float = 1e-5
     max_passes: int = 100
     interfaces: bool = True
+    slip_region: tuple[float, float] | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.base, ContactOptions):
@@ -218,6 +228,16 @@ class LayeredOptions:
         n = self.layers_per_shell
         if not isinstance(n, int | np.integer) or isinstance(n, bool) or n < 1:
             raise InputError(f"must be a positive integer, got {n!r}", "layers_per_shell")
+        reg = self.slip_region
+        if reg is not None and not (
+            isinstance(reg, tuple)
+            and len(reg) == 2
+            and all(isinstance(v, int | float | np.number) and v > 0 for v in reg)
+        ):
+            raise InputError(
+                f"must be (depth [m], half-angle [rad]), both positive, got {reg!r}",
+                "options.slip_region",
+            )
         for name in ("penalty", "tol"):
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):
@@ -433,12 +453,21 @@ class _LayeredLoading(_Loading):
         self.stick_trial = np.ones(roll.pair_a.size, dtype=bool)
         self.passes = 0
         self.updates = 0  # active-set passes on a low-rank update of the factor
+        # the pairs that may slip (LayeredOptions.slip_region); the others always stick
+        self.may_slip = np.ones(roll.pair_a.size, dtype=bool)
+        if lopts.slip_region is not None:
+            depth, angle = lopts.slip_region
+            mesh = roll.uncut_mesh
+            self.may_slip = (float(mesh.r[-1]) - mesh.r[roll.pair_ring] <= depth) & (
+                mesh.theta[roll.pair_j] <= angle
+            )
 
     def bound(self) -> FloatArray:
         """Coulomb's limit mu P A per pair [N/m] at the start of the increment."""
         roll: _LayeredRoll = self.roll  # type: ignore[assignment]
         p = np.maximum(roll.pressure(self.sig[:, 0]), 0.0)
-        return self.friction * p * roll.pair_arc
+        # outside the slip region a bound no force reaches (finite: sign * bound stays a number)
+        return np.where(self.may_slip, self.friction * p * roll.pair_arc, _NO_LIMIT)
 
     def solve(
         self, mod: tuple[FloatArray, ...], lu: _Factor, extra: FloatArray | None = None
