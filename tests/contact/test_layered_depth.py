@@ -93,3 +93,27 @@ def test_bad_region_names_the_field(region: object) -> None:
     with pytest.raises(InputError) as err:
         options(slip_region=region)
     assert err.value.field == "options.slip_region"
+
+
+def test_cohesion_zero_is_coulomb_and_large_cohesion_sticks(
+    free: tuple[float, LayeredState],
+) -> None:
+    # the limit (cohesion + mu P) A: cohesion 0 is the default law (same force to rounding,
+    # 1e-12); a cohesion far above any interface shear (1 GPa against the MPa under the
+    # head) sticks every pair: the stuck roll to the stick passes' tolerance (1e-4)
+    f0, _ = run(options(cohesion=0.0))
+    assert f0 == pytest.approx(free[0], rel=1e-12)
+    f_big, st = run(options(cohesion=1e9))
+    f_stuck, _ = run(options(), mu=1e4)
+    assert np.all(st.slip == 0.0)
+    assert f_big == pytest.approx(f_stuck, rel=1e-4)
+    # a moderate cohesion (the wound-in pressure's order, 30 kPa) lies between (strict)
+    f_mid, _ = run(options(cohesion=30e3))
+    assert free[0] < f_mid < f_stuck
+
+
+@pytest.mark.parametrize("cohesion", [-1.0, math.inf, "1 kPa"])
+def test_bad_cohesion_names_the_field(cohesion: object) -> None:
+    with pytest.raises(InputError) as err:
+        options(cohesion=cohesion)
+    assert err.value.field == "options.cohesion"

@@ -200,6 +200,11 @@ class LayeredOptions:
         None: every interface of the zone may slip. A diagnostic of where the slip that
         softens the roll happens (docs/contact.md, "Zone depth"), also a zone bounded in
         angle as well as depth.
+    cohesion : float
+        A shear strength the interfaces hold at no pressure [Pa]: the limit is
+        ``(cohesion + mu P) A`` (the adhesion term of the Bowden-Tabor friction law,
+        ``tau = tau_0 + mu p``). 0 (default): Coulomb's law. A diagnostic of how much
+        strength at low pressure stops the deep slip (docs/contact.md, "Zone depth").
     """
 
     base: ContactOptions = field(default_factory=lambda: ContactOptions(newton=False))
@@ -210,6 +215,7 @@ class LayeredOptions:
     max_passes: int = 100
     interfaces: bool = True
     slip_region: tuple[float, float] | None = None
+    cohesion: float = 0.0
 
     def __post_init__(self) -> None:
         if not isinstance(self.base, ContactOptions):
@@ -238,6 +244,9 @@ class LayeredOptions:
                 f"must be (depth [m], half-angle [rad]), both positive, got {reg!r}",
                 "options.slip_region",
             )
+        c = self.cohesion
+        if not (isinstance(c, int | float | np.number) and math.isfinite(c) and c >= 0):
+            raise InputError(f"must be a stress >= 0 [Pa], got {c!r}", "options.cohesion")
         for name in ("penalty", "tol"):
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):
@@ -463,11 +472,12 @@ class _LayeredLoading(_Loading):
             )
 
     def bound(self) -> FloatArray:
-        """Coulomb's limit mu P A per pair [N/m] at the start of the increment."""
+        """Coulomb's limit (cohesion + mu P) A per pair [N/m] at the start of the increment."""
         roll: _LayeredRoll = self.roll  # type: ignore[assignment]
         p = np.maximum(roll.pressure(self.sig[:, 0]), 0.0)
         # outside the slip region a bound no force reaches (finite: sign * bound stays a number)
-        return np.where(self.may_slip, self.friction * p * roll.pair_arc, _NO_LIMIT)
+        limit = (self.lopts.cohesion + self.friction * p) * roll.pair_arc
+        return np.where(self.may_slip, limit, _NO_LIMIT)
 
     def solve(
         self, mod: tuple[FloatArray, ...], lu: _Factor, extra: FloatArray | None = None
@@ -613,7 +623,8 @@ class LayeredState:
     slip : ndarray [m]
         Accumulated slip |q| summed over the increments.
     limit : ndarray [Pa]
-        Coulomb's limit mu P of the last increment (P at its start: explicit).
+        Coulomb's limit mu P (plus ``LayeredOptions.cohesion``) of the last increment (P at
+        its start: explicit); 1e300 / A where the pair always sticks (``slip_region``).
     passes : int
         Head-contact solves (Uzawa passes) over the whole loading.
     n_shells : int
