@@ -1,5 +1,6 @@
-"""The layered roll's slip region (``LayeredOptions.slip_region``): interfaces outside a
-depth and an angle from the head stick, the diagnostic behind docs/contact.md "Zone depth".
+"""The layered roll's diagnostics behind docs/contact.md "Zone depth" (the private
+``_Diagnostics`` options): a slip region (interfaces outside a depth and an angle from the
+head stick) and a cohesion (the interface limit ``(cohesion + mu P) A``).
 
 Every assertion states its tolerance and why.
 """
@@ -15,6 +16,7 @@ from woundroll.contact.layered.solver import (
     ContactOptions,
     LayeredOptions,
     LayeredState,
+    _Diagnostics,
     indent_layered,
 )
 from woundroll.errors import InputError
@@ -30,12 +32,9 @@ DEPTH = 0.5e-3
 
 
 def options(**kw: object) -> LayeredOptions:
-    """5 sheets, 4 depth steps (cheap)."""
-    return LayeredOptions(
-        base=ContactOptions(newton=False, n_steps=4),
-        layered_depth=5 * H,
-        **kw,  # type: ignore[arg-type]
-    )
+    """5 sheets, 4 depth steps (cheap), with the diagnostics ``kw``."""
+    base = LayeredOptions(base=ContactOptions(newton=False, n_steps=4), layered_depth=5 * H)
+    return _Diagnostics.of(base, **kw) if kw else base
 
 
 def run(opts: LayeredOptions, mu: float = 0.3) -> tuple[float, LayeredState]:
@@ -52,6 +51,15 @@ def run(opts: LayeredOptions, mu: float = 0.3) -> tuple[float, LayeredState]:
 def free() -> tuple[float, LayeredState]:
     """Every interface of the zone may slip (the model's default)."""
     return run(options())
+
+
+def test_the_diagnostics_leave_the_public_options_alone() -> None:
+    # the docs records hash LayeredOptions' defaults: the diagnostics live on a subclass
+    import dataclasses
+
+    names = {f.name for f in dataclasses.fields(LayeredOptions)}
+    assert not names & {"slip_region", "cohesion"}
+    assert _Diagnostics.of(options(), cohesion=1.0).layered_depth == 5 * H
 
 
 def test_a_region_holding_the_whole_zone_is_the_default(free: tuple[float, LayeredState]) -> None:

@@ -82,7 +82,7 @@ BACK_TOL = 1e-5
 #: active-set passes correct the factor by a low-rank (Woodbury) update instead of
 #: factorising again (:class:`_Woodbury`); measured on PET1 26.7 N (benchmarks/bench_layered.py).
 WOODBURY_MAX = 16
-#: Coulomb's bound of a pair that always sticks (outside ``LayeredOptions.slip_region``) [N/m].
+#: Coulomb's bound of a pair that always sticks (outside ``_Diagnostics.slip_region``) [N/m].
 _NO_LIMIT = 1e300
 
 
@@ -193,18 +193,6 @@ class LayeredOptions:
         Passes per increment before :class:`ConvergenceError`.
     interfaces : bool
         False: no cut (the continuum on the layered mesh, for verification).
-    slip_region : (float, float) or None
-        ``(depth [m], half-angle [rad])``: only the interfaces no deeper than ``depth``
-        and within ``half-angle`` of the head's centre line may slip; the others stick
-        (mu infinite there, the continuum to the passes' tolerance) on the same mesh.
-        None: every interface of the zone may slip. A diagnostic of where the slip that
-        softens the roll happens (docs/contact.md, "Zone depth"), also a zone bounded in
-        angle as well as depth.
-    cohesion : float
-        A shear strength the interfaces hold at no pressure [Pa]: the limit is
-        ``(cohesion + mu P) A`` (the adhesion term of the Bowden-Tabor friction law,
-        ``tau = tau_0 + mu p``). 0 (default): Coulomb's law. A diagnostic of how much
-        strength at low pressure stops the deep slip (docs/contact.md, "Zone depth").
     """
 
     base: ContactOptions = field(default_factory=lambda: ContactOptions(newton=False))
@@ -214,8 +202,6 @@ class LayeredOptions:
     tol: float = 1e-5
     max_passes: int = 100
     interfaces: bool = True
-    slip_region: tuple[float, float] | None = None
-    cohesion: float = 0.0
 
     def __post_init__(self) -> None:
         if not isinstance(self.base, ContactOptions):
@@ -234,6 +220,40 @@ class LayeredOptions:
         n = self.layers_per_shell
         if not isinstance(n, int | np.integer) or isinstance(n, bool) or n < 1:
             raise InputError(f"must be a positive integer, got {n!r}", "layers_per_shell")
+        for name in ("penalty", "tol"):
+            v = getattr(self, name)
+            if not (math.isfinite(v) and v > 0):
+                raise InputError(f"must be positive, got {v!r}", f"options.{name}")
+
+
+@dataclass(frozen=True)
+class _Diagnostics(LayeredOptions):
+    """:class:`LayeredOptions` with two diagnostics of where the slip that softens the roll
+    happens (docs/contact.md, "Zone depth"; tests/contact/test_layered_depth.py). Private:
+    a subclass, so that LayeredOptions' fields and defaults (which the docs records hash)
+    stay as they are.
+
+    Attributes
+    ----------
+    slip_region : (float, float) or None
+        ``(depth [m], half-angle [rad])``: only the interfaces no deeper than ``depth``
+        and within ``half-angle`` of the head's centre line may slip; the others stick
+        (mu infinite there, the continuum to the passes' tolerance) on the same mesh.
+        None: every interface of the zone may slip. A diagnostic of where the slip that
+        softens the roll happens (docs/contact.md, "Zone depth"), also a zone bounded in
+        angle as well as depth.
+    cohesion : float
+        A shear strength the interfaces hold at no pressure [Pa]: the limit is
+        ``(cohesion + mu P) A`` (the adhesion term of the Bowden-Tabor friction law,
+        ``tau = tau_0 + mu p``). 0 (default): Coulomb's law. A diagnostic of how much
+        strength at low pressure stops the deep slip (docs/contact.md, "Zone depth").
+    """
+
+    slip_region: tuple[float, float] | None = None
+    cohesion: float = 0.0
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
         reg = self.slip_region
         if reg is not None and not (
             isinstance(reg, tuple)
@@ -247,10 +267,12 @@ class LayeredOptions:
         c = self.cohesion
         if not (isinstance(c, int | float | np.number) and math.isfinite(c) and c >= 0):
             raise InputError(f"must be a stress >= 0 [Pa], got {c!r}", "options.cohesion")
-        for name in ("penalty", "tol"):
-            v = getattr(self, name)
-            if not (math.isfinite(v) and v > 0):
-                raise InputError(f"must be positive, got {v!r}", f"options.{name}")
+
+    @classmethod
+    def of(cls, options: LayeredOptions, **kw: Any) -> _Diagnostics:
+        """``options`` with the diagnostics ``kw``."""
+        fields = {f.name: getattr(options, f.name) for f in dataclasses.fields(LayeredOptions)}
+        return cls(**fields, **kw)
 
 
 class LayeredMesh(RollMesh):
@@ -462,10 +484,12 @@ class _LayeredLoading(_Loading):
         self.stick_trial = np.ones(roll.pair_a.size, dtype=bool)
         self.passes = 0
         self.updates = 0  # active-set passes on a low-rank update of the factor
-        # the pairs that may slip (LayeredOptions.slip_region); the others always stick
+        # the pairs that may slip (_Diagnostics.slip_region); the others always stick
         self.may_slip = np.ones(roll.pair_a.size, dtype=bool)
-        if lopts.slip_region is not None:
-            depth, angle = lopts.slip_region
+        region = getattr(lopts, "slip_region", None)  # _Diagnostics
+        self.cohesion = float(getattr(lopts, "cohesion", 0.0))
+        if region is not None:
+            depth, angle = region
             mesh = roll.uncut_mesh
             self.may_slip = (float(mesh.r[-1]) - mesh.r[roll.pair_ring] <= depth) & (
                 mesh.theta[roll.pair_j] <= angle
@@ -476,7 +500,7 @@ class _LayeredLoading(_Loading):
         roll: _LayeredRoll = self.roll  # type: ignore[assignment]
         p = np.maximum(roll.pressure(self.sig[:, 0]), 0.0)
         # outside the slip region a bound no force reaches (finite: sign * bound stays a number)
-        limit = (self.lopts.cohesion + self.friction * p) * roll.pair_arc
+        limit = (self.cohesion + self.friction * p) * roll.pair_arc
         return np.where(self.may_slip, limit, _NO_LIMIT)
 
     def solve(
@@ -623,8 +647,9 @@ class LayeredState:
     slip : ndarray [m]
         Accumulated slip |q| summed over the increments.
     limit : ndarray [Pa]
-        Coulomb's limit mu P (plus ``LayeredOptions.cohesion``) of the last increment (P at
-        its start: explicit); 1e300 / A where the pair always sticks (``slip_region``).
+        Coulomb's limit mu P (plus ``_Diagnostics.cohesion``) of the last increment (P at
+        its start: explicit); 1e300 / A where the pair always sticks
+        (``_Diagnostics.slip_region``).
     passes : int
         Head-contact solves (Uzawa passes) over the whole loading.
     n_shells : int
