@@ -360,6 +360,57 @@ def onset2d() -> str:
     )
 
 
+@cache
+def _partial() -> dict[str, Any]:
+    return records.test_module("contact/test_layered_partial_slip.py").comparison()
+
+
+def partial_slip2d() -> str:
+    """The two-sheet strip beyond onset against the derived partial-slip solution
+    (test_layered_partial_slip.py's ``comparison``): a table at every other increment."""
+    import numpy as np
+
+    c = _partial()
+    rows = [
+        "| load / onset load | slip zone c (derived) [mm] | derived P [N/m] | model [N/m] "
+        "| model - derived | softening by friction, model / derived |",
+        "|---|---|---|---|---|---|",
+    ]
+    for k in [0, *range(1, len(c["depth"]), 2)]:
+        ex = c["exact"][k]
+        rows.append(
+            f"| {c['load_ratio'][k]:.2f} | {ex.c * 1e3:.2f} | {ex.P:.4f} | {c['force'][k]:.4f} "
+            f"| {c['rel'][k]:+.2%} | {c['softening'][k]:.4f} |"
+        )
+    rel = c["rel"]
+    soft = np.abs(c["softening"] - 1)
+    rows.append("")
+    rows.append(
+        f"Over all {len(c['depth'])} increments the model is {rel.min():+.2%} to "
+        f"{rel.max():+.2%} above the derived force (the stuck strip's own offset against "
+        f"Hetenyi, the first row); the friction's softening agrees to {soft.max():.2%}. At "
+        f"the deepest press the outermost slipping pair is at {c['edge'] * 1e3:.2f} mm "
+        f"against c = {c['exact'][-1].c * 1e3:.2f} mm, the largest slip "
+        f"{c['slip_max']:.4g} m against {c['slip_max_exact']:.4g} m "
+        f"({c['slip_max'] / c['slip_max_exact'] - 1:+.2%}); the head raises the interface "
+        f"pressure over the slip zone by {c['head_share']:.1e} of p0 on average."
+    )
+    return "\n".join(rows)
+
+
+def partial_slip_row() -> str:
+    """The verification table's cell (inline)."""
+    import numpy as np
+
+    c = _partial()
+    return (
+        f"to {c['load_ratio'][-1]:.1f} x onset: force {c['rel'].min():+.2%} to "
+        f"{c['rel'].max():+.2%} (the stuck strip's offset), "
+        f"friction's softening to {np.abs(c['softening'] - 1).max():.2%}, "
+        f"slip zone {c['edge'] * 1e3:.2f} vs {c['exact'][-1].c * 1e3:.2f} mm"
+    )
+
+
 # =======================================================================================
 # other explanations: how much E_r grows under the head
 
@@ -742,6 +793,8 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "coulomb2d": coulomb2d,
     "softens2d": softens2d,
     "onset2d": onset2d,
+    "partial_slip2d": partial_slip2d,
+    "partial_slip_row": partial_slip_row,
     # rendered from the measured records (MEASUREMENTS)
     "lps3d_row": lps3d_row,
     "lumping3d": lumping3d,
