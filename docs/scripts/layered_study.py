@@ -1190,7 +1190,10 @@ def verdict() -> str:
         f"(`layered-3d`, mu 0.3) it reads above `2d` on {above2} of {len(rows)} rolls, pile "
         f"ratio {q3:.2f}; with the sheets all the way down (a {p1[-1][0]:g} mm zone) PET1 26.7 N "
         f"reads {p1[-1][1]:.1f} against `2d`'s {_rho('pet1-26.7N/2d'):.1f}"
-        + (", far from the paper's PET1 agreement." if not pet1_ok else ".")
+        + (", far from the paper's PET1 agreement" if not pet1_ok else "")
+        + ": the sheets slip outside a cone under the head at every depth the head's stress "
+        'dominates (docs/contact.md "Zone depth"), so the zone is a physical assumption and '
+        "the default stays 1 a_geo."
     )
     import textwrap
 
