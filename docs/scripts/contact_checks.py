@@ -411,6 +411,23 @@ def partial_slip_row() -> str:
     )
 
 
+@cache
+def _partial3d() -> dict[str, Any]:
+    return records.test_module("contact/test_layered_partial_slip.py").comparison3d()
+
+
+def partial_slip3d_row() -> str:
+    """The 3D verification table's partial-slip cell (inline, ~5 CPU s)."""
+    import numpy as np
+
+    c = _partial3d()
+    return (
+        f"to {c['load_ratio'][-1]:.1f} x onset: force {c['rel'].min():+.2%} to "
+        f"{c['rel'].max():+.2%} (the stuck slab {c['stuck_rel'][-1]:+.2%} against Hetenyi), "
+        f"friction's softening to {np.abs(c['softening'] - 1).max():.2%}"
+    )
+
+
 # =======================================================================================
 # other explanations: how much E_r grows under the head
 
@@ -795,6 +812,7 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "onset2d": onset2d,
     "partial_slip2d": partial_slip2d,
     "partial_slip_row": partial_slip_row,
+    "partial_slip3d_row": partial_slip3d_row,
     # rendered from the measured records (MEASUREMENTS)
     "lps3d_row": lps3d_row,
     "lumping3d": lumping3d,

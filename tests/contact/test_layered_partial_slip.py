@@ -35,6 +35,7 @@ solutions are the same path.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -320,3 +321,80 @@ def test_layered_strip_follows_the_partial_slip_solution(compared: dict[str, Any
     # the head's share of the interface pressure over the slip zone is < 0.1 % of p0
     # (what makes tau_c uniform in the derivation)
     assert c["head_share"] < 1e-3
+
+
+# ---------------------------------------------------------------- the same strip in 3D
+
+#: the 3D slab (test_layered3d.py's plates setting): 2 mm wide, u_z = 0 on both CMD faces,
+#: a head longer than the slab (plane strain in the 3D model). Mesh grading 1.14: the slip
+#: zone's edge at 11 mm needs finer hoop elements than the plates' 1.3 (measured, softening
+#: against the derived: 1.3 to 0.27 %, 1.14 to 0.14 %, 1.07 to 0.14 %, 12 increments)
+SLAB_WIDTH = 2e-3
+SLAB_GROWTH = 1.14
+
+
+def strip3d(
+    mu: float = MU, *, interfaces: bool = True, n_steps: int = 12
+) -> tuple[np.ndarray, np.ndarray]:
+    """The two-sheet strip as a 3D slab (``layered-3d``): (depths [m], force per unit CMD
+    length [N/m])."""
+    from woundroll.contact.heads import Head
+    from woundroll.contact.layered.roll3d import Layered3DOptions, indent_layered3d
+    from woundroll.contact.solid3d.solver import Contact3DOptions
+
+    web = dataclasses.replace(WEB, width=SLAB_WIDTH)
+    r = np.linspace(R_CORE, R_CORE + 2 * H, 50)
+    s = np.full(r.size, -P0)
+    g = SLAB_GROWTH
+    base = Contact3DOptions(
+        n_steps=n_steps,
+        step_exponent=1.0,
+        cmd_edges="fixed",
+        axial_size=SLAB_WIDTH / 6,
+        surface_size=5e-5,  # the mesh builder's check only: the shells are the sheets
+        locality_cut=True,
+        tangential_size=5e-5,
+        fine_halfwidth=2e-4,
+        radial_growth=g,
+        tangential_growth=g,
+        axial_growth=g,
+    )
+    opts = Layered3DOptions(base=base, layered_depth=H, layers_per_shell=1, interfaces=interfaces)
+    res = indent_layered3d(
+        web,
+        CORE,
+        r,
+        s,
+        head=Head("cylinder", 1e-3, 2 * SLAB_WIDTH),
+        depth_max=DEPTH,
+        friction=mu,
+        options=opts,
+    )
+    return np.asarray(res.delta[1:]), np.asarray(res.force[1:]) / SLAB_WIDTH
+
+
+def comparison3d() -> dict[str, Any]:
+    """:func:`comparison`'s forces for the 3D slab."""
+    d, f = strip3d()
+    _, f_stuck = strip3d(interfaces=False)
+    P = np.array([load_at(x).P for x in d])
+    k_stick = 2 * K_W / BETA_STICK
+    return {
+        "depth": d,
+        "load_ratio": P / onset_load(),
+        "rel": f / P - 1,
+        "stuck_rel": f_stuck / (k_stick * d) - 1,
+        "softening": (f / f_stuck) / (P / (k_stick * d)),
+    }
+
+
+def test_layered3d_slab_follows_the_partial_slip_solution() -> None:
+    # the 3D layered model (isotropic friction, its own ADMM passes) on the same strip.
+    # Measured: force +0.61..+0.84 % against the derived (the stuck slab +0.77 % against
+    # Hetenyi: the 3D hoop mesh), the friction's softening to 0.16 %. Tolerances: 1.5 %
+    # force (the plates' 3D bar is 2 %), 0.5 % softening (the hoop mesh at the slip zone's
+    # edge and the step: 6 increments give 0.26 %)
+    c = comparison3d()
+    assert c["load_ratio"][-1] > 5
+    assert np.all(np.abs(c["rel"]) < 0.015)
+    assert np.all(np.abs(c["softening"] - 1) < 0.005)

@@ -40,6 +40,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from woundroll.errors import InputError
+from woundroll.materials.web import INTERLAYER_FRICTION
 
 if TYPE_CHECKING:
     from woundroll.case import Case
@@ -70,7 +71,7 @@ class DefectLimits:
 
     core_strength: float | None = None
     blocking_pressure: float | None = None
-    friction: float = 0.3
+    friction: float = INTERLAYER_FRICTION
     axial_acceleration: float | None = None
     torque: float | None = None
     slack_pressure: float = 1e3

@@ -29,7 +29,7 @@ from pydantic import (
 from woundroll.errors import InputError
 from woundroll.materials.presets import material_preset
 from woundroll.materials.radial_modulus import RadialModulusLaw, law_from_spec
-from woundroll.materials.web import Core, Web
+from woundroll.materials.web import INTERLAYER_FRICTION, Core, Web
 from woundroll.profile.interpolated import CONTACT_STAGES, DEFAULT_CONTACT_STAGE, DEFAULT_TOLERANCE
 from woundroll.units import quantity_kind, to_si
 from woundroll.winding.tension import Taper, TensionSchedule
@@ -417,7 +417,7 @@ class ContactSpec(_Section):
     """
 
     depth_max: Q("length") | None = None
-    friction: Q("dimensionless", "nonnegative") = 0.3
+    friction: Q("dimensionless", "nonnegative") = INTERLAYER_FRICTION
     no_update: bool = False
     options: dict[str, Any] = Field(default_factory=dict)
     #: the roll model by its registry name (:data:`woundroll.contact.models.ROLL_MODELS`:

@@ -31,6 +31,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from woundroll.contact.result import ContactResult, ContactState
 from woundroll.errors import ConvergenceError, InputError
+from woundroll.materials.web import INTERLAYER_FRICTION
 
 if TYPE_CHECKING:
     from woundroll.instruments import Instrument
@@ -411,7 +412,7 @@ def roll_stiffness(
     *,
     depth_max: float | None = None,
     start_depth: float | None = None,
-    friction: float = 0.3,
+    friction: float = INTERLAYER_FRICTION,
     update_modulus: bool = True,
     options: Any = None,
     field: str = "contact",

@@ -47,6 +47,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from woundroll.errors import ConvergenceError, InputError
+from woundroll.materials.web import INTERLAYER_FRICTION
 
 if TYPE_CHECKING:
     from woundroll.case import Case
@@ -107,7 +108,7 @@ class RollModel:
     schedule: TensionSchedule
     setup: TesterSetup
     scale: str
-    friction: float = 0.3
+    friction: float = INTERLAYER_FRICTION
     contact_options: Any = None
     depth: float = 0.0
     semi_contact_width_given: bool = False

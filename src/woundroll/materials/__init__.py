@@ -10,9 +10,10 @@ from woundroll.materials.radial_modulus import (
     Tabulated,
     law_from_spec,
 )
-from woundroll.materials.web import Core, Web
+from woundroll.materials.web import INTERLAYER_FRICTION, Core, Web
 
 __all__ = [
+    "INTERLAYER_FRICTION",
     "LAWS",
     "Constant",
     "Core",

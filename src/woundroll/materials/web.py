@@ -24,6 +24,12 @@ from numpy.typing import ArrayLike, NDArray
 from woundroll.errors import InputError
 from woundroll.materials.radial_modulus import RadialModulusLaw
 
+#: The friction coefficient mu between web layers [-] where a case does not give one
+#: (``contact.friction``): the reference paper's value in its slip factor {23} (Figure 18),
+#: an assumption it does not measure. The contact models' slip checks, the layered rolls,
+#: the defect criteria and the studies all read it from here.
+INTERLAYER_FRICTION = 0.3
+
 
 def _positive(
     value: float, name: str, *, allow_zero: bool = False, allow_inf: bool = False

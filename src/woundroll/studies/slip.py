@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 
 from woundroll.errors import InputError
+from woundroll.materials.web import INTERLAYER_FRICTION
 from woundroll.studies._common import (
     TABLE2,
     Progress,
@@ -228,7 +229,7 @@ class SlipStudy:
 
 def slip_factor_study(
     case: str = "pet2-53.4N",
-    friction: float = 0.3,
+    friction: float = INTERLAYER_FRICTION,
     progress: Progress | None = None,
     *,
     emulation_cases: Sequence[str] = (),

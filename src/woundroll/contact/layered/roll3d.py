@@ -65,7 +65,7 @@ from woundroll.contact.solid3d.solver import (
 )
 from woundroll.contact.stepping import check_profile, check_scalar, depth_schedule
 from woundroll.errors import ConvergenceError, InputError
-from woundroll.materials.web import Core, Web
+from woundroll.materials.web import INTERLAYER_FRICTION, Core, Web
 from woundroll.units import to_si
 from woundroll.util.blas import one_blas_thread
 
@@ -615,7 +615,7 @@ def indent_layered3d(
     *,
     head: Head,
     depth_max: float | str = 1e-3,
-    friction: float = 0.3,
+    friction: float = INTERLAYER_FRICTION,
     update_modulus: bool = True,
     options: Layered3DOptions | None = None,
     state: list[Layered3DState] | None = None,

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from woundroll.contact.stepping import SLIP_SHEAR_FRACTION
 from woundroll.errors import InputError
 
 #: The sparse solvers of :func:`woundroll.contact.solid3d.linsolve.make_solver`.
@@ -104,7 +105,7 @@ class Contact3DOptions:
     midpoint: bool = True
     predictor: str = "rate"
     slip: str = "none"
-    slip_shear_fraction: float = 0.01
+    slip_shear_fraction: float = SLIP_SHEAR_FRACTION
     solver: str = "auto"
     reuse_factorisation: bool = False
     pcg_max_iterations: int = 8

@@ -44,7 +44,7 @@ from woundroll.contact.stepping import check_scalar as _check_scalar
 from woundroll.contact.stepping import half_width as _half_width
 from woundroll.contact.stepping import solve_lcp as _solve_lcp
 from woundroll.errors import ConvergenceError, InputError
-from woundroll.materials.web import Core, Web
+from woundroll.materials.web import INTERLAYER_FRICTION, Core, Web
 from woundroll.units import to_si
 from woundroll.util.blas import one_blas_thread
 
@@ -659,7 +659,7 @@ def indent3d(
     *,
     head: Head,
     depth_max: float | str = 1e-3,
-    friction: float = 0.3,
+    friction: float = INTERLAYER_FRICTION,
     update_modulus: bool = True,
     options: Contact3DOptions | None = None,
 ) -> Contact3DResult:
