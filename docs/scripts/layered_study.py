@@ -1215,7 +1215,10 @@ def verdict() -> str:
         f"(`layered-3d`, mu 0.3) it reads above `2d` on {above2} of {len(rows)} rolls, pile "
         f"ratio {q3:.2f}; with the sheets all the way down (a {p1[-1][0]:g} mm zone) PET1 26.7 N "
         f"reads {p1[-1][1]:.1f} against `2d`'s {_rho('pet1-26.7N/2d'):.1f}"
-        + (", far from the paper's PET1 agreement." if not pet1_ok else ".")
+        + (", far from the paper's PET1 agreement" if not pet1_ok else "")
+        + ": the sheets slip outside a cone under the head wherever the head's stress "
+        "dominates the wound-in pressure, which a line load's does through the whole pile and a "
+        'finite head\'s does not (docs/contact.md "Zone depth"); the default zone stays 1 a_geo.'
     )
     import textwrap
 

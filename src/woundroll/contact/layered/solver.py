@@ -82,6 +82,8 @@ BACK_TOL = 1e-5
 #: active-set passes correct the factor by a low-rank (Woodbury) update instead of
 #: factorising again (:class:`_Woodbury`); measured on PET1 26.7 N (benchmarks/bench_layered.py).
 WOODBURY_MAX = 16
+#: Coulomb's bound of a pair that always sticks (outside ``_Diagnostics.slip_region``) [N/m].
+_NO_LIMIT = 1e300
 
 
 class _Woodbury:
@@ -222,6 +224,55 @@ class LayeredOptions:
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):
                 raise InputError(f"must be positive, got {v!r}", f"options.{name}")
+
+
+@dataclass(frozen=True)
+class _Diagnostics(LayeredOptions):
+    """:class:`LayeredOptions` with two diagnostics of where the slip that softens the roll
+    happens (docs/contact.md, "Zone depth"; tests/contact/test_layered_depth.py). Private:
+    a subclass, so that LayeredOptions' fields and defaults (which the docs records hash)
+    stay as they are.
+
+    Attributes
+    ----------
+    slip_region : (float, float) or None
+        ``(depth [m], half-angle [rad])``: only the interfaces no deeper than ``depth``
+        and within ``half-angle`` of the head's centre line may slip; the others stick
+        (mu infinite there, the continuum to the passes' tolerance) on the same mesh.
+        None: every interface of the zone may slip. A diagnostic of where the slip that
+        softens the roll happens (docs/contact.md, "Zone depth"), also a zone bounded in
+        angle as well as depth.
+    cohesion : float
+        A shear strength the interfaces hold at no pressure [Pa]: the limit is
+        ``(cohesion + mu P) A`` (the adhesion term of the Bowden-Tabor friction law,
+        ``tau = tau_0 + mu p``). 0 (default): Coulomb's law. A diagnostic of how much
+        strength at low pressure stops the deep slip (docs/contact.md, "Zone depth").
+    """
+
+    slip_region: tuple[float, float] | None = None
+    cohesion: float = 0.0
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        reg = self.slip_region
+        if reg is not None and not (
+            isinstance(reg, tuple)
+            and len(reg) == 2
+            and all(isinstance(v, int | float | np.number) and v > 0 for v in reg)
+        ):
+            raise InputError(
+                f"must be (depth [m], half-angle [rad]), both positive, got {reg!r}",
+                "options.slip_region",
+            )
+        c = self.cohesion
+        if not (isinstance(c, int | float | np.number) and math.isfinite(c) and c >= 0):
+            raise InputError(f"must be a stress >= 0 [Pa], got {c!r}", "options.cohesion")
+
+    @classmethod
+    def of(cls, options: LayeredOptions, **kw: Any) -> _Diagnostics:
+        """``options`` with the diagnostics ``kw``."""
+        fields = {f.name: getattr(options, f.name) for f in dataclasses.fields(LayeredOptions)}
+        return cls(**fields, **kw)
 
 
 class LayeredMesh(RollMesh):
@@ -433,12 +484,24 @@ class _LayeredLoading(_Loading):
         self.stick_trial = np.ones(roll.pair_a.size, dtype=bool)
         self.passes = 0
         self.updates = 0  # active-set passes on a low-rank update of the factor
+        # the pairs that may slip (_Diagnostics.slip_region); the others always stick
+        self.may_slip = np.ones(roll.pair_a.size, dtype=bool)
+        region = getattr(lopts, "slip_region", None)  # _Diagnostics
+        self.cohesion = float(getattr(lopts, "cohesion", 0.0))
+        if region is not None:
+            depth, angle = region
+            mesh = roll.uncut_mesh
+            self.may_slip = (float(mesh.r[-1]) - mesh.r[roll.pair_ring] <= depth) & (
+                mesh.theta[roll.pair_j] <= angle
+            )
 
     def bound(self) -> FloatArray:
-        """Coulomb's limit mu P A per pair [N/m] at the start of the increment."""
+        """Coulomb's limit (cohesion + mu P) A per pair [N/m] at the start of the increment."""
         roll: _LayeredRoll = self.roll  # type: ignore[assignment]
         p = np.maximum(roll.pressure(self.sig[:, 0]), 0.0)
-        return self.friction * p * roll.pair_arc
+        # outside the slip region a bound no force reaches (finite: sign * bound stays a number)
+        limit = (self.cohesion + self.friction * p) * roll.pair_arc
+        return np.where(self.may_slip, limit, _NO_LIMIT)
 
     def solve(
         self, mod: tuple[FloatArray, ...], lu: _Factor, extra: FloatArray | None = None
@@ -584,7 +647,9 @@ class LayeredState:
     slip : ndarray [m]
         Accumulated slip |q| summed over the increments.
     limit : ndarray [Pa]
-        Coulomb's limit mu P of the last increment (P at its start: explicit).
+        Coulomb's limit mu P (plus ``_Diagnostics.cohesion``) of the last increment (P at
+        its start: explicit); 1e300 / A where the pair always sticks
+        (``_Diagnostics.slip_region``).
     passes : int
         Head-contact solves (Uzawa passes) over the whole loading.
     n_shells : int
