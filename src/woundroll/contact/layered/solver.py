@@ -66,7 +66,7 @@ from woundroll.contact.plane_strain.solver import (
 from woundroll.contact.result import ContactResult
 from woundroll.contact.stepping import depth_schedule
 from woundroll.errors import ConvergenceError, InputError
-from woundroll.materials.web import Core, Web
+from woundroll.materials.web import INTERLAYER_FRICTION, Core, Web
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -713,7 +713,7 @@ def indent_layered(
     head_radius: float | str,
     head_length: float | str,
     depth_max: float | str = 1e-3,
-    friction: float = 0.3,
+    friction: float = INTERLAYER_FRICTION,
     update_modulus: bool = True,
     options: LayeredOptions | None = None,
     stop: Callable[[FloatArray, FloatArray], bool] | None = None,
