@@ -29,7 +29,7 @@ from pydantic import (
 from woundroll.errors import InputError
 from woundroll.materials.presets import material_preset
 from woundroll.materials.radial_modulus import RadialModulusLaw, law_from_spec
-from woundroll.materials.web import INTERLAYER_FRICTION, Core, Web
+from woundroll.materials.web import INTERLAYER_FRICTION, SLIP_SHEAR_FRACTION, Core, Web
 from woundroll.profile.interpolated import CONTACT_STAGES, DEFAULT_CONTACT_STAGE, DEFAULT_TOLERANCE
 from woundroll.units import quantity_kind, to_si
 from woundroll.winding.tension import Taper, TensionSchedule
@@ -427,7 +427,7 @@ class ContactSpec(_Section):
     #: slip emulation (Figure 19) in the 2D and 3D models: G_r_theta (and G_r_z) of the
     #: elements where SF {23} reaches 1 (mu = ``friction``) drop to ``slip_shear_fraction``
     slip: Literal["none", "reduced-shear"] = "none"
-    slip_shear_fraction: Q("dimensionless") = 0.01
+    slip_shear_fraction: Q("dimensionless") = SLIP_SHEAR_FRACTION
 
     # -- other explanations of the readings (issue 25; docs/contact.md "Other
     # explanations"), in the plane-strain models "2d" and "layered" --

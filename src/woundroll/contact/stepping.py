@@ -29,11 +29,6 @@ from woundroll.units import to_si
 
 FloatArray = NDArray[np.float64]
 
-#: The share of G_r_theta and G_r_z a slipped element keeps in the paper's reduced-shear
-#: emulation of interlayer slip (``slip = "reduced-shear"``, Figure 19: "a very small
-#: value"; the paper prints none), in both the 2D and the 3D model.
-SLIP_SHEAR_FRACTION = 0.01
-
 
 def check_scalar(value: float | str, field: str, kind: str = "length") -> float:
     """A positive finite SI value; strings with units (``"10 mm"``) are converted."""

@@ -29,6 +29,10 @@ from woundroll.materials.radial_modulus import RadialModulusLaw
 #: an assumption it does not measure. The contact models' slip checks, the layered rolls,
 #: the defect criteria and the studies all read it from here.
 INTERLAYER_FRICTION = 0.3
+#: The share of G_r_theta and G_r_z a slipped layer keeps in the paper's reduced-shear
+#: emulation of interlayer slip (``contact.slip = "reduced-shear"``, Figure 19: "a very
+#: small value"; the paper prints none): the 2D and 3D models, the case and the slip study.
+SLIP_SHEAR_FRACTION = 0.01
 
 
 def _positive(

@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 
 from woundroll.errors import InputError
-from woundroll.materials.web import INTERLAYER_FRICTION
+from woundroll.materials.web import INTERLAYER_FRICTION, SLIP_SHEAR_FRACTION
 from woundroll.studies._common import (
     TABLE2,
     Progress,
@@ -79,7 +79,7 @@ class SlipStudy:
     name: str = "slip"
     emulation: tuple[dict[str, Any], ...] = ()
     emulation_model: str = "2d"
-    slip_shear_fraction: float = 0.01
+    slip_shear_fraction: float = SLIP_SHEAR_FRACTION
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -233,7 +233,7 @@ def slip_factor_study(
     progress: Progress | None = None,
     *,
     emulation_cases: Sequence[str] = (),
-    slip_shear_fraction: float = 0.01,
+    slip_shear_fraction: float = SLIP_SHEAR_FRACTION,
     model: str | None = None,
     workers: int = 1,
 ) -> SlipStudy:

@@ -42,7 +42,6 @@ from woundroll.contact.plane_strain.fem import (
 from woundroll.contact.plane_strain.mesh import RollMesh, build_mesh
 from woundroll.contact.result import ContactResult
 from woundroll.contact.stepping import (
-    SLIP_SHEAR_FRACTION,
     LoadHistory,
     depth_schedule,
     result_fields,
@@ -52,7 +51,7 @@ from woundroll.contact.stepping import check_scalar as _check_scalar
 from woundroll.contact.stepping import half_width as _half_width
 from woundroll.contact.stepping import solve_lcp as _solve_lcp
 from woundroll.errors import ConvergenceError, InputError
-from woundroll.materials.web import INTERLAYER_FRICTION, Core, Web
+from woundroll.materials.web import INTERLAYER_FRICTION, SLIP_SHEAR_FRACTION, Core, Web
 from woundroll.units import to_si
 from woundroll.util.blas import one_blas_thread
 

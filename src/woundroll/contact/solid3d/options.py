@@ -9,8 +9,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from woundroll.contact.stepping import SLIP_SHEAR_FRACTION
 from woundroll.errors import InputError
+from woundroll.materials.web import SLIP_SHEAR_FRACTION
 
 #: The sparse solvers of :func:`woundroll.contact.solid3d.linsolve.make_solver`.
 SOLVERS = ("auto", "pardiso", "splu", "amg")
