@@ -352,7 +352,7 @@ def roll3d_runs() -> list[Run]:
 
 def lps_runs() -> list[Run]:
     """PET2 53.4 N at both pile heights in layered-3d with :data:`LPS_FINE` sheets a
-    shell."""
+    shell, and the 8.89 cm pile with one sheet a shell (the layers-per-shell ladder)."""
     return [
         Run(
             _run_id(c, h, f"layered-3d_lps{LPS_FINE}"),
@@ -366,6 +366,16 @@ def lps_runs() -> list[Run]:
         )
         for c, h in ROLLS_3D
         if c == "pet2-53.4N"
+    ] + [
+        Run(
+            _run_id("pet2-53.4N", None, "layered-3d_lps1"),
+            "pet2-53.4N",
+            (
+                "contact.no_update=false",
+                *_models_3d()[LAYERED_3D],
+                "contact.layers_per_shell=1",
+            ),
+        )
     ]
 
 
@@ -1280,6 +1290,71 @@ def text3d() -> str:
     return textwrap.fill(text, width=95, break_long_words=False, break_on_hyphens=False)
 
 
+def _coarse_shells(roll: str) -> int:
+    """Layers per shell of layered-3d's default shells on the study's coarse 3D mesh
+    (``COARSE_3D``) for ``roll`` (solved to 1.25 x its impact depth, the pipeline's reach)."""
+    from woundroll.case import load_case
+    from woundroll.contact.heads import Head
+    from woundroll.contact.layered.roll3d import Layered3DOptions, layered_mesh3d
+    from woundroll.contact.solid3d.options import Contact3DOptions
+    from woundroll.instruments import get_instrument
+    from woundroll.studies.layered import COARSE_3D
+
+    base = {}
+    for o in COARSE_3D:
+        key, value = o.removeprefix("contact.options3d.").split("=")
+        base[key] = float(value) if "." in value else int(value)
+    case = load_case(roll.split("/")[0].split("@")[0])
+    web, core = case.web.build(), case.core.build()
+    r_out = case.winding.final_radius(web, core)
+    depth = 1.25 * _reading3d(roll.split("/")[0], LAYERED_3D)["impact_depth_m"]
+    head = Head.from_instrument(get_instrument("rho-meter"))
+    opts = Layered3DOptions(base=Contact3DOptions(**base))
+    return layered_mesh3d(web, core, r_out, head, depth, opts)[3]
+
+
+def lps_ladder3d() -> str:
+    """Layers per shell in layered-3d on PET2 53.4 N at 8.89 cm (coarse mesh): the default
+    shells, two sheets and one sheet a shell (inline)."""
+    roll = "pet2-53.4N"
+    lps = _rec("lps3d")
+    cpu = records.load("layered_study.lps3d")["cpu_s"]
+    one = lps.get(f"{roll}/layered-3d_lps1")
+    if one is None:
+        return "one sheet a shell: not measured"
+    n = _coarse_shells(roll)
+    rows = [
+        (f"{n} (default)", _rho3d(roll, LAYERED_3D)),
+        (f"{LPS_FINE}", lps[f"{roll}/layered-3d_lps{LPS_FINE}"]["rho_fd"]),
+        ("1", one["rho_fd"]),
+    ]
+    r1 = rows[-1][1]
+    parts = " / ".join(f"{v:.1f}" for _, v in rows)
+    return (
+        f"{parts} Rho at {n} (the default shells) / {LPS_FINE} / 1 sheets a shell: the default "
+        f"shells read {_pct(rows[0][1], r1):+.0f} % and {LPS_FINE} sheets "
+        f"{_pct(rows[1][1], r1):+.0f} % above one sheet a shell, which reads "
+        f"{_pct(r1, _rho3d(roll, '3d')):+.0f} % against `3d` and "
+        f"{_pct(r1, _rho3d(roll, '2d')):+.0f} % against `2d` ({r1:.1f} against "
+        f"{_rho3d(roll, '3d'):.1f} and {_rho3d(roll, '2d'):.1f}; one sheet a shell cost "
+        f"{cpu[f'{roll}/layered-3d_lps1'] / 60:.0f} CPU min, "
+        f"{_measured('lps3d')})"
+    )
+
+
+def cost_default3d() -> str:
+    """CPU time of a whole `woundroll run` in layered-3d and 3d on the default 3D mesh
+    (inline, from the roll3d record)."""
+    rec = records.load("layered_study.roll3d")
+    cpu = rec["cpu_s"]
+    parts = [
+        f"{_label(c)} {cpu[f'{c}/{LAYERED_3D}_default_mesh'] / 60:.1f} CPU min "
+        f"(3d {cpu[f'{c}/3d_default_mesh']:.0f} CPU s)"
+        for c in ("pet1-26.7N", "pet2-53.4N")
+    ]
+    return "; ".join(parts) + f" ({_measured('roll3d')}, at load {rec['load_1min']:g})"
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
     "heights": heights,
     "provenance": provenance,
@@ -1306,6 +1381,8 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "mesh_offset3d": mesh_offset3d,
     "cost3d": cost3d,
     "text3d": text3d,
+    "lps_ladder3d": lps_ladder3d,
+    "cost_default3d": cost_default3d,
     "text3d_all": text3d_all,
 }
 
