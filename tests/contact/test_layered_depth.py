@@ -12,6 +12,10 @@ import math
 import numpy as np
 import pytest
 
+# the PET1 test roll of test_layered.py (Table 2's PET1, 30 kPa at the surface rising to
+# ~1 MPa at the core, head R = 10 mm, L = 20 mm)
+from test_layered import DEPTH, HEAD, PET1, R_OUT, RIGID, H, pet_profile
+
 from woundroll.contact.layered.solver import (
     ContactOptions,
     LayeredOptions,
@@ -20,15 +24,6 @@ from woundroll.contact.layered.solver import (
     indent_layered,
 )
 from woundroll.errors import InputError
-from woundroll.materials import Core, Pfeiffer, Web
-
-# the PET1 test roll of test_layered.py (Table 2's PET1, 30 kPa at the surface rising to
-# ~1 MPa at the core, head R = 10 mm, L = 20 mm)
-R_CORE, R_OUT, H = 0.0445, 0.1334, 1e-4
-PET1 = Web(thickness=H, width=0.1524, E_theta=5681e6, radial_modulus=Pfeiffer(4.62e3, 123.88))
-RIGID = Core(outer_radius=R_CORE)
-HEAD = {"head_radius": 0.01, "head_length": 0.02}
-DEPTH = 0.5e-3
 
 
 def options(**kw: object) -> LayeredOptions:
@@ -38,8 +33,7 @@ def options(**kw: object) -> LayeredOptions:
 
 
 def run(opts: LayeredOptions, mu: float = 0.3) -> tuple[float, LayeredState]:
-    r = np.linspace(R_CORE, R_OUT, 200)
-    s = -(30e3 + 1e6 * (R_OUT - r) / (R_OUT - R_CORE))
+    r, s = pet_profile()
     state: list[LayeredState] = []
     res = indent_layered(
         PET1, RIGID, r, s, depth_max=DEPTH, friction=mu, options=opts, state=state, **HEAD
