@@ -1290,26 +1290,23 @@ def text3d() -> str:
     return textwrap.fill(text, width=95, break_long_words=False, break_on_hyphens=False)
 
 
-def _coarse_shells(roll: str) -> int:
+def _coarse_shells(case_name: str) -> int:
     """Layers per shell of layered-3d's default shells on the study's coarse 3D mesh
-    (``COARSE_3D``) for ``roll`` (solved to 1.25 x its impact depth, the pipeline's reach)."""
+    (``COARSE_3D``) for the bundled case's roll, solved to the spring fit's reach
+    (``FIT_REACH`` x its layered-3d impact depth, as the pipeline solves it)."""
     from woundroll.case import load_case
     from woundroll.contact.heads import Head
     from woundroll.contact.layered.roll3d import Layered3DOptions, layered_mesh3d
-    from woundroll.contact.solid3d.options import Contact3DOptions
+    from woundroll.contact.spring import FIT_REACH
     from woundroll.instruments import get_instrument
     from woundroll.studies.layered import COARSE_3D
 
-    base = {}
-    for o in COARSE_3D:
-        key, value = o.removeprefix("contact.options3d.").split("=")
-        base[key] = float(value) if "." in value else int(value)
-    case = load_case(roll.split("/")[0].split("@")[0])
+    case = load_case(case_name, list(COARSE_3D))
     web, core = case.web.build(), case.core.build()
     r_out = case.winding.final_radius(web, core)
-    depth = 1.25 * _reading3d(roll.split("/")[0], LAYERED_3D)["impact_depth_m"]
+    depth = FIT_REACH * _reading3d(case_name, LAYERED_3D)["impact_depth_m"]
     head = Head.from_instrument(get_instrument("rho-meter"))
-    opts = Layered3DOptions(base=Contact3DOptions(**base))
+    opts = Layered3DOptions(base=case.contact.contact3d_options())
     return layered_mesh3d(web, core, r_out, head, depth, opts)[3]
 
 

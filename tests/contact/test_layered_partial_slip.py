@@ -215,29 +215,41 @@ def strip(
     return np.asarray(res.delta[1:]), np.asarray(res.force_per_length[1:])
 
 
+def against_derived(d: np.ndarray, f: np.ndarray, f_stuck: np.ndarray) -> dict[str, Any]:
+    """A model's forces ``f`` [N/m] at depths ``d`` [m] (and its stuck forces ``f_stuck``)
+    against the derived solution at the same deflections: the load reached, the force's
+    difference, the stuck model's offset against Hetenyi and the softening by friction
+    (model against its stuck strip, derived against its stuck plate: the offset divides out)."""
+    exact = [load_at(x) for x in d]
+    P = np.array([e.P for e in exact])
+    stuck = 2 * K_W / BETA_STICK * d
+    return {
+        "depth": d,
+        "exact": exact,
+        "load_ratio": P / onset_load(),
+        "rel": f / P - 1,
+        "stuck_rel": f_stuck / stuck - 1,
+        "softening": (f / f_stuck) / (P / stuck),
+    }
+
+
 def comparison() -> dict[str, Any]:
-    """The model's force along the press against the derived solution's at the same
-    deflection, the stuck strip's for the offset, and the slip zones (docs/scripts/
-    contact_checks.py shows them)."""
+    """:func:`against_derived` for the 2D strip, with its forces and slip zones
+    (docs/scripts/contact_checks.py shows them)."""
     st: list[LayeredState] = []
     d, f = strip(state=st)
     _, f_stuck = strip(interfaces=False)
-    exact = [load_at(x) for x in d]
-    k_stick = 2 * K_W / BETA_STICK
+    c = against_derived(d, f, f_stuck)
+    exact = c["exact"]
     state = st[0]
     slipping = state.slip > 0
     order = np.argsort(state.s)
     arc = np.empty_like(state.s)
     arc[order] = np.gradient(state.s[order])
     return {
-        "depth": d,
+        **c,
         "force": f,
         "force_stuck": f_stuck,
-        "exact": exact,
-        "load_ratio": np.array([e.P for e in exact]) / onset_load(),
-        "rel": f / np.array([e.P for e in exact]) - 1,
-        # softening by friction: model against its stuck strip, derived against its
-        "softening": (f / f_stuck) / (np.array([e.P for e in exact]) / (k_stick * d)),
         "edge": float(np.max(np.abs(state.s[slipping]))),
         "pair_s": np.sort(np.abs(state.s)),
         # the head's share of the interface's friction capacity over the slip zone
@@ -364,18 +376,10 @@ def strip3d(
 
 
 def comparison3d() -> dict[str, Any]:
-    """:func:`comparison`'s forces for the 3D slab."""
+    """:func:`against_derived` for the 3D slab."""
     d, f = strip3d()
     _, f_stuck = strip3d(interfaces=False)
-    P = np.array([load_at(x).P for x in d])
-    k_stick = 2 * K_W / BETA_STICK
-    return {
-        "depth": d,
-        "load_ratio": P / onset_load(),
-        "rel": f / P - 1,
-        "stuck_rel": f_stuck / (k_stick * d) - 1,
-        "softening": (f / f_stuck) / (P / (k_stick * d)),
-    }
+    return against_derived(d, f, f_stuck)
 
 
 def test_layered3d_slab_follows_the_partial_slip_solution() -> None:
