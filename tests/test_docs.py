@@ -147,6 +147,45 @@ def test_record_machinery(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> No
     assert rec.spot_check("x.y") == ["x.y: a.n stored 10.0, now 10.5"]
 
 
+def test_record_goes_stale_only_on_the_defaults_of_the_models_it_names(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # a record names the option classes its runs read (``models``): a default changed in
+    # another model leaves it current, one of its own stales every run; naming none keeps
+    # the old rule (every class); an unset contact key (None) is not an input
+    rec = _records()
+
+    def runs():  # type: ignore[no-untyped-def]
+        return [rec.Run("a", "pet1-26.7N")]
+
+    def measure(run):  # type: ignore[no-untyped-def]
+        return {"n": 1.0}
+
+    plane = rec.Measurement("p", runs, measure, (), 1e-9, "exact", models=rec.PLANE)
+    every = rec.Measurement("e", runs, measure, (), 1e-9, "exact")
+    monkeypatch.setattr(rec, "DATA", tmp_path)
+    monkeypatch.setattr(rec, "measurements", lambda: {"x.p": plane, "x.e": every})
+    rec.measure("x.p"), rec.measure("x.e")
+    true = rec.model_defaults()
+    assert set(rec.defaults_of(plane)) == {"WindingOptions", "ContactOptions"}
+    assert set(rec.defaults_of(every)) == set(true) and len(true) == 7
+
+    def changed(cls: str, key: str, value: object) -> dict[str, object]:
+        return {**true, cls: {**true[cls], key: value}}
+
+    monkeypatch.setattr(rec, "model_defaults", lambda: changed("Layered3DOptions", "tol", 1.0))
+    assert rec.stale_reasons("x.p") == []
+    assert rec.stale_reasons("x.e") == ["x.e: default Layered3DOptions (tol) changed"]
+    monkeypatch.setattr(rec, "model_defaults", lambda: changed("ContactOptions", "n_steps", 1))
+    assert rec.stale_reasons("x.p") == ["x.p: default ContactOptions (n_steps) changed"]
+    bad = rec.Measurement("b", runs, measure, (), 1e-9, "exact", models=("NoSuchOptions",))
+    with pytest.raises(SystemExit, match="unknown option class NoSuchOptions"):
+        rec.defaults_of(bad)
+    # an unset contact key does not enter the hash; a set one does
+    base = rec.run_inputs(rec.Run("a", "pet1-26.7N"))
+    assert rec.run_inputs(rec.Run("a", "pet1-26.7N", ("contact.model='layered'",))) != base
+
+
 def test_every_bench_block_is_written_by_make_bench() -> None:
     # a timing table in docs/ (<!-- bench: NAME -->) is rewritten by a benchmark that
     # make bench (benchmarks/run_all.py) runs with --write-docs: none is left hand-written

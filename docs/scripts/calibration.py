@@ -89,6 +89,7 @@ def _head3d_measure(run: Any) -> dict[str, Any]:
 
 MEASUREMENTS: dict[str, Any] = {
     "head3d": _records().Measurement(
+        models=_records().SOLID,
         about="the Rho-meter head calibrated on its block in the 3D model (docs/calibration.md)",
         runs=_head3d_runs,
         measure=_head3d_measure,

@@ -834,6 +834,7 @@ def _probe_measure(run: Any) -> dict[str, Any]:
 
 MEASUREMENTS: dict[str, Any] = {
     "probes": _records().Measurement(
+        models=_records().SOLID,
         about="docs/contact.md's probes: uniform PET3 in each model, the Table 3 profile's "
         "saturated sectors, the hard roll of assumption 2b",
         runs=_probe_runs,

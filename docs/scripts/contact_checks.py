@@ -744,6 +744,7 @@ def steps3d_row() -> str:
 
 MEASUREMENTS: dict[str, Measurement] = {
     "layers3d": Measurement(
+        models=records.LAYERED_SOLID,
         about="the layered 3D roll's layers-per-shell refinement (test_layered3d.py's coarse "
         "PET1 roll, cylinder head, 1.2 mm zone, mu 0.3): 4, 2, 1 layers per shell",
         runs=_lps_runs,
@@ -757,6 +758,7 @@ MEASUREMENTS: dict[str, Measurement] = {
         cost="12 / 18 / 39 CPU s for 4 / 2 / 1 layers per shell",
     ),
     "steps3d": Measurement(
+        models=records.LAYERED_SOLID,
         about="the layered 3D roll's load-step refinement (test_layered3d.py's coarse PET1 "
         "roll, cylinder head, 4 sheets a shell in a 1.2 mm zone, mu 0.3, and its continuum): "
         "4, 8, 16 increments",
@@ -768,6 +770,7 @@ MEASUREMENTS: dict[str, Measurement] = {
         cost="about 20 / 35 / 70 CPU s for 4 / 8 / 16 increments (both rolls)",
     ),
     "layered_cost": Measurement(
+        models=records.LAYERED,
         about="the whole `woundroll run` with the layered model (mu 0.3) and with plane "
         "strain on benchmarks/bench_layered.py's rolls, in yardsticks timed in the same run",
         runs=_cost_runs,
@@ -779,6 +782,7 @@ MEASUREMENTS: dict[str, Measurement] = {
         cost="a few CPU s the plane-strain runs, 10-20 CPU s the layered ones, two yardsticks each",
     ),
     "refine3d": Measurement(
+        models=records.SOLID,
         about="the 3D model's mesh refinement (test_contact3d.py's slow tests: PET2 26.7 N, "
         "Rho-meter head 6.565 mm, 2.1 mm): each mesh parameter refined alone",
         runs=_refine_runs,

@@ -1044,6 +1044,7 @@ def sensitivity_table() -> str:
 
 MEASUREMENTS: dict[str, Any] = {
     "design": _records().Measurement(
+        models=_records().PLANE,
         about="the setpoint designs of docs/diagnosis.md's table (woundroll design)",
         runs=_design_runs,
         measure=_design_measure,
@@ -1056,6 +1057,7 @@ MEASUREMENTS: dict[str, Any] = {
         cost="6 designs, about 13 CPU min (measured 750 s)",
     ),
     "uncertainty": _records().Measurement(
+        models=_records().PLANE,
         about="docs/diagnosis.md's uncertainty checks (tests/test_uncertainty.py's problems)",
         runs=_uncertainty_runs,
         measure=_uncertainty_measure,
@@ -1070,6 +1072,7 @@ MEASUREMENTS: dict[str, Any] = {
         "sectors: about 1.5 CPU min",
     ),
     "reduced_model": _records().Measurement(
+        models=_records().PLANE,
         about="the reduced profile model's near-surface pressures against the coupled "
         "winding's on the Table 3 profile (docs/diagnosis.md)",
         runs=_reduced_runs,
@@ -1080,6 +1083,7 @@ MEASUREMENTS: dict[str, Any] = {
         cost="two 31-sector axisymmetric windings, under a CPU minute",
     ),
     "nip_deflection": _records().Measurement(
+        models=_records().PLANE,
         about="the causes fit on a soft web with a nip deflection (tests/test_causes.py)",
         runs=_nip_runs,
         measure=_nip_measure,
@@ -1092,6 +1096,7 @@ MEASUREMENTS: dict[str, Any] = {
         cost="a causes fit with the reduced model, about 1.5 CPU min",
     ),
     "causes_full": _records().Measurement(
+        models=_records().PLANE,
         about="the causes fit against readings of the full profile model, with the level "
         "corrected by full runs (tests/test_causes.py)",
         runs=_causes_runs,

@@ -454,6 +454,7 @@ def measure_head(run: Run) -> dict[str, Any]:
 
 MEASUREMENTS: dict[str, Measurement] = {
     "table": Measurement(
+        models=records.LAYERED,
         about="`woundroll study layered` (88 runs) and the uniform PET3 roll, Rho FD",
         runs=table_runs,
         measure=measure_reading,
@@ -466,6 +467,7 @@ MEASUREMENTS: dict[str, Measurement] = {
         cost="about 14 CPU min: 2d runs ~1 CPU s, layered 9-31 CPU s (measured at load 5-7)",
     ),
     "checks": Measurement(
+        models=records.LAYERED,
         about=(
             "the layered zone deepened (mu 0.3), the paper's slip fraction, and the "
             "reduced-shear fraction fitted to the layered roll by bisection"
@@ -481,6 +483,7 @@ MEASUREMENTS: dict[str, Measurement] = {
         cost="about 6 CPU min: five deep-zone layered runs (30-75 CPU s), two fits of 12 2d runs",
     ),
     "zone": Measurement(
+        models=records.LAYERED,
         about="the layered roll (mu 0.3) with its zone of sheets deepened toward the whole pile",
         runs=zone_runs,
         measure=measure_reading,
@@ -490,6 +493,7 @@ MEASUREMENTS: dict[str, Measurement] = {
         cost="about 15 CPU min: 10-30 CPU s a run at 4-12 mm, ~2-3 CPU min at 70 mm",
     ),
     "roll3d": Measurement(
+        models=records.LAYERED_SOLID,
         about="the layered roll in 3D beside 3d (coarse 3D mesh, mu 0.3), Rho FD",
         runs=roll3d_runs,
         measure=measure_reading,
@@ -505,6 +509,7 @@ MEASUREMENTS: dict[str, Measurement] = {
         ),
     ),
     "head3d": Measurement(
+        models=records.LAYERED_SOLID,
         about=(
             "PET2 53.4 N pressed 1.4 mm by 3d and layered-3d: the pressure under the head "
             "and the CMD spread"
@@ -517,6 +522,7 @@ MEASUREMENTS: dict[str, Measurement] = {
         cost="about 1 CPU min (layered-3d 50 CPU s)",
     ),
     "lps3d": Measurement(
+        models=records.LAYERED_SOLID,
         about=f"PET2 53.4 N in layered-3d with {LPS_FINE} sheets a shell (coarse mesh, mu 0.3)",
         runs=lps_runs,
         measure=measure_reading,

@@ -9,9 +9,10 @@ record (cheap, so the ordinary currency check covers them). A record cannot go s
 silently:
 
 * **inputs** (default suite, tests/test_docs.py): every run's case inputs (the resolved case,
-  defaults included, as result.json records them) and the numerical defaults of every contact
-  and winding model (their option dataclasses) are stored as a hash; a change to a preset, a
-  default key or a mesh setting makes the test fail and name the record to re-measure;
+  defaults included, as result.json records them) are stored as a hash, and the numerical
+  defaults of the contact and winding models the measurement names (``models``: their option
+  dataclasses; every one when it names none) as they were; a change to a preset, a default
+  key or a mesh setting makes the test fail and name the record to re-measure;
 * **code** (slow suite): the record's ``spot`` runs (its cheapest) are measured again and must
   agree with the record within the measurement's stated tolerance, so that a change in the
   models' code that moves the numbers is caught too.
@@ -80,7 +81,9 @@ class Measurement:
     the slow test measures again, ``rtol`` the relative tolerance it allows and ``reason``
     why that tolerance (the numbers are deterministic on one machine; the tolerance covers
     BLAS and platform rounding of iterative solves). ``about`` is the one-line description
-    the page and this script print."""
+    the page and this script print. ``models`` names the option classes (keys of
+    :func:`model_defaults`, e.g. ``"Contact3DOptions"``) whose defaults the runs read: a
+    change to another model's defaults leaves the record current; empty: every class."""
 
     about: str
     runs: Callable[[], Sequence[Run]]
@@ -90,10 +93,19 @@ class Measurement:
     reason: str
     cost: str = ""
     extra: dict[str, Any] = field(default_factory=dict)
+    models: tuple[str, ...] = ()
 
 
 # ---------------------------------------------------------------------------------------
 # the inputs a record depends on
+
+#: The option classes a measurement may name in ``models`` (keys of :func:`model_defaults`),
+#: by the models its runs read: the winding and plane strain (every reading's road: a 3D
+#: run still winds the roll, and calibrations and fits pass through 2D), then each family.
+PLANE: tuple[str, ...] = ("WindingOptions", "ContactOptions")
+SOLID: tuple[str, ...] = (*PLANE, "Contact3DOptions")
+LAYERED: tuple[str, ...] = (*PLANE, "LayeredOptions")
+LAYERED_SOLID: tuple[str, ...] = (*SOLID, "LayeredOptions", "Layered3DOptions")
 
 
 @cache
@@ -121,6 +133,29 @@ def model_defaults() -> dict[str, Any]:
     return out
 
 
+def defaults_of(m: Measurement) -> dict[str, Any]:
+    """The part of :func:`model_defaults` measurement ``m`` depends on (its ``models``;
+    every class when it names none). An unknown class name is an error."""
+    allm = model_defaults()
+    unknown = [c for c in m.models if c not in allm]
+    if unknown:
+        raise SystemExit(f"unknown option class {', '.join(unknown)} (known: {', '.join(allm)})")
+    return {c: allm[c] for c in (m.models or tuple(allm))}
+
+
+def _defaults_changed(rec: dict[str, Any], m: Measurement) -> list[str]:
+    """The option classes ``m`` depends on whose defaults differ from the record's, each
+    with its changed keys."""
+    out = []
+    for cls, opts in defaults_of(m).items():
+        old = rec["model_defaults"].get(cls)
+        if old != opts:
+            old = old or {}
+            keys = sorted(k for k in set(opts) | set(old) if opts.get(k) != old.get(k))
+            out.append(f"{cls} ({', '.join(keys)})")
+    return out
+
+
 def _digest(obj: Any) -> str:
     text = json.dumps(obj, sort_keys=True, default=repr, allow_nan=True)
     return hashlib.sha256(text.encode()).hexdigest()[:16]
@@ -141,7 +176,9 @@ def run_inputs(run: Run) -> str:
     return _digest(
         {
             "inputs": values,
-            "contact": case.contact.model_dump(),
+            # a key left unset (None) leaves the choice to the model, whose defaults
+            # model_defaults() covers: a new optional key does not stale every record
+            "contact": {k: v for k, v in case.contact.model_dump().items() if v is not None},
             "tester": tester,
             "params": [list(p) for p in run.params],
         }
@@ -215,13 +252,7 @@ def stale_reasons(name: str, m: Measurement | None = None) -> list[str]:
     if not p.exists():
         return [f"{name}: no record (run docs/scripts/records.py {name})"]
     rec = json.loads(p.read_text())
-    out: list[str] = []
-    defaults = model_defaults()
-    for cls, opts in defaults.items():
-        if rec["model_defaults"].get(cls) != opts:
-            old = rec["model_defaults"].get(cls, {})
-            keys = sorted(k for k in set(opts) | set(old) if opts.get(k) != old.get(k))
-            out.append(f"{name}: default {cls} changed ({', '.join(keys)})")
+    out = [f"{name}: default {c} changed" for c in _defaults_changed(rec, m)]
     want = [r.id for r in m.runs()]
     if list(rec["runs"]) != want:
         out.append(f"{name}: runs changed (stored {len(rec['runs'])}, listed {len(want)})")
@@ -272,7 +303,7 @@ def measure(name: str, only: Sequence[str] = (), fresh: bool = False) -> dict[st
         raise SystemExit(f"{name}: no run {', '.join(unknown)} (runs: {', '.join(ids)})")
     p = path_of(name)
     old = json.loads(p.read_text()) if p.exists() and not fresh else None
-    if old is not None and old.get("model_defaults") != model_defaults():
+    if old is not None and _defaults_changed(old, m):
         old = None  # every run is stale
     stored: dict[str, Any] = dict(old["runs"]) if old else {}
     hashes: dict[str, str] = dict(old["inputs"]) if old else {}
@@ -323,7 +354,7 @@ def rehash(name: str) -> list[str]:
     m = measurements()[name]
     p = path_of(name)
     rec = json.loads(p.read_text())
-    if rec["model_defaults"] != model_defaults():
+    if _defaults_changed(rec, m):
         raise SystemExit(f"{name}: the models' defaults changed: re-measure, do not rehash")
     ids = [r.id for r in m.runs() if r.id in rec["runs"]]
     rec["inputs"] = {r.id: run_inputs(r) for r in m.runs() if r.id in rec["runs"]}

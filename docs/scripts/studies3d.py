@@ -350,6 +350,7 @@ def _mesh_measure(run: Run) -> dict[str, Any]:
 
 MEASUREMENTS: dict[str, Measurement] = {
     "dynamic": Measurement(
+        models=(*records.SOLID, "Dynamic3DOptions"),
         about="the dynamic FE impact on the 3D roll (CASES_3D, elastic stack) and the 3D "
         "calibration block, beside the FD and energy models on the 3D spring",
         runs=_dynamic_runs,
@@ -362,6 +363,7 @@ MEASUREMENTS: dict[str, Measurement] = {
         cost="~5 CPU min the roll, ~30 CPU s the block",
     ),
     "pile": Measurement(
+        models=records.SOLID,
         about="the pile-height study on the 3D contact model (PET2 53.4 N, H = 2-8.89 cm)",
         runs=_pile_runs,
         measure=_pile_measure,
@@ -372,6 +374,7 @@ MEASUREMENTS: dict[str, Measurement] = {
         cost="~0.5-1.5 CPU min a pile height",
     ),
     "slip": Measurement(
+        models=records.SOLID,
         about="the Table 2 rolls with and without the reduced-shear slip emulation on the 3D "
         "model (coarse mesh), the PET2 rolls on the default 3D mesh",
         runs=_slip_runs,
@@ -384,6 +387,7 @@ MEASUREMENTS: dict[str, Measurement] = {
         cost="6-12 CPU s a coarse roll, 1-3.5 CPU min a default-mesh roll",
     ),
     "checks": Measurement(
+        models=(*records.SOLID, "Dynamic3DOptions"),
         about="docs/dynamic.md's 3D verification: tests/contact/test_dynamic3d.py's problems "
         "(Hertz impact, massless roll, time steps, factorisation reuse, the case path)",
         runs=_check_runs,
@@ -396,6 +400,7 @@ MEASUREMENTS: dict[str, Measurement] = {
         cost="~10-60 CPU s a run on the tests' coarse meshes",
     ),
     "dynamic_mesh": Measurement(
+        models=(*records.PLANE, "DynamicOptions"),
         about="docs/dynamic.md's mesh check: the 2D impact on PET1 26.7 N (elastic) on the "
         "default dynamic mesh and on a refined one",
         runs=_mesh_runs,
