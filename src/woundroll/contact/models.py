@@ -208,7 +208,7 @@ ROLL_MODELS: dict[str, RollModelEntry] = {
             "finite rigid cylinder on an isotropic block against a boundary-element solution "
             "(0.4-1.3 %), Hertz sphere, linear orthotropic layers",
             _solid3d,
-            False,
+            True,
         ),
         RollModelEntry(
             "layered",
@@ -228,7 +228,7 @@ ROLL_MODELS: dict[str, RollModelEntry] = {
             "equals the 3D continuum on its mesh when every interface sticks; layers-per-shell "
             "refinement (docs/contact.md, 'The layered roll in 3D')",
             _layered3d,
-            False,
+            True,
         ),
     )
 }

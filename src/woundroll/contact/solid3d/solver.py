@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -389,9 +390,16 @@ def build_roll3d(
 
 
 def _check_reach(
-    web: Web, core: Core, r_out: float, head: Head, depth_max: float, opts: Contact3DOptions
+    web: Web,
+    core: Core,
+    r_out: float,
+    head: Head,
+    depth_max: float,
+    opts: Contact3DOptions,
+    field: str = "depth_max",
 ) -> None:
-    """The head fits the roll's width, the depth the model's reach."""
+    """The head fits the roll's width, the depth (named ``field``: ``depth_max`` or
+    ``extend_to``) the model's reach."""
     r_in = core.outer_radius
     z_max = 0.5 * web.width
     if head.cmd_halfwidth >= z_max and opts.cmd_edges == "free":
@@ -403,13 +411,13 @@ def _check_reach(
     if head.shape != "punch" and depth_max >= 0.5 * head.radius:
         raise InputError(
             f"must be below half the head radius ({0.5 * head.radius:g} m), got {depth_max:g} m",
-            "depth_max",
+            field,
         )
     if depth_max >= 0.25 * (r_out - r_in):
         raise InputError(
             f"must be below a quarter of the wound thickness "
             f"({0.25 * (r_out - r_in):g} m), got {depth_max:g} m",
-            "depth_max",
+            field,
         )
 
 
@@ -567,16 +575,43 @@ class _Loading3D:
         return bound
 
 
-def _press3d(load: _Loading3D) -> tuple[LoadHistory, FloatArray]:
+Stop = Callable[[FloatArray, FloatArray], bool]
+
+
+def loading_depths(
+    web: Web,
+    core: Core,
+    r_out: float,
+    head: Head,
+    depth_max: float,
+    opts: Contact3DOptions,
+    stop: Stop | None,
+    extend_to: float | str | None,
+) -> FloatArray:
+    """The depths of a 3D loading: ``d_k = depth_max (k / n_steps)^step_exponent`` to
+    ``depth_max``; with ``stop`` and ``extend_to``, on by the same law to ``extend_to``
+    (checked against the model's reach as ``depth_max`` is, under the field
+    ``extend_to``; :func:`woundroll.contact.stepping.depth_schedule`)."""
+    deepest = None
+    if stop is not None and extend_to is not None:
+        deepest = max(_check_scalar(extend_to, "extend_to"), depth_max)
+        _check_reach(web, core, r_out, head, deepest, opts, "extend_to")
+    return depth_schedule(depth_max, int(opts.n_steps), opts.step_exponent, deepest)
+
+
+def _press3d(load: _Loading3D, stop: Stop | None = None) -> tuple[LoadHistory, FloatArray]:
     """Every depth of ``load.delta`` in turn, recorded on the line z = 0 (quarter model:
-    forces times 4). Returns the history and the contact's half length along the CMD."""
+    forces times 4), until ``stop(delta, force)`` says so (the curve then ends at the last
+    depth solved, and the loading's state is that depth's). Returns the history and the
+    contact's half length along the CMD."""
     model, delta = load.model, load.delta
     mesh = model.mesh
     n_t, n_z = mesh.theta.size, mesh.z.size
     s_line = model.R * mesh.theta
     h = LoadHistory.start(delta, mesh.n_elements, n_t)
     half_len = np.zeros(delta.size)
-    for k in range(1, delta.size):
+    n = delta.size - 1
+    for k in range(1, n + 1):
         bound = load.advance(k)
         f_new = load.f_surf
         p = -f_new / model.surf_area
@@ -591,6 +626,8 @@ def _press3d(load: _Loading3D) -> tuple[LoadHistory, FloatArray]:
             p.reshape(n_z, n_t)[0],
         )
         half_len[k] = _edge(mesh.z, act[:, 0], gap[:, 0])
+        if stop is not None and k < n and stop(delta[: k + 1], h.force[: k + 1]):
+            return h.up_to(k + 1), half_len[: k + 1]
     return h, half_len
 
 
@@ -662,6 +699,8 @@ def indent3d(
     friction: float = INTERLAYER_FRICTION,
     update_modulus: bool = True,
     options: Contact3DOptions | None = None,
+    stop: Stop | None = None,
+    extend_to: float | str | None = None,
 ) -> Contact3DResult:
     """Press a rigid head into the wound roll (3D) and return F(d), a(d) and the fields.
 
@@ -672,6 +711,14 @@ def indent3d(
     head : Head
         Cylinder (axis along the CMD, rounded ends), sphere or flat punch.
     options : Contact3DOptions, optional
+    stop, extend_to
+        As :func:`woundroll.contact.indent`: ``stop(delta, force)`` [m], [N] after each
+        increment ends the loading there; with ``extend_to`` [m] the loading goes on past
+        ``depth_max`` by the same step law until ``stop`` says so or the depth reaches
+        ``extend_to`` (the increments up to ``depth_max`` are the same as without it). The
+        mesh is sized for ``depth_max`` (the head's footprint there) either way
+        (docs/contact.md, "3D model": the fine zone still holds the contact at about twice
+        that depth).
 
     Returns
     -------
@@ -694,9 +741,9 @@ def indent3d(
         web, core, radius, sigma_r, head=head, depth_max=depth_max, options=options
     )
     opts = model.opts
+    delta = loading_depths(web, core, model.R, head, depth_max, opts, stop, extend_to)
     t_setup = time.perf_counter() - t0
-    delta = depth_schedule(depth_max, int(opts.n_steps), opts.step_exponent)
     load = _Loading3D(model, head, delta, friction, update_modulus)
     with one_blas_thread():  # woundroll.util.blas (the assembly's small per-ring products)
-        h, half_len = _press3d(load)
+        h, half_len = _press3d(load, stop)
     return _result3d(load, h, half_len, head, update_modulus, (t0, t_setup))
