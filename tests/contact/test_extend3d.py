@@ -67,7 +67,7 @@ def test_extended_loading_is_the_direct_solve_to_its_depth() -> None:
     the stop at k = 7, against a direct solve to d_7 in 7 increments on the same mesh: the
     same depths (to rounding), the same gap tolerance (1e-3 of the same first increment),
     the same arithmetic. F(d), a(d), the fields at the last depth and the work counters
-    agree to 1e-9 (rounding of the depths; measured 0 to 1e-12)."""
+    agree to 1e-9 (rounding of the depths; measured 2e-14 on F, 4e-14 on sigma_r)."""
     r, s = pet_profile()
     opts = Contact3DOptions(n_steps=STEPS, n_fine=5, **MESH)
     calls: list[int] = []
@@ -134,6 +134,7 @@ def test_extend_to_beyond_the_reach_names_its_field() -> None:
     assert e.value.field == "extend_to"
 
 
+@pytest.mark.slow  # 15 s on the loaded 2-core machine
 def test_extended_layered_loading_is_the_direct_solve() -> None:
     """The layered 3D roll (mu 0.3: the interfaces slip near the head) shares the loading:
     extended past its first depth it is the direct solve to the stop's depth on the same
@@ -239,3 +240,47 @@ def test_cli_reads_a_table2_roll_with_the_3d_model() -> None:
     assert c["depth_max_m"] > 1e-3  # extended past the first depth in the one solve
     assert c["depth_max_m"] >= 1.25 * c["impact_depth_m"] * (1 - 1e-9)  # the window inside
     assert 10.0 < out["hardness"]["reading"] < 100.0
+
+
+class _FirstSolve(Exception):
+    """Raised by the stand-in 3D solve: the test wants its first depth only."""
+
+
+@pytest.mark.parametrize(("case", "guided"), [("pet2-53.4N", True), ("pet1-26.7N", False)])
+def test_the_guide_sizes_the_first_3d_solve(
+    monkeypatch: pytest.MonkeyPatch, case: str, guided: bool
+) -> None:
+    """The '3d' entry's first depth is where the CMD-spreading spring's curve would stop,
+    STOP_MARGIN x FIT_REACH x its d_max, when that is deeper than FIRST_DEPTH (PET2 53.4 N:
+    1.7 mm; the 3D curve stops at 1.76 mm), else FIRST_DEPTH (PET1 26.7 N: 0.9 mm guided,
+    1 mm used). No 3D solve here: the stand-in stops at the first call."""
+    import sys
+    from pathlib import Path
+
+    from woundroll.contact import models, roll_stiffness
+    from woundroll.contact.spring import FIRST_DEPTH, FIT_REACH, STOP_MARGIN
+    from woundroll.instruments import get_instrument
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_real_profiles import real_roll
+
+    web, core, r, s = real_roll(case)
+    rho = get_instrument("rho-meter")
+    guide = roll_stiffness(web, core, r, s, rho, model="2d+cmd-spread")
+    expected = STOP_MARGIN * FIT_REACH * guide.impact_depth
+    assert (expected > FIRST_DEPTH) is guided
+    depths: list[float] = []
+
+    def solve(*args, **kw):  # noqa: ANN002, ANN003, ANN202
+        depths.append(kw["depth_max"])
+        raise _FirstSolve
+
+    entry = dataclasses.replace(models.ROLL_MODELS["3d"], solve=solve)
+    monkeypatch.setitem(models.ROLL_MODELS, "3d", entry)
+    with pytest.raises(_FirstSolve):
+        roll_stiffness(web, core, r, s, rho, model="3d")
+    assert depths == [pytest.approx(max(expected, FIRST_DEPTH), rel=1e-12)]
+    depths.clear()
+    with pytest.raises(_FirstSolve):  # a given first depth is kept (no guide)
+        roll_stiffness(web, core, r, s, rho, model="3d", start_depth=5e-4)
+    assert depths == [5e-4]

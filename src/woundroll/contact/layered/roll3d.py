@@ -57,9 +57,9 @@ from woundroll.contact.solid3d.options import Contact3DOptions
 from woundroll.contact.solid3d.solver import (
     Contact3DResult,
     Roll3D,
+    Stop,
     _check_reach,
     _Loading3D,
-    Stop,
     _mesh_under_the_head,
     _press3d,
     _result3d,
