@@ -255,9 +255,28 @@ def admm_passes() -> str:
 # ----------------------------------------------------------------- the default shells
 
 
+def layers_default() -> str:
+    """The default layers per shell of both layered models (inline, case-files.md)."""
+    from woundroll.contact.layered.roll3d import LAYERS_PER_SHELL_3D
+    from woundroll.contact.layered.solver import LayeredOptions
+
+    return (
+        f'{LayeredOptions().layers_per_shell} in `"layered"`; {LAYERS_PER_SHELL_3D} in '
+        f'`"layered-3d"` (unset in Python, `layers_per_shell=None`: the 3D model\'s outer '
+        f"element ring in whole layers)"
+    )
+
+
+def layers3d_default() -> str:
+    """The layered-3d model's default layers per shell (inline)."""
+    from woundroll.contact.layered.roll3d import LAYERS_PER_SHELL_3D
+
+    return f"{LAYERS_PER_SHELL_3D}"
+
+
 def default_shells() -> str:
-    """Layers per shell of the default mesh on the Table 2 rolls and pile heights (inline):
-    the bundled Rho-meter head, solved to 1.25 x the 3D model's impact depth (the stored
+    """Layers in the 3D model's surface ring on the default mesh, the Table 2 rolls and pile
+    heights (inline; the layered-3d shells of ``layers_per_shell=None``): the bundled Rho-meter head, solved to 1.25 x the 3D model's impact depth (the stored
     3D references, tests/contact/data/contact3d_reference.json)."""
     import json
 
@@ -275,13 +294,13 @@ def default_shells() -> str:
         depth = 1.25 * c3["delta_max_m"]
         _, _, _, k = layered_mesh3d(
             case.web.build(), case.core.build(), c3["outer_radius_m"], head, depth,
-            Layered3DOptions(),
+            Layered3DOptions(layers_per_shell=None),
         )  # fmt: skip
         n.append(k)
         d.append(1e3 * depth)
     span = f"{min(n)}-{max(n)}" if min(n) != max(n) else f"{n[0]}"
     return (
-        f"{span} layers per shell (solved to {min(d):.2f}-{max(d):.2f} mm, 1.25 x the 3D "
+        f"{span} layers (solved to {min(d):.2f}-{max(d):.2f} mm, 1.25 x the 3D "
         f"model's impact depths on the Table 2 rolls and pile heights, with the bundled "
         f"{1e3 * head.radius:.2f} mm head)"
     )
@@ -811,6 +830,8 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "plates3d": plates3d,
     "slip3d": slip3d,
     "default_shells": default_shells,
+    "layers_default": layers_default,
+    "layers3d_default": layers3d_default,
     "er_growth": er_growth,
     "coarse3d": coarse3d,
     "coulomb2d": coulomb2d,

@@ -274,8 +274,9 @@ def _models_3d() -> dict[str, tuple[str, ...]]:
 #: The friction of the 3D table's layered-3d column (the others: the mu sweep's rows).
 MU_3D = 0.3
 LAYERED_3D = f"layered-3d_mu{MU_3D:g}"
-#: Sheets a shell of the finer layered-3d runs (PET2 only: 4x the rings' cost).
-LPS_FINE = 2
+#: Sheets a shell of the ladder's thick shells: the coarse mesh's surface ring on PET2 53.4 N
+#: (what layered-3d's ``layers_per_shell=None`` gives there; :func:`lps_ladder3d` checks it).
+LPS_RING = 9
 #: The depth both 3D models are pressed to for the pressure under the head [m], and where
 #: it is read: depths on the column under the head's centre [m], depths of the CMD spread [m].
 HEAD_DEPTH = 1.4e-3
@@ -351,31 +352,20 @@ def roll3d_runs() -> list[Run]:
 
 
 def lps_runs() -> list[Run]:
-    """PET2 53.4 N at both pile heights in layered-3d with :data:`LPS_FINE` sheets a
-    shell, and the 8.89 cm pile with one sheet a shell (the layers-per-shell ladder)."""
+    """PET2 53.4 N at 8.89 cm in layered-3d with :data:`LPS_RING` sheets a shell (the 3D
+    surface ring) and one sheet a shell: the layers-per-shell ladder around the default
+    (two, the roll3d record's runs)."""
     return [
         Run(
-            _run_id(c, h, f"layered-3d_lps{LPS_FINE}"),
-            c,
-            (
-                *_wound_to(c, h),
-                "contact.no_update=false",
-                *_models_3d()[LAYERED_3D],
-                f"contact.layers_per_shell={LPS_FINE}",
-            ),
-        )
-        for c, h in ROLLS_3D
-        if c == "pet2-53.4N"
-    ] + [
-        Run(
-            _run_id("pet2-53.4N", None, "layered-3d_lps1"),
+            _run_id("pet2-53.4N", None, f"layered-3d_lps{n}"),
             "pet2-53.4N",
             (
                 "contact.no_update=false",
                 *_models_3d()[LAYERED_3D],
-                "contact.layers_per_shell=1",
+                f"contact.layers_per_shell={n}",
             ),
         )
+        for n in (LPS_RING, 1)
     ]
 
 
@@ -523,13 +513,14 @@ MEASUREMENTS: dict[str, Measurement] = {
     ),
     "lps3d": Measurement(
         models=records.LAYERED_SOLID,
-        about=f"PET2 53.4 N in layered-3d with {LPS_FINE} sheets a shell (coarse mesh, mu 0.3)",
+        about=f"PET2 53.4 N in layered-3d with {LPS_RING} and 1 sheets a shell (coarse mesh, "
+        "mu 0.3)",
         runs=lps_runs,
         measure=measure_reading,
         spot=(),
         rtol=1e-3,
         reason="no spot run: each run costs ~5 CPU min, beyond the slow suite's budget",
-        cost="about 11 CPU min: 273-358 CPU s a run, ~25x a 3d solve",
+        cost="about 5 CPU min: 1-4 CPU min a run",
     ),
 }
 
@@ -971,7 +962,7 @@ def fit() -> str:
 
 def _reading3d(roll: str, model: str) -> dict[str, Any]:
     """A run of the 3D table: 2d and layered from the table record where it has the roll,
-    else from roll3d; layered-3d with finer shells from lps3d."""
+    else from roll3d; layered-3d at other shells from lps3d."""
     rid = f"{roll}/{model}"
     for name in ("table", "roll3d", "lps3d"):
         got = _rec(name).get(rid)
@@ -1022,9 +1013,6 @@ def table3d() -> str:
     ]
     for label, roll in _rolls3d():
         cells = [f"{_rho3d(roll, m):.1f}" for m in models]
-        fine = _rec("lps3d").get(f"{roll}/layered-3d_lps{LPS_FINE}")
-        if fine is not None:
-            cells[-1] += f" ({LPS_FINE} layers a shell: {fine['rho_fd']:.1f})"
         cells.append(f"{_pct(_rho3d(roll, LAYERED_3D), _rho3d(roll, '3d')):+.1f} %")
         lines.append(f"| {label} | " + " | ".join(cells) + " |")
     lo, hi = (roll.split("@")[0] if "@8.89" in roll else roll for roll in _pile_pair())
@@ -1183,7 +1171,8 @@ def text3d_all() -> str:
     p3 = {m: _rho3d(PET3_ID, m) for m in ("2d", f"layered_mu{MU_3D:g}", "3d", LAYERED_3D)}
     on = p3[LAYERED_3D] <= top
     text = (
-        f"Over the study's rolls, the layered roll in 3D (mu {MU_3D:g}, default shells) reads "
+        f"Over the study's rolls, the layered roll in 3D (mu {MU_3D:g}, {_lps_default()} sheets a "
+        "shell) reads "
         + ("below" if below3 else "not always below")
         + f" the 3D continuum (by {_span([-v for v in vs3], '.1f')} %) and above `2d` on "
         f"{above2} of {len(rows)} rolls (from {min(vs2):+.0f} to {max(vs2):+.0f} %). Along "
@@ -1250,14 +1239,14 @@ def text3d() -> str:
     def rho(roll: str, m: str) -> float:
         return float(_reading3d(roll, m)["rho_fd"])
 
-    fine = f"layered-3d_lps{LPS_FINE}"
-    variants = ("3d", LAYERED_3D, fine)
+    one = "layered-3d_lps1"
+    variants = ("3d", LAYERED_3D)
     q = {m: rho(low, m) / rho(tall, m) for m in (*variants, "2d")}
     q3 = [q[m] for m in variants]
     keeps = min(q3) > 1 + NEARLY
-    above_fine = _pct(rho(tall, fine), rho(tall, "2d"))
+    above_one = _pct(rho(tall, one), rho(tall, "2d"))
     above_default = _pct(rho(tall, LAYERED_3D), rho(tall, "2d"))
-    stays_above = above_fine > 10.0
+    stays_above = above_one > 10.0
     h_lo = 100 * _reading3d(low, "3d")["pile_height_m"]
     h_hi = 100 * _reading3d(tall, "3d")["pile_height_m"]
     head = _rec("head3d")
@@ -1277,11 +1266,9 @@ def text3d() -> str:
         f"{_span(q3, '.2f')} in every 3D variant, {q['2d']:.2f} in 2d; the paper's tests read "
         "about 1) "
         + ("nor brings" if keeps and stays_above else "and bring")
-        + f" the reading down to the plane-strain level: at {LPS_FINE} layers a shell the 3D "
-        f"layered roll reads {above_fine:.0f} % above `2d` on PET2 at {h_hi:.3g} cm "
-        f"({above_default:.0f} % at the default shells, which glue several layers of the 3D "
-        "model's outer element ring together: its readings are upper bounds, and lumping "
-        'sheets costs more in 3D than in 2D, docs/contact.md "The layered roll in 3D"). Under '
+        + f" the reading down to the plane-strain level: the 3D layered roll reads "
+        f"{above_default:.0f} % above `2d` on PET2 at {h_hi:.3g} cm, and {above_one:.0f} % at "
+        'one sheet a shell (docs/contact.md "The layered roll in 3D"). Under '
         f"the head (PET2 53.4 N, H {h_hi:.3g} cm, pressed {1e3 * HEAD_DEPTH:g} mm) the sheets "
         f"carry {-_pct(lay['force_N'], c['force_N']):.0f} % less force and lower the pressure "
         f"{_span(dp, '.0f')} % in the top {1e3 * PRESSURE_DEPTHS[top[-1]]:g} mm, and spread "
@@ -1296,10 +1283,17 @@ def text3d() -> str:
     return textwrap.fill(text, width=95, break_long_words=False, break_on_hyphens=False)
 
 
+def _lps_default() -> int:
+    from woundroll.contact.layered.roll3d import LAYERS_PER_SHELL_3D
+
+    return LAYERS_PER_SHELL_3D
+
+
 def _coarse_shells(case_name: str) -> int:
-    """Layers per shell of layered-3d's default shells on the study's coarse 3D mesh
-    (``COARSE_3D``) for the bundled case's roll, solved to the spring fit's reach
-    (``FIT_REACH`` x its layered-3d impact depth, as the pipeline solves it)."""
+    """Layers in the 3D surface ring (layered-3d's shells at ``layers_per_shell=None``) on
+    the study's coarse 3D mesh (``COARSE_3D``) for the bundled case's roll, solved to the
+    spring fit's reach (``FIT_REACH`` x its layered-3d impact depth, as the pipeline solves
+    it)."""
     from woundroll.case import load_case
     from woundroll.contact.heads import Head
     from woundroll.contact.layered.roll3d import Layered3DOptions, layered_mesh3d
@@ -1312,36 +1306,38 @@ def _coarse_shells(case_name: str) -> int:
     r_out = case.winding.final_radius(web, core)
     depth = FIT_REACH * _reading3d(case_name, LAYERED_3D)["impact_depth_m"]
     head = Head.from_instrument(get_instrument("rho-meter"))
-    opts = Layered3DOptions(base=case.contact.contact3d_options())
+    opts = Layered3DOptions(base=case.contact.contact3d_options(), layers_per_shell=None)
     return layered_mesh3d(web, core, r_out, head, depth, opts)[3]
 
 
 def lps_ladder3d() -> str:
-    """Layers per shell in layered-3d on PET2 53.4 N at 8.89 cm (coarse mesh): the default
-    shells, two sheets and one sheet a shell (inline)."""
+    """Layers per shell in layered-3d on PET2 53.4 N at 8.89 cm (coarse mesh): the 3D
+    surface ring's, the default and one sheet a shell (inline)."""
+    from woundroll.contact.layered.roll3d import LAYERS_PER_SHELL_3D
+
     roll = "pet2-53.4N"
     lps = _rec("lps3d")
     cpu = records.load("layered_study.lps3d")["cpu_s"]
-    one = lps.get(f"{roll}/layered-3d_lps1")
-    if one is None:
-        return "one sheet a shell: not measured"
-    n = _coarse_shells(roll)
+    ring = _coarse_shells(roll)
     rows = [
-        (f"{n} (default)", _rho3d(roll, LAYERED_3D)),
-        (f"{LPS_FINE}", lps[f"{roll}/layered-3d_lps{LPS_FINE}"]["rho_fd"]),
-        ("1", one["rho_fd"]),
+        lps[f"{roll}/layered-3d_lps{LPS_RING}"]["rho_fd"],
+        _rho3d(roll, LAYERED_3D),
+        lps[f"{roll}/layered-3d_lps1"]["rho_fd"],
     ]
-    r1 = rows[-1][1]
-    parts = " / ".join(f"{v:.1f}" for _, v in rows)
+    r1 = rows[-1]
+    cost = (
+        cpu[f"{roll}/layered-3d_lps1"]
+        / records.load("layered_study.roll3d")["cpu_s"][f"{roll}/{LAYERED_3D}"]
+    )
     return (
-        f"{parts} Rho at {n} (the default shells) / {LPS_FINE} / 1 sheets a shell: the default "
-        f"shells read {_pct(rows[0][1], r1):+.0f} % and {LPS_FINE} sheets "
-        f"{_pct(rows[1][1], r1):+.0f} % above one sheet a shell, which reads "
+        f"{' / '.join(f'{v:.1f}' for v in rows)} Rho at {LPS_RING} (the 3D surface ring"
+        + ("" if ring == LPS_RING else f"; the ring holds {ring} sheets on today's mesh")
+        + f") / {LAYERS_PER_SHELL_3D} (the default) / 1 sheets a shell: the surface ring's "
+        f"shells read {_pct(rows[0], r1):+.0f} % and the default {_pct(rows[1], r1):+.1f} % "
+        f"above one sheet a shell, which costs {cost:.1f} x the default and reads "
         f"{_pct(r1, _rho3d(roll, '3d')):+.0f} % against `3d` and "
         f"{_pct(r1, _rho3d(roll, '2d')):+.0f} % against `2d` ({r1:.1f} against "
-        f"{_rho3d(roll, '3d'):.1f} and {_rho3d(roll, '2d'):.1f}; one sheet a shell cost "
-        f"{cpu[f'{roll}/layered-3d_lps1'] / 60:.0f} CPU min, "
-        f"{_measured('lps3d')})"
+        f"{_rho3d(roll, '3d'):.1f} and {_rho3d(roll, '2d'):.1f}; {_measured('lps3d')})"
     )
 
 

@@ -439,8 +439,8 @@ class ContactSpec(_Section):
     # layered roll", "The layered roll in 3D") --
     #: depth of the layered zone under the surface (unset: 1.0 a_geo)
     layered_depth: Q("length") | None = None
-    #: web layers per element shell in the layered zone (unset: 1 in 2D; in 3D, the 3D
-    #: model's surface ring)
+    #: web layers per element shell in the layered zone (unset: the model's default,
+    #: LayeredOptions' 1 in 2D, LAYERS_PER_SHELL_3D in 3D)
     layers_per_shell: int | None = None
 
     def model_options(self) -> Any:
@@ -463,7 +463,11 @@ class ContactSpec(_Section):
             return Layered3DOptions(
                 base=base,
                 layered_depth=self.layered_depth,
-                layers_per_shell=self.layers_per_shell,
+                **(
+                    {}
+                    if self.layers_per_shell is None
+                    else {"layers_per_shell": self.layers_per_shell}
+                ),
             )
         except InputError as exc:
             raise exc.at("contact") from None
@@ -481,7 +485,11 @@ class ContactSpec(_Section):
             return LayeredOptions(
                 base=base,
                 layered_depth=self.layered_depth,
-                layers_per_shell=1 if self.layers_per_shell is None else self.layers_per_shell,
+                **(
+                    {}
+                    if self.layers_per_shell is None
+                    else {"layers_per_shell": self.layers_per_shell}
+                ),
             )
         except InputError as exc:
             raise exc.at("contact") from None
