@@ -66,19 +66,20 @@ def _run_3d(case: str, sets: list[str]) -> tuple[float, float, dict]:
     return wall, cpu, json.loads(out.stdout)
 
 
-def ratio(case: str, variants: list[str]) -> list[tuple]:
+def ratio(case: str, variants: list[str], sets: tuple[str, ...] = ()) -> list[tuple]:
     """The user's 3D reading of ``case`` against the 10k-layer winding yardstick; the rows
-    (case, variant, DOF, CPU ratio, wall ratio, Rho, yardstick wall, load)."""
+    (case, variant, DOF, CPU ratio, wall ratio, Rho, yardstick wall, load). ``sets``:
+    overrides of every run (``--set``, e.g. the pile height)."""
     import sys
     from pathlib import Path
 
     sys.path.insert(0, str(Path(__file__).resolve().parent))
     from yardstick import wind_per_layer
 
-    runs = [("default", [])]
+    runs = [("default", list(sets))]
     for v in variants:
         name, _, kv = v.partition("=")
-        runs.append((name, [f"contact.options3d.{x}" for x in kv.split(",") if x]))
+        runs.append((name, [*sets, *(f"contact.options3d.{x}" for x in kv.split(",") if x)]))
     rho0 = None
     rows = []
     for name, sets in runs:
@@ -94,6 +95,10 @@ def ratio(case: str, variants: list[str]) -> list[tuple]:
             f"{case} 3D [{name}] {c['n_dof']} DOF: wall {wall:.1f} s = {wall / yard:.1f}x the "
             f"yardstick ({yard:.2f} s), CPU {cpu:.1f} s = {cpu / yard_cpu:.1f}x ({yard_cpu:.2f} "
             f"s); Rho {rho:.3f} ({rho - rho0:+.3f}); load {load:.1f}"
+        )
+        print(
+            f"  contact solved to {c['depth_max_m'] * 1e3:.3f} mm in {len(c['depth_m']) - 1} "
+            f"increments (the last solve {c['solve_time_s']:.1f} s)"
         )
         rows.append((case, name, c["n_dof"], cpu / yard_cpu, wall / yard, rho, yard, load))
     return rows
@@ -202,6 +207,9 @@ def main() -> None:
     ap.add_argument("--ratio", action="store_true", help="whole 3D run against the yardstick")
     ap.add_argument("--variant", action="append", default=[], help="name=key=value,...")
     ap.add_argument(
+        "--set", action="append", default=[], dest="sets", help="--ratio: KEY=VALUE, every run"
+    )
+    ap.add_argument(
         "--write-docs", action="store_true", help="with --ratio: docs/performance.md's table"
     )
     ap.add_argument("--case", default="pet2-26.7N")
@@ -222,7 +230,7 @@ def main() -> None:
         write_ratio_docs(args.variant)
         return
     if args.ratio:
-        ratio(args.case, args.variant)
+        ratio(args.case, args.variant, tuple(args.sets))
         return
 
     from woundroll.contact.heads import Head

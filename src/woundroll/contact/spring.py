@@ -12,10 +12,13 @@ Choices the paper leaves open (docs/contact.md, "Coupling"):
 
 * the fit range: the striker's reach, ``d <= 1.25 d_max`` of the energy model {21};
 * alpha, beta >= 0 (non-negative least squares);
-* the depth of the contact solution: ``min(1 mm, H / 5)`` first (H the wound thickness),
-  deepened to 1.1 x 1.25 d_max while the fit window 1.25 d_max reaches beyond the computed
-  curve; the window is sampled on the interpolated curve, so that the spring (and the
-  reading) is a continuous function of the roll's state.
+* the depth of the contact solution: ``min(1 mm, H / 5)`` first (H the wound thickness;
+  for a model with a cheaper guide, ``RollModelEntry.first_depth_from``, the depth where
+  the guide's curve would stop when that is deeper); the loading goes on past it by the
+  same steps while the fit window 1.25 d_max reaches beyond the computed curve (models that
+  cannot extend are solved again, to 1.1 x 1.25 d_max); the window is sampled on the
+  interpolated curve, so that the spring (and the reading) is a continuous function of the
+  roll's state.
 """
 
 from __future__ import annotations
@@ -463,7 +466,10 @@ def roll_stiffness(
     entry = resolve_model(model, instrument.head_shape, f"{field}.model")
     r = np.asarray(radius, dtype=float)
     reach = _model_reach(instrument, r)
-    depth = _first_depth(depth_max, start_depth, reach)
+    guided = None
+    if depth_max is None and start_depth is None:
+        guided = _guided_depth(entry, web, core, r, sigma_r, instrument, friction, update_modulus)
+    depth = _first_depth(depth_max, start_depth, reach, guided)
     stop = None
     if depth_max is None and entry.extends:
         stop = _past_the_reach(instrument)
@@ -505,13 +511,63 @@ def _model_reach(instrument: Instrument, r: NDArray[np.float64]) -> float:
     )
 
 
-def _first_depth(depth_max: float | None, start_depth: float | None, reach: float) -> float:
-    """The depth of the first contact solution (:func:`roll_stiffness`)."""
+def _first_depth(
+    depth_max: float | None, start_depth: float | None, reach: float, guided: float | None = None
+) -> float:
+    """The depth of the first contact solution (:func:`roll_stiffness`): ``depth_max``, else
+    ``start_depth``, else FIRST_DEPTH or the guide's deeper stop (:func:`_guided_depth`),
+    below the model's reach."""
     if depth_max is not None:
         return depth_max
     if start_depth is not None:
         return min(start_depth, reach)
-    return min(FIRST_DEPTH, 0.8 * reach)
+    return min(max(FIRST_DEPTH, guided or 0.0), 0.8 * reach)
+
+
+def _guided_depth(
+    entry: Any,
+    web: Web,
+    core: Core,
+    r: NDArray[np.float64],
+    sigma_r: ArrayLike,
+    instrument: Instrument,
+    friction: float,
+    update_modulus: bool,
+) -> float | None:
+    """Where the curve of ``entry`` is expected to stop: STOP_MARGIN times the fit window of
+    the cheaper model ``entry.first_depth_from`` (its own defaults), or None (no guide, a
+    head it cannot take, or it fails: the first depth is then FIRST_DEPTH).
+
+    The 3D model costs about a second per increment, its mesh and depth steps are sized
+    for the first depth, and its loading goes on past it by the same steps: a first depth
+    of 1 mm on a roll where the striker goes 1.1 mm deep cost 24 + 11 increments (the
+    extension) or 24 + 24 (a second solve); sized by the guide (the plane-strain spring
+    corrected for the CMD spreading, 0.2 s, its window within a few per cent of 3D's on the
+    Table 2 rolls) it costs 24 or 25, on a mesh sized for the depths the curve covers. Only
+    deeper than FIRST_DEPTH: on a hard roll the loading stops early on the mesh sized for
+    1 mm, as without the guide (docs/contact.md, "3D model").
+    """
+    if entry.first_depth_from is None:
+        return None
+    from woundroll.contact.models import ROLL_MODELS
+
+    guide = ROLL_MODELS[entry.first_depth_from]
+    if instrument.head_shape not in guide.heads:
+        return None
+    try:
+        spring = roll_stiffness(
+            web,
+            core,
+            r,
+            sigma_r,
+            instrument,
+            friction=friction,
+            update_modulus=update_modulus,
+            model=guide.name,
+        )
+    except (InputError, ConvergenceError):
+        return None
+    return STOP_MARGIN * FIT_REACH * spring.impact_depth
 
 
 def _deep_enough(

@@ -57,20 +57,16 @@ from woundroll.contact.solid3d.options import Contact3DOptions
 from woundroll.contact.solid3d.solver import (
     Contact3DResult,
     Roll3D,
+    Stop,
     _check_reach,
     _Loading3D,
     _mesh_under_the_head,
     _press3d,
     _result3d,
+    loading_depths,
 )
-from woundroll.contact.stepping import (
-    check_profile,
-    check_scalar,
-    depth_schedule,
-)
-from woundroll.contact.stepping import (
-    solve_lcp as _solve_lcp,
-)
+from woundroll.contact.stepping import check_profile, check_scalar
+from woundroll.contact.stepping import solve_lcp as _solve_lcp
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.materials.web import INTERLAYER_FRICTION, Core, Web
 from woundroll.units import to_si
@@ -686,12 +682,15 @@ def indent_layered3d(
     update_modulus: bool = True,
     options: Layered3DOptions | None = None,
     state: list[Layered3DState] | None = None,
+    stop: Stop | None = None,
+    extend_to: float | str | None = None,
 ) -> Contact3DResult:
     """Press a rigid head into the layered 3D roll; F(d), a(d) and the fields as
-    :func:`woundroll.contact.solid3d.solver.indent3d` (same parameters; ``options`` a
-    :class:`Layered3DOptions`; ``friction`` mu > 0 between the sheets). ``state``: a list
-    the interfaces' :class:`Layered3DState` at the last depth is appended to. The result's
-    ``stats`` add the passes, the shells and the layers per shell.
+    :func:`woundroll.contact.solid3d.solver.indent3d` (same parameters, ``stop`` and
+    ``extend_to`` included: the mesh and the layered zone are sized for ``depth_max``;
+    ``options`` a :class:`Layered3DOptions`; ``friction`` mu > 0 between the sheets).
+    ``state``: a list the interfaces' :class:`Layered3DState` at the last depth solved is
+    appended to. The result's ``stats`` add the passes, the shells and the layers per shell.
 
     Raises
     ------
@@ -727,11 +726,11 @@ def indent_layered3d(
     if not lopts.interfaces:
         cut = cut[:0]
     model = _LayeredRoll3D(web, core, r, s, mesh, base, cut, lopts.penalty)
+    delta = loading_depths(web, core, r_out, head, depth_max, base, stop, extend_to)
     t_setup = time.perf_counter() - t0
-    delta = depth_schedule(depth_max, int(base.n_steps), base.step_exponent)
     load = _LayeredLoading3D(model, lopts, head, delta, mu, update_modulus)
     with one_blas_thread():  # woundroll.util.blas
-        h, half_len = _press3d(load)
+        h, half_len = _press3d(load, stop)
     res = _result3d(load, h, half_len, head, update_modulus, (t0, t_setup))
     stats = {
         **res.stats,
