@@ -17,7 +17,13 @@ itself (threadpoolctl) and the other benchmarks do.
 (``solver.WOODBURY_MAX``; 0: refactorise at every change, the algorithm before the update)
 to compare; ``--quick``: PET1 only.
 
-Run: ``.venv/bin/python benchmarks/bench_layered.py [--woodbury N] [--quick]``.
+``--3d``: the same rolls with ``contact.model = "layered-3d"`` on the default 3D mesh (its
+default shells, ``LAYERS_PER_SHELL_3D`` sheets): wall and CPU time of the whole run, the
+ratio to the yardstick, the layered solve alone, the interface pairs, shells, ADMM passes,
+factorisations, the process's peak resident memory so far (issue 25 item 6: one F(d) curve
+in <= 10 min and <= 8 GB), Rho (FD). Minutes a roll.
+
+Run: ``.venv/bin/python benchmarks/bench_layered.py [--woodbury N] [--quick] [--3d]``.
 """
 
 from __future__ import annotations
@@ -42,6 +48,38 @@ ROLLS: tuple[tuple[str, str, tuple[str, ...]], ...] = (
 )
 
 
+def main3d(rolls: tuple[tuple[str, str, tuple[str, ...]], ...]) -> None:
+    """The ``--3d`` table (module docstring)."""
+    import resource
+
+    from woundroll.case import load_case
+    from woundroll.pipeline import run
+
+    _, t_yard = wind_per_layer()
+    print(f"yardstick: 10,000-layer per-layer banded winding {t_yard:.2f} s wall")
+    print(
+        f"{'roll':<22} {'run s':>7} {'cpu s':>7} {'/yard':>6} {'solve s':>8} {'pairs':>7} "
+        f"{'shells':>6} {'lps':>4} {'passes':>6} {'fact':>5} {'peak GB':>7} {'Rho FD':>7}"
+    )
+    for label, name, extra in rolls:
+        case = load_case(name, ["contact.model=layered-3d", "contact.friction=0.3", *extra])
+        t0, c0 = time.perf_counter(), time.process_time()
+        res = run(case)
+        t, cpu = time.perf_counter() - t0, time.process_time() - c0
+        c = res.contact.contact
+        st = c.stats
+        peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6  # kB -> GB
+        print(
+            f"{label:<22} {t:7.1f} {cpu:7.1f} {t / t_yard:6.1f} {c.solve_time_s:8.1f} "
+            f"{st['interface_pairs']:7d} {st['layered_shells']:6d} {st['layers_per_shell']:4d} "
+            f"{st['interface_passes']:6d} {st.get('factorisations', -1):5d} {peak:7.2f} "
+            f"{res.hardness.to_dict()['rho_fd']:7.2f}",
+            flush=True,
+        )
+    _, t_yard2 = wind_per_layer()
+    print(f"yardstick again: {t_yard2:.2f} s wall (machine load drift)")
+
+
 def main() -> None:
     import woundroll.contact.layered.solver as layered
     from woundroll.case import load_case
@@ -50,6 +88,9 @@ def main() -> None:
     if "--woodbury" in sys.argv:
         layered.WOODBURY_MAX = int(sys.argv[sys.argv.index("--woodbury") + 1])
     rolls = ROLLS[:1] if "--quick" in sys.argv else ROLLS
+    if "--3d" in sys.argv:
+        main3d(rolls)
+        return
     updates = [0]
     init = layered._Woodbury.__init__
 
