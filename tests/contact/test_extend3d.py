@@ -293,3 +293,27 @@ def test_the_guide_sizes_the_first_3d_solve(
     with pytest.raises(_FirstSolve):  # a given first depth is kept (no guide)
         roll_stiffness(web, core, r, s, rho, model="3d", start_depth=5e-4)
     assert depths == [5e-4]
+
+
+@pytest.mark.parametrize("depth", [1.0e-3, 1.2641e-3, 1.446e-3, 1.712e-3, 2.1e-3])
+def test_a_cmd_node_sits_on_the_cylinders_end(depth: float) -> None:
+    """Whatever depth the mesh is sized for, a CMD node lies on the Rho-meter cylinder's
+    sharp end (within 1e-12 of L/2, inside it: the head reaches it), so the load-carrying
+    length does not move with depth_max (it moved by up to an element, F(d) by up to 4 %,
+    docs/contact.md "Mesh"); the elements stay no larger than the default size."""
+    import math
+
+    from woundroll.contact.solid3d.solver import _mesh_under_the_head
+    from woundroll.instruments import get_instrument
+
+    head = Head.from_instrument(get_instrument("rho-meter"))
+    opts = Contact3DOptions()
+    mesh = _mesh_under_the_head(PET1, RIGID, R_OUT, head, depth, opts)
+    half = 0.5 * float(head.length)
+    k = int(np.argmin(np.abs(mesh.z - half)))
+    assert mesh.z[k] <= half and mesh.z[k] == pytest.approx(half, rel=1e-11)
+    assert np.isfinite(head.lift(0.0, mesh.z[k]))
+    a_y = head.footprint(depth, R_OUT)[0]
+    size = min(half / 12.0, a_y / 2.0)
+    assert np.all(np.diff(mesh.z[: k + 1]) <= size * (1 + 1e-12))
+    assert math.isclose(float(np.ptp(np.diff(mesh.z[: k + 1]))), 0.0, abs_tol=1e-12)

@@ -433,8 +433,10 @@ def roll_stiffness(
         Cylindrical head (radius, length) and striker (its reach).
     depth_max : float, optional [m]
         Fixed depth of the contact solution; a striker going deeper is an error. Default:
-        ``start_depth`` (or ``min(1 mm, H / 5)``), deepened to 1.25 times the striker's
-        depth while it goes further than the computed curve (at most three times), up to
+        ``start_depth`` (or ``min(1 mm, H / 5)``, or the deeper stop of the model's guide,
+        :func:`_guided_depth`), the loading extended (or, for a model that cannot extend,
+        solved again) while the fit window 1.25 d_max reaches past the computed curve (at
+        most four solutions), up to
         the model's reach (just below half the head radius and a quarter of the wound
         thickness H); a striker going deeper still gets the extrapolated fit, flagged by
         :attr:`RollStiffness.extrapolated`.
