@@ -200,9 +200,10 @@ ROLL_MODELS: dict[str, RollModelEntry] = {
             "plane strain + CMD spreading (fast stand-in for 3D)",
             ("cylinder",),
             True,
-            "fitted to 3D on PET1 26.7 N and PET2 53.4 N; within 3 % of 3D on 7 of 8 more Table 2 "
-            "rolls and pile heights (-3.4 % at a 4 cm pile), 19-35 % above 3D on linear "
-            "orthotropic layers",
+            "fitted to 3D on PET1 26.7 N and PET2 53.4 N; within 3 % of 3D on 8 more Table 2 "
+            "rolls and pile heights (-2.6 % at a 4 cm pile); F(d) of a 50.8 mm head 6-8 % "
+            "below 3D; 19-35 % above 3D on linear orthotropic layers (at the constants before "
+            "the 2026-11-26 refit)",
             _cmd_spread,
             True,
         ),
