@@ -276,8 +276,9 @@ def layers3d_default() -> str:
 
 def default_shells() -> str:
     """Layers in the 3D model's surface ring on the default mesh, the Table 2 rolls and pile
-    heights (inline; the layered-3d shells of ``layers_per_shell=None``): the bundled Rho-meter head, solved to 1.25 x the 3D model's impact depth (the stored
-    3D references, tests/contact/data/contact3d_reference.json)."""
+    heights (inline; the layered-3d shells of ``layers_per_shell=None``): the bundled
+    Rho-meter head, solved to 1.25 x the 3D model's impact depth (the stored 3D references,
+    tests/contact/data/contact3d_reference.json)."""
     import json
 
     from woundroll.case import load_case
