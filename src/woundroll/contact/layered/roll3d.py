@@ -280,6 +280,7 @@ class _LayeredRoll3D(Roll3D):
         self.n_dof_all = 3 * n_nodes
         self.extra: FloatArray | None = None
         self._fields: dict[int, FloatArray] = {}  # unit-load fields on the current factor
+        self._stacked: tuple[bytes, FloatArray] | None = None  # the last candidates' fields
         # pair geometry: tributary area and the elements around each pair (their mean
         # radial stress is the pair's pressure)
         pr = mesh.r[self.pair_ring]
@@ -364,11 +365,16 @@ class _LayeredRoll3D(Roll3D):
         self.t_assembly += time.perf_counter() - t0
         self._refactor()
         self._fields = {}  # the unit-load fields belong to the factor
+        self._stacked = None
 
     def _unit_fields(self, idx: IntArray) -> FloatArray:
         """Displacement fields (n_free, m) of a unit inward radial force on each surface node
         ``idx``, on the current factor (cached until the next factorisation; the new ones
-        solved as one multi-column system)."""
+        solved as one multi-column system; the matrix of the last ``idx`` kept, as the
+        friction passes of an increment mostly share their candidates)."""
+        key = idx.tobytes()
+        if self._stacked is not None and self._stacked[0] == key:
+            return self._stacked[1]
         new = [int(i) for i in idx if int(i) not in self._fields]
         if new:
             rhs = np.zeros((self.asm.n_free, len(new)))
@@ -376,7 +382,9 @@ class _LayeredRoll3D(Roll3D):
             X = self._solve(rhs)
             for c, i in enumerate(new):
                 self._fields[i] = X[:, c]
-        return np.stack([self._fields[int(i)] for i in idx], axis=1)
+        X = np.stack([self._fields[int(i)] for i in idx], axis=1)
+        self._stacked = (key, X)
+        return X
 
     def solve_pass(
         self,
