@@ -37,10 +37,14 @@ the symbolic analysis done once). What is added is what the 2D dynamic model add
   step, the contact forces updated in every pass by the LCP of the cached flexibility
   columns ``Z = A0^-1 S^T`` (stale columns only slow the iteration: the residual is the
   exact one), until the correction is below ``newton_rtol`` of the step's increment and the
-  gaps are complementary to ``1e-6`` of the depth scale. A new factorisation is made when a
+  gaps are complementary to ``1e-6`` of the depth scale. The passes' displacements are
+  Anderson-mixed (memory ``anderson``, :mod:`woundroll.util.anderson`; the history is
+  dropped when the factorisation or the columns change). A new factorisation is made when a
   step needs more than ``refactor_after`` passes (the tangent has moved too far); the
-  flexibility columns are recomputed when a step needs more than ``refresh_after``. With
-  ``reuse=False`` every step factorises (the reference the test compares with).
+  flexibility columns of an older factorisation are recomputed from a step's second pass on
+  (``refresh_after`` = 1: stale columns, not the stale tangent, were what kept a step's passes
+  going: docs/dynamic.md). With ``reuse=False`` every step factorises (the reference the
+  test compares with).
 
 Outputs: :class:`woundroll.contact.dynamic.plane_strain.DynamicImpactResult` (the 2D model's
 result), with the pressure along the contact axis (elements at theta = 0, z = 0) and on the surface
@@ -64,6 +68,7 @@ from woundroll.contact.heads import Head
 from woundroll.contact.solid3d.fem import lumped_mass, orthotropic_moduli, stresses
 from woundroll.contact.solid3d.solver import Contact3DOptions, Roll3D, build_roll3d
 from woundroll.errors import ConvergenceError, InputError
+from woundroll.util.anderson import Anderson
 from woundroll.util.blas import one_blas_thread
 
 if TYPE_CHECKING:
@@ -90,7 +95,9 @@ class Dynamic3DOptions:
         step's displacement increment (max norm).
     refactor_after, refresh_after : int
         Passes in a step after which the effective stiffness is factorised anew, and after
-        which the cached flexibility columns are recomputed.
+        which the cached flexibility columns of an older factorisation are recomputed.
+    anderson : int
+        Memory of the Anderson mixing of the passes' displacements (0: plain passes).
     mesh : Contact3DOptions or None
         The quasi-static 3D model's mesh and material settings (its ``n_steps``,
         ``midpoint``, ``predictor`` and ``slip`` do not apply).
@@ -105,8 +112,9 @@ class Dynamic3DOptions:
     max_contact_times: float = 8.0
     reuse: bool = True
     newton_rtol: float = 1e-4
-    refactor_after: int = 10
-    refresh_after: int = 20
+    refactor_after: int = 8
+    refresh_after: int = 1
+    anderson: int = 3
     mesh: Contact3DOptions | None = None
 
     def __post_init__(self) -> None:
@@ -126,6 +134,9 @@ class Dynamic3DOptions:
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int | np.integer) or v < 1:
                 raise InputError(f"must be a positive integer, got {v!r}", f"{f}.{name}")
+        a = self.anderson
+        if isinstance(a, bool) or not isinstance(a, int | np.integer) or a < 0:
+            raise InputError(f"must be a whole number >= 0, got {a!r}", f"{f}.anderson")
         if self.mesh is not None and not isinstance(self.mesh, Contact3DOptions):
             raise InputError("must be a Contact3DOptions", "contact.options3d")
 
@@ -371,7 +382,10 @@ class _ImpactRoll3D:
         du = np.zeros(self.n)
         lm = st.lam.copy()
         scale_du = 0.0
+        mix = Anderson(opts.anderson)
+        basis = (eff.n_factor, eff.n_refresh)  # what the passes' map depends on
         for it in range(1, 61):
+            du_in = du
             if it > opts.refactor_after and not eff.exact:
                 eff.factor()
             fresh = not opts.reuse or it > opts.refresh_after
@@ -400,6 +414,14 @@ class _ImpactRoll3D:
                 lm = np.zeros(self.n_contact)
                 lm[idx] = lam_c
                 dx = dx_free - float(w @ lm) / s_eff
+                g = self._gaps(st, du, dx)
+            if (eff.n_factor, eff.n_refresh) != basis:
+                mix.reset()  # a new map: the history no longer describes it
+                basis = (eff.n_factor, eff.n_refresh)
+            mixed = mix.step(du_in, du)
+            if it > 1:  # the first pass is the step's predictor: nothing to mix yet
+                change = mixed - du_in
+                du = mixed
                 g = self._gaps(st, du, dx)
             scale_du = max(scale_du, float(np.max(np.abs(du))))
             feasible = bool(np.all(g[ok] >= -tol_gap)) and bool(

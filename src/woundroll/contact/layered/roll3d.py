@@ -70,6 +70,7 @@ from woundroll.contact.stepping import solve_lcp as _solve_lcp
 from woundroll.errors import ConvergenceError, InputError
 from woundroll.materials.web import INTERLAYER_FRICTION, Core, Web
 from woundroll.units import to_si
+from woundroll.util.anderson import Anderson
 from woundroll.util.blas import one_blas_thread
 
 FloatArray = NDArray[np.float64]
@@ -452,40 +453,6 @@ class _LayeredRoll3D(Roll3D):
         return -np.mean(total[self.pair_elements], axis=1)
 
 
-class _Anderson:
-    """Anderson acceleration (type II, memory ``m``) of a fixed-point iteration
-    ``z -> F(z)``: the next iterate mixes the last ``m`` images with the weights that
-    minimise the mixed residual ``F(z) - z`` in the least-squares sense; the memory is
-    cleared when the residual grows tenfold over the best one (safeguard). ``m = 0``: the
-    plain iteration."""
-
-    def __init__(self, m: int) -> None:
-        self.m = m
-        self.F: list[FloatArray] = []
-        self.R: list[FloatArray] = []
-        self.best = math.inf
-
-    def step(self, z: FloatArray, fz: FloatArray) -> FloatArray:
-        if self.m == 0:
-            return fz
-        r = fz - z
-        nr = float(np.linalg.norm(r))
-        if nr > 10.0 * self.best:
-            self.F, self.R = [], []
-        self.best = min(self.best, nr)
-        self.F.append(fz)
-        self.R.append(r)
-        if len(self.F) > self.m + 1:
-            self.F.pop(0)
-            self.R.pop(0)
-        if len(self.F) == 1:
-            return fz
-        dR = np.stack([self.R[i + 1] - self.R[i] for i in range(len(self.R) - 1)], axis=1)
-        dF = np.stack([self.F[i + 1] - self.F[i] for i in range(len(self.F) - 1)], axis=1)
-        gamma, *_ = np.linalg.lstsq(dR, r, rcond=None)
-        return fz - dF @ gamma
-
-
 def _norm(T: FloatArray) -> FloatArray:
     return np.sqrt(np.einsum("ij,ij->i", T, T))
 
@@ -569,7 +536,7 @@ class _LayeredLoading3D(_Loading3D):
         w = np.zeros_like(u)
         alpha = lopts.relaxation
         n_p = u.shape[0]
-        accel = _Anderson(lopts.anderson)
+        accel = Anderson(lopts.anderson)
         for _ in range(lopts.max_passes):
             du, f_new = self._contact(bound, guess, model.pair_load(rho * (u - w) - t_old))
             self.passes += 1
