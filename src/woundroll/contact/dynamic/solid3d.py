@@ -36,8 +36,9 @@ the symbolic analysis done once). What is added is what the 2D dynamic model add
   iteration ``du += A0^-1 (b - S^T lam - A du)`` with a factorisation ``A0`` of an earlier
   step, the contact forces updated in every pass by the LCP of the cached flexibility
   columns ``Z = A0^-1 S^T`` (stale columns only slow the iteration: the residual is the
-  exact one), until the correction is below ``newton_rtol`` of the step's increment and the
-  gaps are complementary to ``1e-6`` of the depth scale. The passes' displacements are
+  exact one), starting from the last step's increment, until the correction is below
+  ``newton_rtol`` of the step's increment and the gaps are complementary to ``1e-6`` of the
+  depth scale. The passes' displacements are
   Anderson-mixed (memory ``anderson``, :mod:`woundroll.util.anderson`; the history is
   dropped when the factorisation or the columns change). A new factorisation is made when a
   step needs more than ``refactor_after`` passes (the tangent has moved too far); the
@@ -325,6 +326,7 @@ class _ImpactRoll3D:
         self.frozen = self.moduli(roll.sigma_pre, p0) if not opts.update_modulus else None
         self.passes_total = 0
         self.max_passes = 0
+        self.du_last: FloatArray | None = None
 
     def mass_times(self, x: FloatArray) -> FloatArray:
         return self.m * x
@@ -379,7 +381,9 @@ class _ImpactRoll3D:
         dx_free = self.striker.free_step(st, nm)
         if not opts.reuse and not eff.exact:
             eff.factor()
-        du = np.zeros(self.n)
+        # the passes start from the last step's increment (the motion is smooth over a
+        # step: ~10 % fewer passes than from zero, docs/history.md 2026-11-27)
+        du = np.zeros(self.n) if self.du_last is None else self.du_last.copy()
         lm = st.lam.copy()
         scale_du = 0.0
         mix = Anderson(opts.anderson)
@@ -444,6 +448,7 @@ class _ImpactRoll3D:
         nm, eff, roll = self.nm, self.eff, self.roll
         D = self._set_moduli(st, k_step)
         du, dx, lam_new, passes = self._solve(st)
+        self.du_last = du
         self.passes_total += passes
         self.max_passes = max(self.max_passes, passes)
         acc_new = nm.c0 * du - nm.predicted_acceleration(st.v, st.acc)
