@@ -351,22 +351,36 @@ def roll3d_runs() -> list[Run]:
     return runs
 
 
+#: The rolls of the layers-per-shell ladder (case, pile height [m] or None for its own):
+#: the soft roll the default was chosen on, a hard one and a short pile.
+LPS_ROLLS: tuple[tuple[str, float | None], ...] = (
+    ("pet2-53.4N", None),
+    ("pet1-26.7N", None),
+    ("pet2-53.4N", 0.02),
+)
+
+
 def lps_runs() -> list[Run]:
-    """PET2 53.4 N at 8.89 cm in layered-3d with :data:`LPS_RING` sheets a shell (the 3D
-    surface ring) and one sheet a shell: the layers-per-shell ladder around the default
-    (two, the roll3d record's runs)."""
-    return [
-        Run(
-            _run_id("pet2-53.4N", None, f"layered-3d_lps{n}"),
-            "pet2-53.4N",
-            (
-                "contact.no_update=false",
-                *_models_3d()[LAYERED_3D],
-                f"contact.layers_per_shell={n}",
-            ),
-        )
-        for n in (LPS_RING, 1)
-    ]
+    """layered-3d at one sheet a shell on :data:`LPS_ROLLS`, and PET2 53.4 N at 8.89 cm also
+    with :data:`LPS_RING` sheets a shell (the 3D surface ring): the layers-per-shell ladder
+    around the default (two, the roll3d record's runs)."""
+    runs = []
+    for case, h in LPS_ROLLS:
+        shells = (LPS_RING, 1) if (case, h) == LPS_ROLLS[0] else (1,)
+        runs += [
+            Run(
+                _run_id(case, h, f"layered-3d_lps{n}"),
+                case,
+                (
+                    *_wound_to(case, h),
+                    "contact.no_update=false",
+                    *_models_3d()[LAYERED_3D],
+                    f"contact.layers_per_shell={n}",
+                ),
+            )
+            for n in shells
+        ]
+    return runs
 
 
 def head_runs() -> list[Run]:
@@ -377,7 +391,11 @@ def head_runs() -> list[Run]:
             "pet2-53.4N",
             (*over, f"contact.depth_max='{1e3 * HEAD_DEPTH:g} mm'"),
         )
-        for name, over in (("3d", _models_3d()["3d"]), ("layered-3d", _models_3d()[LAYERED_3D]))
+        for name, over in (
+            ("3d", _models_3d()["3d"]),
+            ("layered-3d", _models_3d()[LAYERED_3D]),
+            ("layered-3d_lps1", (*_models_3d()[LAYERED_3D], "contact.layers_per_shell=1")),
+        )
     ]
 
 
@@ -509,18 +527,18 @@ MEASUREMENTS: dict[str, Measurement] = {
         spot=("pet2-53.4N/3d@1.4mm",),
         rtol=1e-3,
         reason="as roll3d: the head contact's gap tolerance (~4e-4) under the 1e-3",
-        cost="about 1 CPU min (layered-3d 50 CPU s)",
+        cost="about 4 CPU min (layered-3d 50 CPU s at two sheets a shell, ~2.5 min at one)",
     ),
     "lps3d": Measurement(
         models=records.LAYERED_SOLID,
-        about=f"PET2 53.4 N in layered-3d with {LPS_RING} and 1 sheets a shell (coarse mesh, "
-        "mu 0.3)",
+        about=f"layered-3d at 1 sheet a shell on PET2 53.4 N (8.89 and 2 cm) and PET1 26.7 N, "
+        f"and PET2 53.4 N at 8.89 cm with {LPS_RING} (coarse mesh, mu 0.3)",
         runs=lps_runs,
         measure=measure_reading,
         spot=(),
         rtol=1e-3,
         reason="no spot run: each run costs ~5 CPU min, beyond the slow suite's budget",
-        cost="about 5 CPU min: 1-4 CPU min a run",
+        cost="about 12 CPU min: 1-4 CPU min a run",
     ),
 }
 
@@ -1132,7 +1150,11 @@ def head3d_table() -> str:
         f"half-width at {where} deep [mm] |",
         "|---|---|---|---|",
     ]
-    for name, label in (("3d", "3d"), ("layered-3d", f"layered-3d (mu {MU_3D:g})")):
+    for name, label in (
+        ("3d", "3d"),
+        ("layered-3d", f"layered-3d (mu {MU_3D:g}), {_lps_default()} sheets a shell"),
+        ("layered-3d_lps1", f"layered-3d (mu {MU_3D:g}), 1 sheet a shell"),
+    ):
         r = head[f"pet2-53.4N/{name}@{1e3 * HEAD_DEPTH:g}mm"]
         p_ = " / ".join(f"{r[f'pressure_{k}_Pa'] / 1e6:.2f}" for k in range(len(PRESSURE_DEPTHS)))
         w = " / ".join(
@@ -1341,6 +1363,62 @@ def lps_ladder3d() -> str:
     )
 
 
+#: Largest change between two and one sheets a shell that still counts as converged [%]:
+#: the tolerance of the other 3D ladders (the refinement and the increments, 1-2 %), of
+#: the order of the default's own lumping error on PET2 53.4 N.
+LPS_TOL = 3.0
+
+
+def lps_rolls3d() -> str:
+    """Two (the default) against one sheet a shell on :data:`LPS_ROLLS` (table)."""
+    lps = _rec("lps3d")
+    cpu_l = records.load("layered_study.lps3d")["cpu_s"]
+    cpu_r = records.load("layered_study.roll3d")["cpu_s"]
+    lines = [
+        f"| roll | {_lps_default()} sheets a shell (default) | 1 sheet a shell | default "
+        "against 1 sheet | CPU, 1 sheet / default |",
+        "|---|---|---|---|---|",
+    ]
+    for case, h in LPS_ROLLS:
+        roll = _run_id(case, h, "")[:-1]
+        two = _rho3d(roll, LAYERED_3D)
+        one = float(lps[f"{roll}/layered-3d_lps1"]["rho_fd"])
+        cm = 100 * float(lps[f"{roll}/layered-3d_lps1"]["pile_height_m"])
+        ratio = cpu_l[f"{roll}/layered-3d_lps1"] / cpu_r[f"{roll}/{LAYERED_3D}"]
+        lines.append(
+            f"| {_label(case)}, H {cm:.3g} cm | {two:.1f} | {one:.1f} | {_pct(two, one):+.1f} % "
+            f"| {ratio:.1f}x |"
+        )
+    return "\n".join(lines)
+
+
+def _head(name: str) -> dict[str, Any]:
+    return _rec("head3d")[f"pet2-53.4N/{name}@{1e3 * HEAD_DEPTH:g}mm"]
+
+
+def head3d_lps() -> str:
+    """How far the default's field under the head is from one sheet a shell (inline)."""
+    two, one = _head("layered-3d"), _head("layered-3d_lps1")
+    n = len(PRESSURE_DEPTHS)
+    top = [k for k, d in enumerate(PRESSURE_DEPTHS) if d <= 2e-3]
+    dp = [abs(_pct(two[f"pressure_{k}_Pa"], one[f"pressure_{k}_Pa"])) for k in range(n)]
+    dp_top = max(dp[k] for k in top)
+    dw = [
+        abs(1e3 * (two[f"spread_half_width_{k}_m"] - one[f"spread_half_width_{k}_m"]))
+        for k in range(len(SPREAD_DEPTHS))
+    ]
+    df = _pct(two["force_N"], one["force_N"])
+    worst = max(abs(df), dp_top)
+    verdict = "converged" if worst <= LPS_TOL else "not converged"
+    return (
+        f"at one sheet a shell the head's force is {df:+.1f} % from the default's, the pressure "
+        f"under its centre within {dp_top:.1f} % in the top 2 mm ({max(dp):.1f} % at any "
+        f"depth to 16 mm) and the CMD spread within {max(dw):.1f} mm: two sheets a shell is "
+        f"{verdict} for the field under the head at the {LPS_TOL:g} % of the readings' "
+        f"ladder ({_measured('head3d')})"
+    )
+
+
 def cost_default3d() -> str:
     """CPU time of a whole `woundroll run` in layered-3d and 3d on the default 3D mesh
     (inline, from the roll3d record)."""
@@ -1381,6 +1459,8 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "cost3d": cost3d,
     "text3d": text3d,
     "lps_ladder3d": lps_ladder3d,
+    "lps_rolls3d": lps_rolls3d,
+    "head3d_lps": head3d_lps,
     "cost_default3d": cost_default3d,
     "text3d_all": text3d_all,
 }
