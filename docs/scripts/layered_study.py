@@ -1406,8 +1406,11 @@ def lps_summary() -> str:
     ok = max(abs(v) for v in d) <= LPS_TOL
     return (
         f"reads {_span(d, '.1f')} % {'above' if min(d) > 0 else 'from'} one sheet a shell on "
-        f"{len(d)} rolls ({'within' if ok else 'not within'} {LPS_TOL:g} %), and its field "
-        f"under the head, pressed to one depth, carries {df:+.1f} % force"
+        f"{len(d)} rolls ({'within' if ok else 'not within'} {LPS_TOL:g} %); pressed to one "
+        f"depth it carries {abs(df):.1f} % {'more' if df > 0 else 'less'} force than one sheet "
+        f"a shell, so its field under the head is "
+        + ("converged" if abs(df) <= LPS_TOL else "not converged")
+        + " to that tolerance"
     )
 
 
