@@ -203,10 +203,150 @@ def profile(case: str, check: int) -> None:
     print(f"  largest change of a shown reading on {len(pick)} checked sectors: {worst:.3f}")
 
 
+def every_sector(case: str, data: str | None) -> None:
+    """Every sector of a CMD profile solved with plane strain, the CMD-spreading stand-in
+    and the 3D model (in-process, two workers; ~25 min on Table 3), and how well the 3D
+    reading, or its correction to a cheaper model's, follows from a one-parameter
+    descriptor: each on-scale sector's reading against the one interpolated linearly from
+    its two neighbours in the descriptor with every other sector solved (leave one out:
+    the best any interpolation in that descriptor can do; the anchored stage's tolerance is
+    0.2). ``data``: an .npz of the springs, written if absent, read if present."""
+    from dataclasses import replace
+    from pathlib import Path
+
+    from woundroll.case import load_case
+    from woundroll.contact.heads import head_length_of
+    from woundroll.pipeline import run
+    from woundroll.profile.hardness import ContactModel, FdReadout, map_sectors, sector_contacts
+
+    c = load_case(case, [])
+    web, core = c.web.build(), c.core.build()
+    ins = c.tester_setup.instrument
+    w = run(c).profile.winding  # the (r, z) winding and plane strain on every sector
+    profiles = [w.sector_profile(j) for j in range(w.z.size)]
+    pile = w.build_radius - w.core_radius
+    models = {"2d": "2d", "cmd": "2d+cmd-spread", "3d": "3d"}
+    if data is not None and Path(data).exists():
+        z = np.load(data)
+        springs = {k: (z[f"a_{k}"], z[f"b_{k}"], z[f"w_{k}"]) for k in models}
+    else:
+        base = ContactModel(
+            web, core, ins.head_radius, head_length_of(ins), c.profile.depth_max, instrument=ins
+        )
+        opts3d = load_case(case, ["contact.model='3d'"]).contact.contact3d_options()
+        springs = {}
+        for key, name in models.items():
+            m = replace(base, model=name, options3d=opts3d if key == "3d" else None)
+            t0 = time.perf_counter()
+            s = map_sectors(sector_contacts(m, w.slack), profiles, workers=2)
+            springs[key] = (s.alpha, s.beta, s.width)
+            print(f"{name}: {len(profiles)} sectors in {time.perf_counter() - t0:.0f} s wall")
+        if data is not None:
+            arrays = {}
+            for k, t in springs.items():
+                arrays |= {f"a_{k}": t[0], f"b_{k}": t[1], f"w_{k}": t[2]}
+            np.savez(data, **arrays)
+    read = {
+        k: FdReadout(c.tester_setup, pile, web.density, t[2])(t[0], t[1])
+        for k, t in springs.items()
+    }
+    r3 = read["3d"]
+
+    def lnp(depth: float) -> np.ndarray:
+        return np.array([np.log(max(-np.interp(r[-1] - depth, r, s), 1.0)) for r, s in profiles])
+
+    def window(d1: float) -> np.ndarray:
+        return np.mean([lnp(d) for d in np.linspace(d1 / 24, d1, 24)], axis=0)
+
+    def loo(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
+        o = np.argsort(x, kind="stable")
+        xs, ys = x[o], y[o]
+        e = [
+            abs(ys[i] - np.interp(xs[i], xs[[i - 1, i + 1]], ys[[i - 1, i + 1]]))
+            for i in range(1, xs.size - 1)
+        ]
+        return float(np.max(e)), float(np.mean(e))
+
+    from woundroll.profile.interpolated import descriptors
+
+    desc = {"x (0.75 H, the stage's)": descriptors(profiles).mean(axis=1)}
+    desc |= {f"ln p over 0-{d * 1e3:g} mm": window(d) for d in (2e-3, 8e-3, 32e-3)}
+    desc |= {"plane-strain reading": read["2d"]}
+    lo, hi = ins.reading_range
+
+    def span(v: np.ndarray) -> str:  # over the sectors the 3D model reads on the scale
+        v = v[r3 <= hi]
+        return f"{np.min(v):+.2f}..{np.max(v):+.2f}"
+
+    print(
+        f"{case}, on-scale sectors: 3D reading minus plane strain's {span(r3 - read['2d'])}, minus "
+        f"the CMD-spreading stand-in's {span(r3 - read['cmd'])}"
+    )
+    print("| sectors | descriptor | 3D reading | 3D - plane strain | 3D - CMD-spreading |")
+    print("|---|---|---|---|---|")
+    for label, m in (("taut, on scale", ~w.slack & (r3 <= hi)), ("slack", w.slack & (r3 <= hi))):
+        for name, x in desc.items():
+            cells = [loo(x[m], y[m]) for y in (r3, r3 - read["2d"], r3 - read["cmd"])]
+            row = " | ".join(f"{a:.2f} ({b:.2f})" for a, b in cells)
+            print(f"| {label} ({int(m.sum())}) | {name} | {row} |")
+    print("(largest (mean) leave-one-out interpolation error, reading units)")
+    # regressions on two or three descriptors at once (leave one out), the best of each
+    import itertools
+
+    feats = dict(desc) | {
+        "ln alpha plane strain": np.log(springs["2d"][0]),
+        "ln alpha CMD-spreading": np.log(springs["cmd"][0]),
+    }
+    for label, m in (("taut, on scale", ~w.slack & (r3 <= hi)), ("slack", w.slack & (r3 <= hi))):
+        for tname, y in (("3D - plane strain", r3 - read["2d"]), ("3D - CMD", r3 - read["cmd"])):
+            best = (np.inf, np.inf, ())
+            for k in (2, 3):
+                for combo in itertools.combinations(feats, k):
+                    X = np.column_stack([np.ones(int(m.sum()))] + [feats[f][m] for f in combo])
+                    ym, err = y[m], []
+                    for i in range(ym.size):
+                        keep = np.arange(ym.size) != i
+                        coef = np.linalg.lstsq(X[keep], ym[keep], rcond=None)[0]
+                        err.append(abs(ym[i] - X[i] @ coef))
+                    best = min(best, (max(err), float(np.mean(err)), combo))
+            print(
+                f"{label}, {tname}: best regression {best[0]:.2f} ({best[1]:.2f}) on "
+                f"{', '.join(best[2])}"
+            )
+    # the anchored stage replayed on the stored springs (its solves looked up), anchored on
+    # plane strain (the stage's) and on the CMD-spreading stand-in
+    from woundroll.profile.interpolated import interpolated_springs
+
+    where = {id(p): j for j, p in enumerate(profiles)}
+
+    def solve(fns: list, profs: list) -> tuple:
+        js = [where[id(p)] for p in profs]
+        return tuple(v[js] for v in springs["3d"])
+
+    def readings(a: np.ndarray, b: np.ndarray, width: np.ndarray, sel: np.ndarray) -> np.ndarray:
+        return FdReadout(c.tester_setup, pile[sel], web.density, width)(a, b)
+
+    fns = ["slack" if s else "taut" for s in w.slack]  # the stage's groups
+    for key in ("2d", "cmd"):
+        st = interpolated_springs(
+            fns, profiles, solve, readings, batch=4, scale=(lo, hi), base=springs[key]
+        )
+        got = readings(st.alpha, st.beta, st.width, np.arange(len(profiles)))
+        miss = np.max(np.abs(np.clip(got, lo, hi) - np.clip(r3, lo, hi)))
+        print(
+            f"anchored on {models[key]}: {int(st.solved.sum())} of {len(profiles)} sectors "
+            f"solved in 3D, {st.rounds} rounds; largest change of a shown reading {miss:.3f}"
+        )
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--profile", default=None, help="a profile case read with 3D, anchored")
     ap.add_argument("--check", type=int, default=0, help="with --profile: sectors to check")
+    ap.add_argument(
+        "--every", action="store_true", help="with --profile: every sector in 2D, CMD-spread, 3D"
+    )
+    ap.add_argument("--data", default=None, help="with --every: .npz of the springs (cache)")
     ap.add_argument("--ratio", action="store_true", help="whole 3D run against the yardstick")
     ap.add_argument("--variant", action="append", default=[], help="name=key=value,...")
     ap.add_argument(
@@ -226,6 +366,9 @@ def main() -> None:
         help="n_fine of the mesh the solvers are compared on (10: the default mesh)",
     )
     args = ap.parse_args()
+    if args.profile and args.every:
+        every_sector(args.profile, args.data)
+        return
     if args.profile:
         profile(args.profile, args.check)
         return
