@@ -66,6 +66,7 @@ from woundroll.contact.dynamic import timeloop
 from woundroll.contact.dynamic.plane_strain import DynamicImpactResult, DynamicOptions
 from woundroll.contact.dynamic.timeloop import ImpactState, Increment, Newmark, Striker
 from woundroll.contact.heads import Head
+from woundroll.contact.solid3d import linsolve
 from woundroll.contact.solid3d.fem import lumped_mass, orthotropic_moduli, stresses
 from woundroll.contact.solid3d.solver import Contact3DOptions, Roll3D, build_roll3d
 from woundroll.errors import ConvergenceError, InputError
@@ -99,6 +100,10 @@ class Dynamic3DOptions:
         which the cached flexibility columns of an older factorisation are recomputed.
     anderson : int
         Memory of the Anderson mixing of the passes' displacements (0: plain passes).
+    single_precision : bool
+        Factorise and solve the passes in single precision (PARDISO only; with ``reuse``
+        and ``update_modulus``): the passes' residual is exact, so only their count and
+        the converged answer within ``newton_rtol`` change (docs/dynamic.md).
     mesh : Contact3DOptions or None
         The quasi-static 3D model's mesh and material settings (its ``n_steps``,
         ``midpoint``, ``predictor`` and ``slip`` do not apply).
@@ -116,6 +121,7 @@ class Dynamic3DOptions:
     refactor_after: int = 8
     refresh_after: int = 1
     anderson: int = 3
+    single_precision: bool = True
     mesh: Contact3DOptions | None = None
 
     def __post_init__(self) -> None:
@@ -138,6 +144,10 @@ class Dynamic3DOptions:
         a = self.anderson
         if isinstance(a, bool) or not isinstance(a, int | np.integer) or a < 0:
             raise InputError(f"must be a whole number >= 0, got {a!r}", f"{f}.anderson")
+        if not isinstance(self.single_precision, bool):
+            raise InputError(
+                f"must be true or false, got {self.single_precision!r}", f"{f}.single_precision"
+            )
         if self.mesh is not None and not isinstance(self.mesh, Contact3DOptions):
             raise InputError("must be a Contact3DOptions", "contact.options3d")
 
@@ -188,8 +198,17 @@ class _Effective:
     products, its (possibly stale) factorisation and the flexibility columns of that
     factorisation for the surface nodes."""
 
-    def __init__(self, roll: Roll3D, m: FloatArray, c_k: float, c_m: float) -> None:
+    def __init__(
+        self, roll: Roll3D, m: FloatArray, c_k: float, c_m: float, single: bool = False
+    ) -> None:
         self.roll = roll
+        # the passes' own solver: single precision when asked and the roll's is PARDISO
+        self.single = single and isinstance(roll.solver, linsolve._Pardiso)
+        self.solver = (
+            linsolve.make_solver("pardiso", roll.asm.pattern, single=True)
+            if self.single
+            else roll.solver
+        )
         self.asm = roll.asm
         self.m = m
         self.c_k, self.c_m = c_k, c_m
@@ -226,19 +245,24 @@ class _Effective:
 
     def factor(self) -> None:
         t0 = time.perf_counter()
-        self.roll.solver.factor(self.A.data)
+        self.solver.factor(self.A.data)
         self.t_factor += time.perf_counter() - t0
         self.n_factor += 1
         self.factored_D = self.D
 
     @property
-    def exact(self) -> bool:
+    def current(self) -> bool:
         """The factorisation is of the current A."""
         return self.factored_D is self.D
 
+    @property
+    def exact(self) -> bool:
+        """The solves are A's to round-off (current and in double precision)."""
+        return self.current and not self.single
+
     def solve(self, b: FloatArray) -> FloatArray:
         t0 = time.perf_counter()
-        x = self.roll.solver.solve(b)
+        x = self.solver.solve(b)
         self.t_solve += time.perf_counter() - t0
         self.n_solves += 1 if b.ndim == 1 else b.shape[1]
         return x
@@ -299,7 +323,8 @@ class _ImpactRoll3D:
     ) -> None:
         self.roll, self.web, self.m, self.opts, self.nm = roll, web, m, opts, nm
         self.striker = striker
-        self.eff = _Effective(roll, m, 1.0 + nm.c1 * nm.a1, nm.c0 + nm.c1 * nm.a0)
+        single = opts.single_precision and opts.reuse and opts.update_modulus
+        self.eff = _Effective(roll, m, 1.0 + nm.c1 * nm.a1, nm.c0 + nm.c1 * nm.a0, single)
         self.n = roll.asm.n_free
         self.sigma_pre, self.r_centre = roll.sigma_pre, roll.r_centre
         self.elastic = web.radial_unloading is None
@@ -379,7 +404,7 @@ class _ImpactRoll3D:
         if a0 > 0 or a1 > 0:
             b = b - a0 * m * v_pred - (a1 * eff.k_times(v_pred) if a1 > 0 else 0.0)
         dx_free = self.striker.free_step(st, nm)
-        if not opts.reuse and not eff.exact:
+        if not opts.reuse and not eff.current:
             eff.factor()
         # the passes start from the last step's increment (the motion is smooth over a
         # step: ~10 % fewer passes than from zero, docs/history.md 2026-11-27)
@@ -390,7 +415,7 @@ class _ImpactRoll3D:
         basis = (eff.n_factor, eff.n_refresh)  # what the passes' map depends on
         for it in range(1, 61):
             du_in = du
-            if it > opts.refactor_after and not eff.exact:
+            if it > opts.refactor_after and not eff.current:
                 eff.factor()
             fresh = not opts.reuse or it > opts.refresh_after
             force = np.zeros(self.n)
@@ -475,6 +500,7 @@ class _ImpactRoll3D:
             "solve_s": eff.t_solve,
             "mesh_elements": self.roll.mesh.n_elements,
             "reuse": self.opts.reuse,
+            "single_precision": eff.single,
         }
 
 
