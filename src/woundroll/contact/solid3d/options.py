@@ -13,7 +13,7 @@ from woundroll.errors import InputError
 from woundroll.materials.web import SLIP_SHEAR_FRACTION
 
 #: The sparse solvers of :func:`woundroll.contact.solid3d.linsolve.make_solver`.
-SOLVERS = ("auto", "pardiso", "splu", "amg")
+SOLVERS = ("auto", "pardiso", "pardiso-mixed", "splu", "amg")
 
 
 #: Growth of the element sizes away from the contact zone (radial, hoop and CMD alike).
@@ -76,8 +76,11 @@ class Contact3DOptions:
         (from the next increment on; the increments resolve the spread of the slip zone).
     slip_shear_fraction : float
         Fraction of the transverse shear moduli left in a slipped element.
-    solver : {"auto", "pardiso", "splu", "amg"}
-        Linear solver (:mod:`woundroll.contact.solid3d.linsolve`); auto: PARDISO if installed.
+    solver : {"auto", "pardiso", "pardiso-mixed", "splu", "amg"}
+        Linear solver (:mod:`woundroll.contact.solid3d.linsolve`); auto: PARDISO factorising
+        in single precision with every solve refined in double to a relative residual of
+        1e-6 (``"pardiso-mixed"``) if PARDISO is installed, SuperLU otherwise;
+        ``"pardiso"``: PARDISO in double precision throughout.
     reuse_factorisation : bool
         Modified Newton: keep the factorisation of an earlier increment's K and solve with
         the current K by preconditioned conjugate gradients (False: factorise every K).

@@ -706,6 +706,10 @@ def _result3d(
             "pcg_iterations": model.n_pcg,
             "pcg_max_iterations_used": model.pcg_iterations,
             "pcg_refactorisations": model.n_pcg_failed,
+            # "pardiso-mixed": refinement steps, solves redone in double, largest residual
+            "refinement_steps": getattr(model.solver, "refinement_steps", 0),
+            "double_fallbacks": getattr(model.solver, "double_fallbacks", 0),
+            "largest_refined_residual": getattr(model.solver, "largest_residual", 0.0),
             "slipped_elements": 0 if model.slipped is None else int(model.slipped.sum()),
         },
     )
