@@ -94,6 +94,16 @@ class Contact3DResult(ContactResult):
     stats: dict
 
 
+#: Passes of :meth:`Roll3D.solve_pass` after which the cached flexibility columns are
+#: recomputed on the current factorisation (the fixed point then converges in a pass or
+#: two). (5, 10, 14), not (8, 12): an increment whose stale columns need more than five
+#: passes pays one multi-column solve instead, and the next increments start from fresh
+#: columns: 0.87-0.89 of the CPU of a 3D reading of PET1 26.7 N / PET2 53.4 N, Rho moved by
+#: -6e-7 / +4e-8 of itself (converged to the same gap tolerance along other passes;
+#: docs/history.md, 2026-12-07).
+REFRESH_PASSES = (5, 10, 14)
+
+
 class Roll3D:
     """The roll under the head as a 3D FE model: mesh, assembler (stiffness for any
     per-element moduli, :class:`~woundroll.contact.solid3d.fem.Assembler3D`), held DOFs, the
@@ -298,8 +308,8 @@ class Roll3D:
         solves the LCP ``g = q + W lam`` with ``q = g_exact - W lam_previous`` (exact
         :func:`_solve_lcp` as in 2D) and one system with the true K gives the exact gaps;
         it stops when the exact gaps satisfy the complementarity to ``tol``. With W from the
-        current K one pass is exact; after 6 passes the columns are refreshed. A penetration
-        outside the candidates enlarges the set.
+        current K one pass is exact; after :data:`REFRESH_PASSES` passes the columns are
+        refreshed. A penetration outside the candidates enlarges the set.
         """
         n = self.asm.n_free
         reachable = np.isfinite(bound)
@@ -325,7 +335,7 @@ class Roll3D:
                     den = float(dl @ (W @ dl))
                     if den > 0 and float(dg @ dl) > 0:
                         scale = float(np.clip(float(dg @ dl) / den, 0.1, 10.0))
-                if it in (8, 12):
+                if it in REFRESH_PASSES:
                     W, scale = self._columns(idx, refresh=True), 1.0
                 prev = (lam.copy(), g.copy())
                 Ws = scale * W
