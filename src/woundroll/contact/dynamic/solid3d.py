@@ -206,11 +206,14 @@ class _Effective:
         self, roll: Roll3D, m: FloatArray, c_k: float, c_m: float, single: bool = False
     ) -> None:
         self.roll = roll
-        # the passes' own solver: single precision when asked and the roll's is PARDISO
-        self.single = single and isinstance(roll.solver, linsolve._Pardiso)
+        # the passes' own solver, of an explicit precision when the roll's is PARDISO (of
+        # whatever kind): single when asked, else double (exact solves, which the first
+        # pass's acceptance relies on); another solver (SuperLU, AMG) is the roll's own
+        pardiso = isinstance(roll.solver, linsolve._Pardiso)
+        self.single = single and pardiso
         self.solver = (
-            linsolve.make_solver("pardiso", roll.asm.pattern, single=True)
-            if self.single
+            linsolve.make_solver("pardiso", roll.asm.pattern, single=self.single)
+            if pardiso
             else roll.solver
         )
         self.asm = roll.asm
