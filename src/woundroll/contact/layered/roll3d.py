@@ -174,6 +174,7 @@ class _CutAssembler3D(Assembler3D):
         self.tri_a, self.tri_b = base.tri_a, base.tri_b
         self.ring, self.dtheta, self.dz = base.ring, base.dtheta, base.dz
         self._order, self._ring_start, self._fsft = base._order, base._ring_start, base._fsft
+        self._Mf, self._fs = base._Mf, base._fs
         self.dofs = dofs
         self.free_index = np.full(free.size, -1, dtype=np.int64)
         self.free_index[free] = np.arange(int(free.sum()))
