@@ -2,15 +2,27 @@
 
 :mod:`~woundroll.app.cli.entry` holds the command group (:data:`app`) and :func:`main`; one
 module per command group adds its commands; :mod:`~woundroll.app.cli.console` is how they all
-print, warn and fail. ``app`` and ``main`` load on first use, so that importing one command's
-module does not import them all.
+print, warn and fail. ``app`` loads on first use, so that importing one command's module does
+not import them all.
 """
 
 from typing import Any
 
 
+def main() -> None:
+    """Entry point of the ``woundroll`` script: :func:`woundroll.app.cli.entry.main`, with
+    dataclasses' generated methods compiled once per machine for the whole process
+    (:mod:`woundroll.util.dataclass_cache`; installed before the command line's imports)."""
+    from woundroll.util.dataclass_cache import install
+
+    install()
+    from woundroll.app.cli.entry import main as entry_main
+
+    entry_main()
+
+
 def __getattr__(name: str) -> Any:
-    if name in ("app", "main"):
+    if name == "app":
         from woundroll.app.cli import entry
 
         return getattr(entry, name)

@@ -15,6 +15,7 @@ import sys
 from typing import Annotated, Any
 
 from woundroll.util.blas import single_thread_process
+from woundroll.util.dataclass_cache import install as install_dataclass_cache
 
 # one BLAS thread for the command and its worker processes, set before NumPy loads
 # (woundroll.util.blas: OpenBLAS's threads made the models' small solves up to 1000x slower
@@ -123,6 +124,7 @@ def main() -> None:
     (e.g. an empty string) to have them loaded; the library (``import woundroll``) leaves
     the variable alone."""
     os.environ.setdefault("PYDANTIC_DISABLE_PLUGINS", "__all__")
+    install_dataclass_cache()  # the rest of the imports (woundroll.util.dataclass_cache)
     _app_for(sys.argv[1:])()
 
 
