@@ -74,8 +74,8 @@ def _cached_exec(source: Any, globals: Any = None, locals: Any = None) -> None: 
 
 def _read(path: Path) -> dict[str, CodeType]:
     try:
-        with path.open("rb") as fh:
-            data = marshal.load(fh)
+        # loads of the whole file: marshal.load reads a file object piece by piece, ~6x slower
+        data = marshal.loads(path.read_bytes())
     except (OSError, EOFError, ValueError, TypeError):
         return {}
     if not isinstance(data, dict):

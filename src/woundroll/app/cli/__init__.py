@@ -12,9 +12,12 @@ from typing import Any
 def main() -> None:
     """Entry point of the ``woundroll`` script: :func:`woundroll.app.cli.entry.main`, with
     dataclasses' generated methods compiled once per machine for the whole process
-    (:mod:`woundroll.util.dataclass_cache`; installed before the command line's imports)."""
+    (:mod:`woundroll.util.dataclass_cache`) and no garbage collection while the command
+    starts (:mod:`woundroll.util.gc_pause`), both set before the command line's imports."""
     from woundroll.util.dataclass_cache import install
+    from woundroll.util.gc_pause import pause
 
+    pause()
     install()
     from woundroll.app.cli.entry import main as entry_main
 

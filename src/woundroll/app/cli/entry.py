@@ -16,6 +16,8 @@ from typing import Annotated, Any
 
 from woundroll.util.blas import single_thread_process
 from woundroll.util.dataclass_cache import install as install_dataclass_cache
+from woundroll.util.gc_pause import pause as pause_gc
+from woundroll.util.gc_pause import resume as resume_gc
 
 # one BLAS thread for the command and its worker processes, set before NumPy loads
 # (woundroll.util.blas: OpenBLAS's threads made the models' small solves up to 1000x slower
@@ -101,6 +103,7 @@ def _version(value: bool) -> None:
 
 @app.callback()
 def _main(
+    ctx: typer.Context,
     _version_flag: Annotated[
         bool,
         typer.Option(
@@ -109,6 +112,8 @@ def _main(
     ] = False,
 ) -> None:
     """Wound-roll stresses from winder settings, and the hardness readings they cause."""
+    if ctx.invoked_subcommand != "run":  # run resumes once its case is read
+        resume_gc()
 
 
 for _group in (run, study, materials, diagnose, report, sweep, serve, calibrate, schema):
@@ -124,6 +129,7 @@ def main() -> None:
     (e.g. an empty string) to have them loaded; the library (``import woundroll``) leaves
     the variable alone."""
     os.environ.setdefault("PYDANTIC_DISABLE_PLUGINS", "__all__")
+    pause_gc()  # until the command starts (woundroll.util.gc_pause)
     install_dataclass_cache()  # the rest of the imports (woundroll.util.dataclass_cache)
     _app_for(sys.argv[1:])()
 

@@ -54,6 +54,7 @@ def run(
     """Run the models a case asks for: winding, and with a tester section the hardness reading."""
     from woundroll.case import load_case
     from woundroll.pipeline import run as run_case
+    from woundroll.util.gc_pause import resume as resume_gc
     from woundroll.util.pool import Interrupted, clean_stop
 
     with clean_stop():
@@ -67,6 +68,7 @@ def run(
                 raise InputError(f"--fields is compact or full, got {fields!r}", "--fields")
             flags = [("contact.no_update=true", "--no-update")] if no_update else []
             c = load_case(case, [*(set_ or []), *flags])
+            resume_gc()  # start-up is over: the models' modules are in (util/gc_pause.py)
             if out_dir is not None:
                 from woundroll.util.output import check_out_dir
 
