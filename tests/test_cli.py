@@ -347,7 +347,39 @@ def test_run_json_loads_no_printing_or_pool_machinery():
         "heavy = ('rich', 'multiprocessing', 'concurrent.futures.process', 'numba',"
         " 'matplotlib', 'scipy.sparse')\n"
         "print(','.join(m for m in heavy if m in sys.modules))\n"
+        # the collector, paused while the command started, is on again (util/gc_pause.py)
+        "import gc\n"
+        "assert gc.isenabled() and gc.get_freeze_count() > 0, gc.get_freeze_count()\n"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.returncode == 0, out.stderr[-2000:]
     assert out.stdout.strip() == "", out.stdout
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["run", "--help"],
+        ["run"],
+        ["run", "pet1-26.7N", "--fields", "all"],
+        ["run", "pet1-26.7N", "--bogus"],
+        ["cases"],
+        ["fit-stack", "--help"],
+    ],
+)
+def test_one_command_group_behaves_as_the_whole(args):
+    """``main`` gives click only the command it runs (``entry._app_for``): its help, errors
+    and exit codes are those of the whole group."""
+    from woundroll.app.cli.entry import _app_for
+
+    one = _app_for(args)
+    assert one is not app and [c.name for c in one.registered_commands] == [args[0]]
+    whole, alone = runner.invoke(app, args), runner.invoke(one, args)
+    assert (alone.exit_code, alone.output) == (whole.exit_code, whole.output)
+
+
+def test_anything_but_a_command_goes_to_the_whole_group():
+    from woundroll.app.cli.entry import _app_for
+
+    for args in ([], ["--help"], ["--version"], ["rnu", "pet1-26.7N"]):
+        assert _app_for(args) is app

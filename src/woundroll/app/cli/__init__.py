@@ -11,10 +11,10 @@ from typing import Any
 
 def main() -> None:
     """Entry point of the ``woundroll`` script: :func:`woundroll.app.cli.entry.main`, with
-    dataclasses' generated methods compiled once per machine for the whole process
-    (:mod:`woundroll.util.dataclass_cache`) and no garbage collection while the command
-    starts (:mod:`woundroll.util.gc_pause`), both set before the command line's imports."""
-    from woundroll.util.dataclass_cache import install
+    the code that dataclasses and typing compile at run time compiled once per machine
+    (:mod:`woundroll.util.code_cache`) and no garbage collection while the command starts
+    (:mod:`woundroll.util.gc_pause`), both set before the command line's imports."""
+    from woundroll.util.code_cache import install
     from woundroll.util.gc_pause import pause
 
     pause()

@@ -15,7 +15,7 @@ import sys
 from typing import Annotated, Any
 
 from woundroll.util.blas import single_thread_process
-from woundroll.util.dataclass_cache import install as install_dataclass_cache
+from woundroll.util.code_cache import install as install_code_cache
 from woundroll.util.gc_pause import pause as pause_gc
 from woundroll.util.gc_pause import resume as resume_gc
 
@@ -130,7 +130,7 @@ def main() -> None:
     the variable alone."""
     os.environ.setdefault("PYDANTIC_DISABLE_PLUGINS", "__all__")
     pause_gc()  # until the command starts (woundroll.util.gc_pause)
-    install_dataclass_cache()  # the rest of the imports (woundroll.util.dataclass_cache)
+    install_code_cache()  # for the rest of the imports (woundroll.util.code_cache)
     _app_for(sys.argv[1:])()
 
 
