@@ -10,13 +10,11 @@ status 2; a solver that does not converge exits with status 1 (:mod:`~woundroll.
 from __future__ import annotations
 
 import copy
-import os
 import sys
 from typing import Annotated, Any
 
+from woundroll.app.cli import setup_process
 from woundroll.util.blas import single_thread_process
-from woundroll.util.code_cache import install as install_code_cache
-from woundroll.util.gc_pause import pause as pause_gc
 from woundroll.util.gc_pause import resume as resume_gc
 
 # one BLAS thread for the command and its worker processes, set before NumPy loads
@@ -121,16 +119,9 @@ for _group in (run, study, materials, diagnose, report, sweep, serve, calibrate,
 
 
 def main() -> None:
-    """Entry point of the ``woundroll`` script.
-
-    The command's own process does not look for pydantic plugins: woundroll uses none, and
-    the search reads the metadata of every installed distribution, 0.1-0.15 s of each run
-    (``benchmarks/bench_startup.py``). Set ``PYDANTIC_DISABLE_PLUGINS`` to any other value
-    (e.g. an empty string) to have them loaded; the library (``import woundroll``) leaves
-    the variable alone."""
-    os.environ.setdefault("PYDANTIC_DISABLE_PLUGINS", "__all__")
-    pause_gc()  # until the command starts (woundroll.util.gc_pause)
-    install_code_cache()  # for the rest of the imports (woundroll.util.code_cache)
+    """Entry point of the ``woundroll`` command group: the process's settings
+    (:func:`woundroll.app.cli.setup_process`), then the command."""
+    setup_process()
     _app_for(sys.argv[1:])()
 
 
