@@ -39,16 +39,16 @@ def _restart() -> None:
     """As a new process would: write the file, forget the texts, read the file again."""
     code_cache._write()
     code_cache.uninstall()
-    code_cache.install()
+    code_cache.install("test")
 
 
 def test_second_process_compiles_nothing_and_classes_are_the_same(cache: Path) -> None:
-    code_cache.install()
+    code_cache.install("test")
     first = _make_class()
     ref = typing.ForwardRef("list[int] | None")
     assert code_cache._added >= 5  # __init__, __repr__, __eq__, __hash__, __setattr__, ...
     _restart()
-    assert (cache / "a" / code_cache._file_name()).is_file()
+    assert (cache / "a" / code_cache._file_name("test")).is_file()
     again = _make_class()
     ref2 = typing.ForwardRef("list[int] | None")
     assert code_cache._added == 0 and len(code_cache._used) >= 6
@@ -64,16 +64,16 @@ def test_second_process_compiles_nothing_and_classes_are_the_same(cache: Path) -
 
 
 def test_a_text_that_does_not_compile_raises_as_before(cache: Path) -> None:
-    code_cache.install()
+    code_cache.install("test")
     with pytest.raises(SyntaxError, match="Forward reference must be an expression"):
         typing.ForwardRef("not an expression")
 
 
 def test_broken_file_is_ignored_and_rewritten(cache: Path) -> None:
     (cache / "a").mkdir()
-    path = cache / "a" / code_cache._file_name()
+    path = cache / "a" / code_cache._file_name("test")
     path.write_bytes(b"\x00not marshal data")
-    code_cache.install()
+    code_cache.install("test")
     _make_class()
     assert code_cache._added > 0  # compiled: nothing was read
     _restart()
@@ -85,14 +85,14 @@ def test_unwritable_folder_falls_back_and_bytecode_off_writes_nothing(
     cache: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     (cache / "a").write_text("a file where the folder would be")
-    code_cache.install()
+    code_cache.install("test")
     _make_class()
     code_cache._write()
-    assert (cache / "b" / code_cache._file_name()).is_file()
+    assert (cache / "b" / code_cache._file_name("test")).is_file()
     code_cache.uninstall()
     monkeypatch.setattr("sys.dont_write_bytecode", True)
     monkeypatch.setattr(code_cache, "_cache_dirs", lambda: [cache / "c"])
-    code_cache.install()
+    code_cache.install("test")
     _make_class()
     code_cache._write()
     assert not (cache / "c").exists()
@@ -100,6 +100,6 @@ def test_unwritable_folder_falls_back_and_bytecode_off_writes_nothing(
 
 def test_turned_off_by_the_environment(cache: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv(code_cache.ENV, "0")
-    code_cache.install()
+    code_cache.install("test")
     assert getattr(dataclasses, "exec", None) is None
     assert getattr(typing, "compile", None) is None

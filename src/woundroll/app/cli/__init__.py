@@ -52,7 +52,7 @@ def setup_process() -> None:
     single_thread_process()
     os.environ.setdefault("PYDANTIC_DISABLE_PLUGINS", "__all__")
     pause()
-    install()
+    install(sys.argv[1] if len(sys.argv) > 1 else "")
 
 
 def __getattr__(name: str) -> Any:
