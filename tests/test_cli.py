@@ -445,6 +445,10 @@ def test_plain_run_ends_as_the_group_does(monkeypatch, capsys):
     from typer.main import _typer_developer_exception_attr_name, except_hook
 
     assert hasattr(bug, _typer_developer_exception_attr_name) and sys.excepthook is except_hook
+    # the plain road marks it with typer's defaults: the group keeps them
+    pretty = [f"pretty_exceptions_{k}" for k in ("enable", "show_locals", "short")]
+    default = typer.Typer()
+    assert all(getattr(app, k) == getattr(default, k) for k in pretty)
 
 
 def test_plain_run_is_the_typer_run(tmp_path):

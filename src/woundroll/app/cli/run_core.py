@@ -203,14 +203,15 @@ def run_plain(kwargs: dict[str, Any]) -> None:
 
 def _as_typer_shows_it(exc: Exception) -> None:
     """Mark ``exc`` as typer's ``Typer.__call__`` does, so that its exception hook shows it
-    as it would have (``app``'s ``pretty_exceptions_*`` settings)."""
+    as it would have: with typer's default ``pretty_exceptions_*`` settings, which the
+    command group keeps (``entry.app`` sets none; a test holds the two equal)."""
     try:
+        import typer
         from typer.main import _typer_developer_exception_attr_name, except_hook
         from typer.models import DeveloperExceptionConfig
-
-        from woundroll.app.cli.entry import app
     except ImportError:  # pragma: no cover - a typer without them: Python's own hook
         return
+    app = typer.Typer()
     sys.excepthook = except_hook
     config = DeveloperExceptionConfig(
         pretty_exceptions_enable=app.pretty_exceptions_enable,
