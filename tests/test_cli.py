@@ -455,7 +455,8 @@ def test_plain_run_is_the_typer_run(tmp_path):
     """The same outputs, messages and exit statuses through either road (a fresh process
     each: the script's entry point and the command group's)."""
     code = (
-        "import os, sys\n"
+        "import atexit, os, sys\n"
+        "atexit.register(lambda: print('atexit handlers ran', file=sys.stderr))\n"
         "sys.argv = ['woundroll', *sys.argv[2:]]\n"
         "if os.environ['ROAD'] == 'plain':\n"
         "    from woundroll.app.cli import main\n"
@@ -475,3 +476,4 @@ def test_plain_run_is_the_typer_run(tmp_path):
             )
             got[road] = (proc.returncode, proc.stdout, proc.stderr)
         assert got["plain"] == got["group"], args
+        assert got["plain"][2].endswith("atexit handlers ran\n")  # also without the teardown
