@@ -416,6 +416,13 @@ def test_plain_run_forms(args, plain):
     assert plain_run_args(args) == plain
 
 
+def test_completion_requests_go_to_typer(monkeypatch):
+    from woundroll.app.cli.run_core import plain_run_args
+
+    monkeypatch.setenv("_WOUNDROLL_COMPLETE", "bash_complete")
+    assert plain_run_args(["run", "pet1-26.7N", "--json"]) is None
+
+
 def test_plain_run_ends_as_the_group_does(monkeypatch, capsys):
     """Exit statuses of ``typer.Exit``, ``Aborted!`` on an interrupt, and an unexpected error
     marked for typer's exception hook, as when typer runs the command."""

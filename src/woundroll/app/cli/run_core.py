@@ -12,6 +12,7 @@ same either way: one body, and :func:`run_plain` exits as typer's group does.
 from __future__ import annotations
 
 import json
+import os
 import sys
 from pathlib import Path
 from typing import Any
@@ -162,8 +163,12 @@ def plain_run_args(args: list[str]) -> dict[str, Any] | None:
     """The keywords of :func:`run_command` for ``args`` (the command line after the program)
     when they are ``run CASE`` followed only by ``--set VALUE``, ``--json``, ``--quiet``/``-q``
     and ``--no-update``; else None (typer parses them). A value or case that starts with
-    ``-`` is left to typer too."""
+    ``-`` is left to typer too, and so is everything on Windows (click expands wildcards in
+    the arguments there) and a shell-completion request (``_WOUNDROLL_COMPLETE``-style
+    variables: click answers those)."""
     if len(args) < 2 or args[0] != "run" or not args[1] or args[1].startswith("-"):
+        return None
+    if os.name == "nt" or any(k.startswith("_") and k.endswith("_COMPLETE") for k in os.environ):
         return None
     kwargs: dict[str, Any] = {"case": args[1]}
     sets: list[str] = []
@@ -212,7 +217,6 @@ def _end_now() -> None:
     uncertainty run's pools end as usual) and the flush succeeds (a closed pipe: the normal
     end reports it, as before); a plain run writes no file of its own (no ``--out``)."""
     import atexit
-    import os
     import threading
 
     if threading.active_count() != 1 or "multiprocessing" in sys.modules:
