@@ -90,6 +90,7 @@ def main() -> None:
             trees["before"] = {**env, "PYTHONPATH": str(src)}
             clis["before"] = cli_module(src)
         best = {(t, c): float("inf") for t in trees for c in COMMANDS}
+        rounds: dict[tuple[str, str], list[float]] = {(t, c): [] for t in trees for c in COMMANDS}
         size: dict[tuple[str, str], int] = {}
         for rep in range(opts.repeat + 1):  # the first round warms the caches, unmeasured
             for cmd, (args, _) in COMMANDS.items():
@@ -98,6 +99,7 @@ def main() -> None:
                     size[tree, cmd] = n
                     if rep:
                         best[tree, cmd] = min(best[tree, cmd], t)
+                        rounds[tree, cmd].append(t)
         load = {}
         for name, code in LOADS.items():
             ts = []
@@ -108,16 +110,27 @@ def main() -> None:
                 ts.append(float(out.stdout))
             load[name] = min(ts[1:])
     loads1 = os.getloadavg()[0]
-    lines = table(opts, trees, best, size, load, loads0, loads1)
+    lines = table(opts, trees, best, rounds, size, load, loads0, loads1)
     print("\n".join(lines))
     if opts.write_docs:
         write_block(ROOT / "docs" / "performance.md", "process", lines)
 
 
-def table(opts, trees, best, size, load, loads0, loads1) -> list[str]:  # type: ignore[no-untyped-def]
+def _median_ratio(rounds: dict[tuple[str, str], list[float]], cmd: str) -> float:
+    """The median over the rounds of the current tree's ``cmd`` over that round's yardstick."""
+    ratios = sorted(t / y for t, y in zip(rounds["now", cmd], rounds["now", YARD], strict=True))
+    n = len(ratios)
+    return ratios[n // 2] if n % 2 else 0.5 * (ratios[n // 2 - 1] + ratios[n // 2])
+
+
+def table(opts, trees, best, rounds, size, load, loads0, loads1) -> list[str]:  # type: ignore[no-untyped-def]
     yard_now = best["now", YARD]
     before = "before" in trees
-    head = "| command | " + (f"before ({opts.before}) | " if before else "") + "now | bar | JSON |"
+    head = (
+        "| command | "
+        + (f"before ({opts.before}) | " if before else "")
+        + "now | now, median of the rounds | bar | JSON |"
+    )
     lines = [
         f"`benchmarks/bench_process.py{' --before ' + opts.before if before else ''}`: min of "
         f"{opts.repeat} fresh processes after one warm-up, interleaved; python "
@@ -127,7 +140,7 @@ def table(opts, trees, best, size, load, loads0, loads1) -> list[str]:  # type: 
         + (f", {best['before', YARD]:.2f} s in the before rounds." if before else "."),
         "",
         head,
-        "|---|" + ("---|" if before else "") + "---|---|---|",
+        "|---|" + ("---|" if before else "") + "---|---|---|---|",
     ]
     for cmd, (_, bar) in COMMANDS.items():
         if cmd == YARD:
@@ -136,11 +149,19 @@ def table(opts, trees, best, size, load, loads0, loads1) -> list[str]:  # type: 
         if before:
             row += f"{best['before', cmd] / best['before', YARD]:.1f}x | "
         ok = "" if bar is None else (" ok" if best["now", cmd] / yard_now <= bar else " **over**")
-        row += f"{best['now', cmd] / yard_now:.1f}x | {bar}x{ok} | "
+        row += f"{best['now', cmd] / yard_now:.1f}x | {_median_ratio(rounds, cmd):.1f}x | "
+        row += f"{bar}x{ok} | "
         row += (f"{size['before', cmd] / 1e3:,.0f} kB -> " if before else "") + (
             f"{size['now', cmd] / 1e3:,.1f} kB |"
         )
         lines.append(row)
+    lines += [
+        "",
+        "Ratios are the smallest time of a command over the smallest time of the yardstick;"
+        " the median of the rounds is the median of each round's time over that round's"
+        " yardstick (a round: every command once, in order; less moved by a load that"
+        " changes during the run).",
+    ]
     lines += ["", "| load of the compiled winding kernels (fresh interpreter) | s | x yardstick |"]
     lines.append("|---|---|---|")
     for name, t in load.items():

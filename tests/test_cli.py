@@ -1,6 +1,7 @@
 """The command line: one-line errors naming the field with exit status 2, JSON output."""
 
 import json
+import os
 import re
 import subprocess
 import sys
@@ -328,15 +329,16 @@ def test_run_json_loads_no_printing_or_pool_machinery():
     """``woundroll run CASE --json`` (the command a sweep or a script calls thousands of
     times) imports neither rich (~45 ms: nothing is printed through it), multiprocessing
     and concurrent.futures (one roll has no pool), numba (the kernels load through
-    llvmlite) nor matplotlib (no plot asked): issue 23's start-up. A fresh interpreter:
-    the test process itself has imported everything."""
+    llvmlite), matplotlib (no plot asked) nor typer (its plain form runs without the
+    parser: app/cli/run_core.py): issue 23's start-up. A fresh interpreter: the test
+    process itself has imported everything."""
     import subprocess
     import sys
 
     code = (
         "import sys, io, contextlib\n"
         "sys.argv = ['woundroll', 'run', 'pet1-26.7N', '--json']\n"
-        "from woundroll.app.cli.entry import main\n"
+        "from woundroll.app.cli import main\n"
         "buf = io.StringIO()\n"
         "try:\n"
         "    with contextlib.redirect_stdout(buf):\n"
@@ -345,9 +347,140 @@ def test_run_json_loads_no_printing_or_pool_machinery():
         "    assert not e.code, e.code\n"
         "assert '\"hardness\"' in buf.getvalue()\n"
         "heavy = ('rich', 'multiprocessing', 'concurrent.futures.process', 'numba',"
-        " 'matplotlib', 'scipy.sparse')\n"
+        " 'matplotlib', 'scipy.sparse', 'typer')\n"
         "print(','.join(m for m in heavy if m in sys.modules))\n"
+        # the collector, paused while the command started, is on again (util/gc_pause.py)
+        "import gc\n"
+        "assert gc.isenabled() and gc.get_freeze_count() > 0, gc.get_freeze_count()\n"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.returncode == 0, out.stderr[-2000:]
     assert out.stdout.strip() == "", out.stdout
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["run", "--help"],
+        ["run"],
+        ["run", "pet1-26.7N", "--fields", "all"],
+        ["run", "pet1-26.7N", "--bogus"],
+        ["cases"],
+        ["fit-stack", "--help"],
+    ],
+)
+def test_one_command_group_behaves_as_the_whole(args):
+    """``main`` gives click only the command it runs (``entry._app_for``): its help, errors
+    and exit codes are those of the whole group."""
+    from woundroll.app.cli.entry import _app_for
+
+    one = _app_for(args)
+    assert one is not app and [c.name for c in one.registered_commands] == [args[0]]
+    whole, alone = runner.invoke(app, args), runner.invoke(one, args)
+    assert (alone.exit_code, alone.output) == (whole.exit_code, whole.output)
+
+
+def test_anything_but_a_command_goes_to_the_whole_group():
+    from woundroll.app.cli.entry import _app_for
+
+    for args in ([], ["--help"], ["--version"], ["rnu", "pet1-26.7N"]):
+        assert _app_for(args) is app
+
+
+@pytest.mark.parametrize(
+    ("args", "plain"),
+    [
+        (["run", "pet1-26.7N", "--json"], {"case": "pet1-26.7N", "as_json": True, "set_": None}),
+        (
+            ["run", "a.toml", "--set", "web.width=1 m", "-q", "--set", "x=2", "--no-update"],
+            {"case": "a.toml", "set_": ["web.width=1 m", "x=2"], "quiet": True, "no_update": True},
+        ),
+        (["run", "pet1-26.7N", "--quiet"], {"case": "pet1-26.7N", "quiet": True, "set_": None}),
+        (["run"], None),
+        (["run", "--json", "pet1-26.7N"], None),
+        (["run", "pet1-26.7N", "--set"], None),
+        (["run", "pet1-26.7N", "--set", "-x"], None),
+        (["run", "pet1-26.7N", "--set=a=1"], None),
+        (["run", "pet1-26.7N", "--out", "o"], None),
+        (["run", "pet1-26.7N", "--help"], None),
+        (["run", "pet1-26.7N", "--"], None),
+        (["cases"], None),
+        ([], None),
+    ],
+)
+def test_plain_run_forms(args, plain):
+    """Only ``run CASE`` with ``--set VALUE``, ``--json``, ``--quiet``/``-q`` and
+    ``--no-update`` skip typer; anything else is parsed by it."""
+    from woundroll.app.cli.run_core import plain_run_args
+
+    assert plain_run_args(args) == plain
+
+
+def test_completion_requests_go_to_typer(monkeypatch):
+    from woundroll.app.cli.run_core import plain_run_args
+
+    monkeypatch.setenv("_WOUNDROLL_COMPLETE", "bash_complete")
+    assert plain_run_args(["run", "pet1-26.7N", "--json"]) is None
+
+
+def test_plain_run_ends_as_the_group_does(monkeypatch, capsys):
+    """Exit statuses of ``typer.Exit``, ``Aborted!`` on an interrupt, and an unexpected error
+    marked for typer's exception hook, as when typer runs the command."""
+    import typer
+
+    from woundroll.app.cli import run_core
+
+    def raising(exc):
+        def run_command(**kwargs):
+            raise exc
+
+        return run_command
+
+    monkeypatch.setattr(run_core, "run_command", raising(typer.Exit(3)))
+    with pytest.raises(SystemExit) as stop:
+        run_core.run_plain({"case": "x"})
+    assert stop.value.code == 3
+    monkeypatch.setattr(run_core, "run_command", raising(KeyboardInterrupt()))
+    with pytest.raises(SystemExit) as stop:
+        run_core.run_plain({"case": "x"})
+    assert stop.value.code == 1 and "Aborted!" in capsys.readouterr().err
+    bug = RuntimeError("a bug")
+    monkeypatch.setattr(run_core, "run_command", raising(bug))
+    monkeypatch.setattr(sys, "excepthook", sys.excepthook)
+    with pytest.raises(RuntimeError):
+        run_core.run_plain({"case": "x"})
+    from typer.main import _typer_developer_exception_attr_name, except_hook
+
+    assert hasattr(bug, _typer_developer_exception_attr_name) and sys.excepthook is except_hook
+    # the plain road marks it with typer's defaults: the group keeps them
+    pretty = [f"pretty_exceptions_{k}" for k in ("enable", "show_locals", "short")]
+    default = typer.Typer()
+    assert all(getattr(app, k) == getattr(default, k) for k in pretty)
+
+
+def test_plain_run_is_the_typer_run(tmp_path):
+    """The same outputs, messages and exit statuses through either road (a fresh process
+    each: the script's entry point and the command group's)."""
+    code = (
+        "import atexit, os, sys\n"
+        "atexit.register(lambda: print('atexit handlers ran', file=sys.stderr))\n"
+        "sys.argv = ['woundroll', *sys.argv[2:]]\n"
+        "if os.environ['ROAD'] == 'plain':\n"
+        "    from woundroll.app.cli import main\n"
+        "else:\n"
+        "    from woundroll.app.cli.entry import main\n"
+        "main()\n"
+    )
+    for args in (
+        ["run", "pet1-26.7N", "--set", "web.thickness=0", "--json"],
+        ["run", "pet1-26.7N", "--set", "winding.tension=30 N"],
+    ):
+        got = {}
+        for road in ("plain", "group"):
+            env = {**os.environ, "ROAD": road}
+            proc = subprocess.run(
+                [sys.executable, "-c", code, "-", *args], capture_output=True, text=True, env=env
+            )
+            got[road] = (proc.returncode, proc.stdout, proc.stderr)
+        assert got["plain"] == got["group"], args
+        assert got["plain"][2].endswith("atexit handlers ran\n")  # also without the teardown

@@ -1,5 +1,5 @@
 """``python -m woundroll``: the ``woundroll`` command."""
 
-from woundroll.app.cli.entry import main
+from woundroll.app.cli import main
 
 main()

@@ -10,8 +10,6 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, TypeVar
 
-import typer
-
 if TYPE_CHECKING:
     from rich.console import Console
     from rich.table import Table
@@ -63,6 +61,8 @@ def table(*columns: Any, **kwargs: Any) -> Table:
 
 def fail(exc: Exception, status: int) -> None:
     """Print ``error: <message>`` on stderr and exit with ``status``."""
+    import typer  # here: woundroll run's plain form runs without it (app/cli/run_core.py)
+
     err.print(f"[bold red]error:[/] {escape(str(exc))}", highlight=False, soft_wrap=True)
     raise typer.Exit(status)
 
