@@ -78,6 +78,9 @@ def test_each_solver_solves_the_3d_stiffness_to_its_residual(name: str, bound: f
 def test_auto_is_the_mixed_precision_pardiso() -> None:
     assert isinstance(linsolve.make_solver("auto", stiffness()), linsolve._PardisoMixed)
     assert type(linsolve.make_solver("pardiso", stiffness())) is linsolve._Pardiso
+    # an iteration whose own tolerance is near MIXED_RTOL (the layered roll's friction)
+    # asks "auto" for double precision
+    assert type(linsolve.make_solver("auto", stiffness(), mixed=False)) is linsolve._Pardiso
 
 
 @needs_pardiso

@@ -290,13 +290,17 @@ def pardiso_available() -> bool:
     return True
 
 
-def make_solver(name: str, pattern_upper: sp.csr_matrix, single: bool = False) -> Any:
+def make_solver(
+    name: str, pattern_upper: sp.csr_matrix, single: bool = False, mixed: bool = True
+) -> Any:
     """A solver for matrices with the upper-triangle CSR pattern ``pattern_upper``;
-    ``single``: PARDISO in single precision (ignored by the other solvers)."""
+    ``single``: PARDISO in single precision (ignored by the other solvers); ``mixed``:
+    ``"auto"`` may pick the mixed-precision PARDISO (False: double precision, for an
+    iteration whose own tolerance is near :data:`MIXED_RTOL`)."""
     if name not in SOLVERS:
         raise InputError(f"must be one of {', '.join(SOLVERS)}, got {name!r}", "options.solver")
     if name == "auto":
-        name = "pardiso-mixed" if pardiso_available() else "splu"
+        name = ("pardiso-mixed" if mixed else "pardiso") if pardiso_available() else "splu"
     if name == "pardiso":
         return _Pardiso(pattern_upper, single)
     if name == "pardiso-mixed":
