@@ -39,6 +39,12 @@ from woundroll.errors import ConvergenceError, InputError
 FloatArray = NDArray[np.float64]
 
 
+def upper_times(U: sp.spmatrix, Ut: sp.spmatrix, d: FloatArray, x: FloatArray) -> FloatArray:
+    """``K x`` for the symmetric K stored as its upper triangle ``U`` (``Ut`` its transpose,
+    ``d`` its diagonal): ``U x + U^T x - diag(U) x``; ``x`` one vector or columns."""
+    return U @ x + Ut @ x - (d if x.ndim == 1 else d[:, None]) * x
+
+
 def _full(upper: sp.csr_matrix) -> sp.csr_matrix:
     d = sp.diags(upper.diagonal())
     return (upper + upper.T - d).tocsr()
@@ -204,7 +210,7 @@ class _PardisoMixed(_Pardiso):
         self.double.factor(self.U.data)
 
     def _residual(self, b: FloatArray, x: FloatArray) -> FloatArray:
-        return b - (self.U @ x + self._Ut @ x - self._d[:, None] * x)
+        return b - upper_times(self.U, self._Ut, self._d, x)
 
     def solve(self, b: FloatArray) -> FloatArray:
         if self.double is not None:
@@ -294,7 +300,7 @@ def make_solver(
     name: str, pattern_upper: sp.csr_matrix, single: bool = False, mixed: bool = True
 ) -> Any:
     """A solver for matrices with the upper-triangle CSR pattern ``pattern_upper``;
-    ``single``: PARDISO in single precision (ignored by the other solvers); ``mixed``:
+    ``single``: ``"pardiso"`` in single precision (ignored by the other solvers); ``mixed``:
     ``"auto"`` may pick the mixed-precision PARDISO (False: double precision, for an
     iteration whose own tolerance is near :data:`MIXED_RTOL`)."""
     if name not in SOLVERS:
@@ -304,7 +310,7 @@ def make_solver(
     if name == "pardiso":
         return _Pardiso(pattern_upper, single)
     if name == "pardiso-mixed":
-        return _Pardiso(pattern_upper, single=True) if single else _PardisoMixed(pattern_upper)
+        return _PardisoMixed(pattern_upper)
     if name == "splu":
         return _SuperLU(pattern_upper)
     return _AMG(pattern_upper)

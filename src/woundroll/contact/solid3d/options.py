@@ -79,7 +79,8 @@ class Contact3DOptions:
     solver : {"auto", "pardiso", "pardiso-mixed", "splu", "amg"}
         Linear solver (:mod:`woundroll.contact.solid3d.linsolve`); auto: PARDISO factorising
         in single precision with every solve refined in double to a relative residual of
-        1e-6 (``"pardiso-mixed"``) if PARDISO is installed, SuperLU otherwise;
+        3e-5 (``"pardiso-mixed"``, ``linsolve.MIXED_RTOL``) if PARDISO is installed, SuperLU
+        otherwise;
         ``"pardiso"``: PARDISO in double precision throughout.
     reuse_factorisation : bool
         Modified Newton: keep the factorisation of an earlier increment's K and solve with

@@ -36,7 +36,7 @@ from numpy.typing import NDArray
 from woundroll.contact.heads import Head
 from woundroll.contact.result import ContactResult
 from woundroll.contact.solid3d.fem import Assembler3D, orthotropic_moduli, stresses
-from woundroll.contact.solid3d.linsolve import make_solver
+from woundroll.contact.solid3d.linsolve import make_solver, upper_times
 from woundroll.contact.solid3d.mesh import RollMesh3D, build_mesh3d
 from woundroll.contact.solid3d.options import Contact3DOptions
 from woundroll.contact.stepping import LoadHistory, depth_schedule, result_fields
@@ -214,8 +214,7 @@ class Roll3D:
         self._factored = self._exact = True
 
     def _matvec(self, x: FloatArray) -> FloatArray:
-        d = self._Ud if x.ndim == 1 else self._Ud[:, None]
-        return self._U @ x + self._Ut @ x - d * x
+        return upper_times(self._U, self._Ut, self._Ud, x)
 
     def _pcg(self, b: FloatArray) -> FloatArray | None:
         """Block conjugate gradients (independent columns) on the current K preconditioned
