@@ -423,22 +423,26 @@ def _reuse_case(**kw):  # noqa: ANN202
 
 def test_reused_factorisation_falls_back_to_the_fresh_answer() -> None:
     """Modified Newton (``reuse_factorisation``) with too few conjugate-gradient iterations
-    allowed: each increment's K is factorised afresh, and F(d) is the plain curve to 1e-7
-    (only the rounding of the discarded iterations differs)."""
+    allowed: each increment's K is factorised afresh, and F(d) is the plain curve within the
+    contact solve's own tolerance. Both solve each increment's contact until the gaps are
+    within 1e-3 of the first increment's depth, along different passes (the fallback's first
+    pass uses the flexibility of the last factorisation, the plain solve that of its own):
+    the forces then agree to ~1e-3 of the first increment's, 2e-4 measured."""
     fresh = _reuse_case()
     again = _reuse_case(reuse_factorisation=True, pcg_max_iterations=1)
     assert again.stats["pcg_refactorisations"] == fresh.stats["factorisations"] - 1
-    np.testing.assert_allclose(again.force[1:], fresh.force[1:], rtol=1e-7)
+    np.testing.assert_allclose(again.force[1:], fresh.force[1:], rtol=1e-3)
 
 
 @pytest.mark.slow
 def test_reused_factorisation_gives_the_fresh_answer() -> None:
     """Conjugate gradients on the current K, preconditioned by the first increment's
     factorisation, solve the same systems to the relative residual 1e-10, so F(d) is the
-    fresh-factorisation curve to 1e-7 (the contact iteration's own tolerance is 1e-3 of the
-    first increment's depth: far above that). ~40 s: up to 134 iterations per solve (the
-    stale K is a poor preconditioner under the head, docs/contact.md)."""
+    fresh-factorisation curve within the contact iteration's own tolerance (1e-3 of the
+    first increment's depth; the passes differ: the reused solve's contact flexibility is the
+    first factorisation's). ~40 s: up to 134 iterations per solve (the stale K is a poor
+    preconditioner under the head, docs/contact.md)."""
     fresh = _reuse_case()
     reused = _reuse_case(reuse_factorisation=True, pcg_max_iterations=200)
     assert reused.stats["factorisations"] == 1 and reused.stats["pcg_iterations"] > 0
-    np.testing.assert_allclose(reused.force[1:], fresh.force[1:], rtol=1e-7)
+    np.testing.assert_allclose(reused.force[1:], fresh.force[1:], rtol=1e-3)

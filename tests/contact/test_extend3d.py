@@ -73,9 +73,13 @@ def test_extended_loading_is_the_direct_solve_to_its_depth() -> None:
     the stop at k = 7, against a direct solve to d_7 in 7 increments on the same mesh: the
     same depths (to rounding), the same gap tolerance (1e-3 of the same first increment),
     the same arithmetic. F(d), a(d), the fields at the last depth and the work counters
-    agree to 1e-9 (rounding of the depths; measured 2e-14 on F, 4e-14 on sigma_r)."""
+    agree to 1e-9 (rounding of the depths; measured 2e-14 on F, 4e-14 on sigma_r). PARDISO
+    in double precision: the two solves order the unknowns differently (the surface nodes
+    the contact may reach come last, found from each one's depth_max), which the default's
+    single-precision factorisation turns into differences of its refinement tolerance (6e-6
+    on F), and this test is of the loading's arithmetic, not of the solver."""
     r, s = pet_profile()
-    opts = Contact3DOptions(n_steps=STEPS, n_fine=5, **MESH)
+    opts = Contact3DOptions(n_steps=STEPS, n_fine=5, solver=EXACT_SOLVER, **MESH)
     calls: list[int] = []
     ext = indent3d(
         PET1,

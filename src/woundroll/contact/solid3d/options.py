@@ -19,10 +19,23 @@ SOLVERS = ("auto", "pardiso", "pardiso-mixed", "splu", "amg")
 #: Growth of the element sizes away from the contact zone (radial, hoop and CMD alike).
 #: 1.6, not a finer 1.3: a 3D reading is 3.7-4x cheaper (18,792 DOF against 46,535 on
 #: PET1 26.7 N) for F(d) within 0.73 % of the 1.3 mesh over 0.2-1 depth_max (PET1 26.7 N;
-#: 0.53 % on PET2 53.4 N) and Rho +0.11; the default 24 increments alone carry a larger
-#: step error (1.1 % at 0.2 depth_max against 48). Refining each growth to its square root
-#: (the slow refinement test) moves F by < 1 %. docs/contact.md, "Refinement".
+#: 0.53 % on PET2 53.4 N) and Rho +0.11. Refining each growth to its square root (the slow
+#: refinement test) moves F by < 1 %. docs/contact.md, "Refinement".
 MESH_GROWTH = 1.6
+
+#: How an increment's mid-step stress is predicted: "lagged", a trial solve on the
+#: stiffness factorised for the last increment. It costs no factorisation (the trial's
+#: contact is solved on that factor's exact flexibility, a partial solve) and is second
+#: order where the contact spreads, which the stress rate ("rate", the default until
+#: 2026-12-07) is not: F(depth_max) of PET2 26.7 N against 96 lagged increments -0.07 %
+#: with 12, -0.0075 % with 24; the rate predictor -2.2 % / -0.59 % / -0.15 % with 12 / 24 /
+#: 48. Rho of PET1 26.7 N 81.48 with 12 lagged increments, 81.39 with 48, 80.93 with 24 on
+#: the rate; PET2 53.4 N 36.43, 36.41, 36.33 (docs/history.md, 2026-12-07).
+PREDICTOR = "lagged"
+#: Depth increments of a 3D loading to depth_max: 12 lagged increments read within 0.11 Rho
+#: of 48 (PET1 26.7 N; 0.02 on PET2 53.4 N) at 2.84 / 3.12 CPU s, where 24 on the rate
+#: predictor read 0.47 / 0.08 low at 6.6 / 7.1 s.
+N_STEPS = 12
 
 
 @dataclass(frozen=True)
@@ -35,7 +48,8 @@ class Contact3DOptions:
     Attributes
     ----------
     n_steps : int
-        Depth increments; ``d_k = depth_max (k / n)^step_exponent``.
+        Depth increments; ``d_k = depth_max (k / n)^step_exponent``. 12 with the lagged
+        predictor (:data:`N_STEPS`).
     step_exponent : float
     surface_size : float or None [m]
         Radial size of the outer element ring; None -> max(web thickness, a_y / 10).
@@ -65,10 +79,12 @@ class Contact3DOptions:
         Floor (and optional cap) of E_r as a fraction of E_theta, as in 2D.
     midpoint : bool
         Mid-step modulus (midpoint rule) or forward Euler (start-of-step modulus).
-    predictor : {"rate", "trial"}
-        How the mid-step stress is predicted: from the last increment's stress rate (one
-        factorisation per increment; default) or by a trial solve at the start-of-step
-        modulus (two, as the 2D model does).
+    predictor : {"lagged", "rate", "trial"}
+        How the mid-step stress is predicted: by a trial solve on the stiffness already
+        factorised for the last increment (its moduli half a step behind; default, one
+        factorisation per increment, :data:`PREDICTOR`), from the last increment's stress
+        rate (one factorisation; first order where the contact spreads), or by a trial
+        solve at the start-of-step modulus (two factorisations).
     slip : {"none", "reduced-shear"}
         Slip emulation (the paper's Figure 19): an element whose interlayer shear
         sqrt(tau_rt^2 + tau_rz^2) reaches mu P ({23} with the resultant shear) keeps
@@ -91,7 +107,7 @@ class Contact3DOptions:
         Relative residual of those solves.
     """
 
-    n_steps: int = 24
+    n_steps: int = N_STEPS
     step_exponent: float = 1.5
     surface_size: float | None = None
     radial_growth: float = MESH_GROWTH
@@ -107,7 +123,7 @@ class Contact3DOptions:
     min_modulus_ratio: float = 1e-6
     max_modulus_ratio: float | None = None
     midpoint: bool = True
-    predictor: str = "rate"
+    predictor: str = PREDICTOR
     slip: str = "none"
     slip_shear_fraction: float = SLIP_SHEAR_FRACTION
     solver: str = "auto"
@@ -116,9 +132,10 @@ class Contact3DOptions:
     pcg_tol: float = 1e-10
 
     def __post_init__(self) -> None:
-        if self.predictor not in ("rate", "trial"):
+        if self.predictor not in ("rate", "trial", "lagged"):
             raise InputError(
-                f"must be 'rate' or 'trial', got {self.predictor!r}", "options.predictor"
+                f"must be 'lagged', 'rate' or 'trial', got {self.predictor!r}",
+                "options.predictor",
             )
         if self.slip not in ("none", "reduced-shear"):
             raise InputError(

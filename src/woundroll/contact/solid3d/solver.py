@@ -165,12 +165,16 @@ class Roll3D:
             math.inf if opts.max_modulus_ratio is None else opts.max_modulus_ratio * web.E_theta
         )
         self.solver = make_solver(opts.solver, self.asm.pattern)
+        #: surface nodes whose flexibility comes from partial solves (:meth:`mark_surface`)
+        self.marked: NDArray[np.bool_] | None = None
+        self._W_key: tuple[int, bytes] | None = None
+        self._W: FloatArray | None = None
         self.n_factor = 0
         self.n_solves = 0
         self._D: FloatArray | None = None
         self._cols: dict[int, FloatArray] = {}
         self._factored = self._exact = False
-        self.pcg_iterations = self.n_pcg = self.n_pcg_failed = 0
+        self.pcg_iterations = self.n_pcg = self.n_pcg_failed = self.n_partial = 0
         self.t_assembly = self.t_factor = self.t_solve = 0.0
         # neighbours of each surface node in the (theta, z) grid, to widen the candidates
         g = np.arange(n_t * n_z).reshape(n_z, n_t)
@@ -273,11 +277,30 @@ class Roll3D:
             m = w
         return m.ravel()
 
+    def mark_surface(self, nodes: NDArray[np.bool_]) -> None:
+        """The surface nodes the contact may reach (before the first factorisation): their
+        radial unknowns are ordered last, and the flexibility among them is then a partial
+        solve on every factorisation (:meth:`_columns`)."""
+        self.marked = nodes.copy()
+        self.solver.mark(self.sr[nodes])
+
     def _columns(self, idx: NDArray[np.int64], refresh: bool = False) -> FloatArray:
         """Flexibility ``W`` (m, m) of the candidate surface nodes ``idx``: inward radial
-        displacement per unit inward force. Columns are cached; a cached column may come from
-        an earlier stiffness (the moduli change a little per increment), which only slows
-        the fixed-point iteration of :meth:`solve_pass`; ``refresh`` recomputes them all."""
+        displacement per unit inward force. Where every candidate is marked
+        (:meth:`mark_surface`), W of the factorised K by a partial solve (exact: one pass of
+        :meth:`solve_pass` then solves the contact). Else by whole solves, columns cached; a
+        cached column may come from an earlier stiffness (the moduli change a little per
+        increment), which only slows the fixed-point iteration of :meth:`solve_pass`;
+        ``refresh`` recomputes them all."""
+        if self.marked is not None and np.all(self.marked[idx]):
+            key = (self.n_factor, idx.tobytes())
+            if self._W_key != key or self._W is None:
+                t0 = time.perf_counter()
+                W = self.solver.flexibility(self.sr[idx])
+                self.t_solve += time.perf_counter() - t0
+                self._W, self._W_key = 0.5 * (W + W.T), key
+                self.n_partial += 1
+            return self._W
         n = self.asm.n_free
         new = [i for i in idx if refresh or i not in self._cols]
         if new:
@@ -334,7 +357,7 @@ class Roll3D:
                     den = float(dl @ (W @ dl))
                     if den > 0 and float(dg @ dl) > 0:
                         scale = float(np.clip(float(dg @ dl) / den, 0.1, 10.0))
-                if it in REFRESH_PASSES:
+                if it in REFRESH_PASSES and W is not self._W:
                     W, scale = self._columns(idx, refresh=True), 1.0
                 prev = (lam.copy(), g.copy())
                 Ws = scale * W
@@ -530,11 +553,23 @@ class _Loading3D:
         self.tol = 1e-3 * delta[1]  # gap tolerance, as in 2D
         if model.opts.slip == "reduced-shear":
             model.slipped = np.zeros(n_el, dtype=bool)
+        if model.marked is None and model.n_factor == 0:
+            # the fine zone holds the contact to about twice depth_max (docs/contact.md);
+            # not the loading's last depth: an extended loading orders the unknowns as the
+            # direct one does, so that their increments agree to the bit
+            depth_max = float(delta[min(model.opts.n_steps, delta.size - 1)])
+            model.mark_surface(self.reachable_at(2.0 * depth_max))
         self.D_frozen = model.moduli(model.sigma_pre) if not update_modulus else None
         if self.D_frozen is not None:
             model.factor(self.D_frozen)  # one factorisation for all increments
         self.dsig_last: FloatArray | None = None
         self.u_all = np.zeros(3 * mesh.n_nodes)
+
+    def reachable_at(self, d: float) -> NDArray[np.bool_]:
+        """The surface nodes that the head pressed to ``d`` reaches in the undeformed roll,
+        and their neighbours (the contact of a compliant roll lies within the
+        geometric one as a rule; a candidate outside costs whole solves, not accuracy)."""
+        return self.model._widen(self.bound_at(d) < 0.0, 1) & self.reach
 
     def bound_at(self, d: float) -> FloatArray:
         """The radial displacement at which a surface node meets the head pressed to d."""
@@ -564,6 +599,11 @@ class _Loading3D:
         if model.opts.midpoint:
             if self.dsig_last is None or model.opts.predictor == "trial":
                 model.factor(D)
+                _, _, trial = self.solve(D, bound, guess)
+                d_half = 0.5 * trial[:, 0]
+            elif model.opts.predictor == "lagged":
+                # the trial on the K factorised for the last increment (its moduli half a
+                # step behind): an O(h^2) increment, enough for the midpoint rule's order
                 _, _, trial = self.solve(D, bound, guess)
                 d_half = 0.5 * trial[:, 0]
             else:
@@ -715,6 +755,7 @@ def _result3d(
             "pcg_iterations": model.n_pcg,
             "pcg_max_iterations_used": model.pcg_iterations,
             "pcg_refactorisations": model.n_pcg_failed,
+            "partial_solves": model.n_partial,
             # "pardiso-mixed": refinement steps, solves redone in double, largest residual
             "refinement_steps": getattr(model.solver, "refinement_steps", 0),
             "double_fallbacks": getattr(model.solver, "double_fallbacks", 0),
