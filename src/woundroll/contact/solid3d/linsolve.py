@@ -82,8 +82,10 @@ class _Solver:
     def solve(self, b: FloatArray) -> FloatArray:
         raise NotImplementedError
 
-    def mark(self, dofs: NDArray[np.int64]) -> None:
-        """Unknowns :meth:`flexibility` will be asked for (only PARDISO uses this)."""
+    def mark(self, dofs: NDArray[np.int64]) -> bool:
+        """Unknowns :meth:`flexibility` will be asked for; True if that is then a partial
+        solve (PARDISO), False if it would take whole solves (the others)."""
+        return False
 
     def flexibility(self, dofs: NDArray[np.int64]) -> FloatArray:
         """The block ``K^-1[dofs, dofs]``."""
@@ -166,7 +168,7 @@ class _Pardiso(_Solver):
             raise ConvergenceError(f"PARDISO failed with error {err.value} (phase {phase})")
         return x
 
-    def mark(self, dofs: NDArray[np.int64]) -> None:
+    def mark(self, dofs: NDArray[np.int64]) -> bool:
         """Order the unknowns ``dofs`` last in the factorisation (before the first
         :meth:`factor`), so that :meth:`flexibility` among them is a partial solve: PARDISO's
         sparse right-hand sides and selected solution components (``iparm[30] = 1``), which
@@ -178,6 +180,7 @@ class _Pardiso(_Solver):
         self.marked = np.unique(np.asarray(dofs, dtype=np.int64))
         self._marked_mask[:] = False
         self._marked_mask[self.marked] = True
+        return True
 
     def _markers(self) -> None:
         perm = self.ps.perm

@@ -278,11 +278,12 @@ class Roll3D:
         return m.ravel()
 
     def mark_surface(self, nodes: NDArray[np.bool_]) -> None:
-        """The surface nodes the contact may reach (before the first factorisation): their
-        radial unknowns are ordered last, and the flexibility among them is then a partial
-        solve on every factorisation (:meth:`_columns`)."""
-        self.marked = nodes.copy()
-        self.solver.mark(self.sr[nodes])
+        """The surface nodes the contact may reach (before the first factorisation): with
+        PARDISO their radial unknowns are ordered last, and the flexibility among them is
+        then a partial solve on every factorisation (:meth:`_columns`); the other solvers
+        keep the cached whole-solve columns."""
+        if self.solver.mark(self.sr[nodes]):
+            self.marked = nodes.copy()
 
     def _columns(self, idx: NDArray[np.int64], refresh: bool = False) -> FloatArray:
         """Flexibility ``W`` (m, m) of the candidate surface nodes ``idx``: inward radial
