@@ -126,8 +126,9 @@ def stiff_half_chain(n: int, stiff: float) -> sp.csr_matrix:
 )
 def test_mixed_precision_falls_back_to_double(n: int, stiff: float, where: str) -> None:
     """A matrix too ill-conditioned for single precision is factorised again in double
-    precision (that matrix only) and still meets the residual; the next factorisation
-    starts in single precision again."""
+    precision and still meets the residual; the solver's later matrices (a loading's next
+    increments share their conditioning) are factorised in double precision directly, by
+    the same double-precision solver (one analysis), and solve exactly."""
     U = stiff_half_chain(n, stiff)
     K = full(U)
     mixed = linsolve.make_solver("pardiso-mixed", U)
@@ -137,8 +138,15 @@ def test_mixed_precision_falls_back_to_double(n: int, stiff: float, where: str) 
     x = mixed.solve(b)
     assert mixed.double_fallbacks == 1
     assert relative_residual(K, x, b) <= 1e-8  # double precision's, at this condition
-    mixed.factor(stiff_half_chain(n, 1.0).data)  # a well-conditioned matrix, same pattern
-    assert mixed.double is None
+    first = mixed.double
+    U2 = stiff_half_chain(n, 2.0 * stiff)  # the next matrix of the same pattern
+    mixed.factor(U2.data)
+    assert mixed.double is first and mixed.double_fallbacks == 1
+    assert mixed.double_factorisations == 2
+    steps = mixed.refinement_steps
+    x2 = mixed.solve(b)
+    assert relative_residual(full(U2), x2, b) <= 1e-8
+    assert mixed.refinement_steps == steps  # no single-precision attempt on it
 
 
 @needs_pardiso

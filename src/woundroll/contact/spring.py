@@ -540,12 +540,13 @@ def _guided_depth(
     the cheaper model ``entry.first_depth_from`` (its own defaults), or None (no guide, a
     head it cannot take, or it fails: the first depth is then FIRST_DEPTH).
 
-    The 3D model costs about a second per increment, its mesh and depth steps are sized
+    The 3D model's increments cost 0.2-0.3 s each, its mesh and depth steps are sized
     for the first depth, and its loading goes on past it by the same steps: a first depth
     of 1 mm on a roll where the striker goes 1.1 mm deep cost 24 + 11 increments (the
-    extension) or 24 + 24 (a second solve); sized by the guide (the plane-strain spring
-    corrected for the CMD spreading, 0.2 s, its window within a few per cent of 3D's on the
-    Table 2 rolls) it costs 24 or 25, on a mesh sized for the depths the curve covers. Only
+    extension) or 24 + 24 (a second solve) with the 24 increments of 2026-11; sized by the
+    guide (the plane-strain spring corrected for the CMD spreading, 0.2 s, its window within
+    a few per cent of 3D's on the Table 2 rolls) the loading takes about n_steps
+    increments, on a mesh sized for the depths the curve covers. Only
     deeper than FIRST_DEPTH: on a hard roll the loading stops early on the mesh sized for
     1 mm, as without the guide (docs/contact.md, "3D model").
     """

@@ -244,7 +244,7 @@ class _Pardiso(_Solver):
 #: "The solver's precision").
 MIXED_RTOL = 3e-5
 #: Refinement steps after which a solve that has not reached :data:`MIXED_RTOL` is redone
-#: with a double-precision factorisation (an ill-conditioned matrix; that matrix only).
+#: with a double-precision factorisation (an ill-conditioned matrix).
 MIXED_MAX_STEPS = 4
 
 
@@ -252,15 +252,25 @@ class _PardisoMixed(_Pardiso):
     """PARDISO factorising in single precision, each solve refined in double precision
     against the matrix (its upper triangle, kept in double) until the relative residual is
     below :data:`MIXED_RTOL`; a matrix whose single-precision factorisation fails or on which
-    the refinement stalls is factorised again in double precision (that matrix only; counted
-    in ``double_fallbacks``)."""
+    the refinement stalls is factorised again in double precision, and so is every later
+    matrix of this solver (counted in ``double_fallbacks`` and ``double_factorisations``).
+
+    Sticky, because the matrices of one loading share their conditioning (the elements at
+    the modulus floor stay there): on a slack sector of Table 3 (pet3-2.3MPa, sector 30) 29
+    of 31 factorisations fell back, each after a single-precision factorisation and a
+    stalled refinement, and each in a new double-precision solver with its own analysis
+    (24.8 CPU s the sector); one fallback and the double-precision solver kept: see
+    docs/history.md, 2026-12-07."""
 
     def __init__(self, pattern: sp.csr_matrix) -> None:
         super().__init__(pattern, single=True)
         self.U = self.A  # double-precision values of the factorised matrix
+        #: the double-precision solver in use for the current matrix, or None
         self.double: _Pardiso | None = None
+        self._double: _Pardiso | None = None  # kept once made (its analysis with it)
         self.refinement_steps = 0
         self.double_fallbacks = 0
+        self.double_factorisations = 0
         self.largest_residual = 0.0
 
     def factor(self, values: FloatArray) -> None:
@@ -268,6 +278,9 @@ class _PardisoMixed(_Pardiso):
         self._d = self.U.diagonal()
         self._Ut = self.U.T  # a CSC view: K x = U x + U^T x - diag(U) x
         self.double = None
+        if self._double is not None:  # an earlier matrix needed double precision
+            self._factor_double()
+            return
         try:
             super().factor(values)
         except ConvergenceError:  # a pivot lost in single precision: this one in double
@@ -275,10 +288,16 @@ class _PardisoMixed(_Pardiso):
 
     def _fall_back(self) -> None:
         self.double_fallbacks += 1
-        self.double = _Pardiso(self.U)
-        if self.marked is not None:
-            self.double.mark(self.marked)
-        self.double.factor(self.U.data)
+        self._factor_double()
+
+    def _factor_double(self) -> None:
+        if self._double is None:
+            self._double = _Pardiso(self.U)
+            if self.marked is not None:
+                self._double.mark(self.marked)
+        self._double.factor(self.U.data)
+        self.double = self._double
+        self.double_factorisations += 1
 
     def flexibility(self, dofs: NDArray[np.int64]) -> FloatArray:
         """As :meth:`_Pardiso.flexibility`, in single precision (relative error ~1e-6; for

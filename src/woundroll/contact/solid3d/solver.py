@@ -760,6 +760,7 @@ def _result3d(
             # "pardiso-mixed": refinement steps, solves redone in double, largest residual
             "refinement_steps": getattr(model.solver, "refinement_steps", 0),
             "double_fallbacks": getattr(model.solver, "double_fallbacks", 0),
+            "double_factorisations": getattr(model.solver, "double_factorisations", 0),
             "largest_refined_residual": getattr(model.solver, "largest_residual", 0.0),
             "slipped_elements": 0 if model.slipped is None else int(model.slipped.sum()),
         },
