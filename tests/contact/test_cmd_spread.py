@@ -33,12 +33,12 @@ CASES = sorted(REF["cases"])
 #: the rolls c_b and c_a were fitted on (docs/contact.md); the other eight validate them
 FIT_SET = ("pet1-26.7N", "pet2-53.4N")
 #: Validation cases the fast path misses (measured on the 3D references recomputed
-#: 2026-11-26 with a mesh node on the head's end, after refitting c_b, c_a on FIT_SET):
-#: strict xfail, so a change that brings them within the bar fails here and the docs and
-#: registry get updated.
+#: 2026-12-07 with the lagged predictor, after refitting c_b, c_a on FIT_SET; 7.8 / 6.4 %
+#: on those of 2026-11-26): strict xfail, so a change that brings them within the bar fails
+#: here and the docs and registry get updated.
 KNOWN_MISSES = {
-    "pet1-26.7N-L50.8mm": "F(d) up to 7.8 % below the 3D model (bar 5 %)",
-    "pet2-53.4N-L50.8mm": "F(d) up to 6.4 % below the 3D model (bar 5 %)",
+    "pet1-26.7N-L50.8mm": "F(d) up to 8.9 % below the 3D model (bar 5 %)",
+    "pet2-53.4N-L50.8mm": "F(d) up to 7.0 % below the 3D model (bar 5 %)",
 }
 
 
