@@ -590,9 +590,11 @@ class _Loading3D:
 
     def _moduli(self, bound: FloatArray, guess: NDArray[np.bool_], ratio: float) -> FloatArray:
         """The increment's moduli, factorised: mid-step modulus (midpoint rule), the
-        mid-step stress from the last increment's stress rate (second order, no extra
-        solve), or from a trial solve at the start-of-step modulus on the first increment
-        and with ``predictor="trial"``."""
+        mid-step stress from a trial solve on the factorisation of the last increment
+        (``predictor="lagged"``, the default: second order, no extra factorisation), from
+        the last increment's stress rate (``"rate"``), or from a trial solve at the
+        start-of-step modulus (on the first increment, where no factorisation exists yet,
+        and with ``"trial"``)."""
         model, sig = self.model, self.sig
         if self.D_frozen is not None:
             return self.D_frozen
