@@ -506,22 +506,28 @@ class _LayeredLoading3D(_Loading3D):
             model.extra = None
 
     def solve(
-        self, D: FloatArray, bound: FloatArray, guess: NDArray[np.bool_]
+        self,
+        D: FloatArray,
+        bound: FloatArray,
+        guess: NDArray[np.bool_],
+        on_factor: bool = False,
     ) -> tuple[FloatArray, FloatArray, FloatArray]:
         """The increment at the factorised moduli ``D`` with the interfaces' Coulomb law
-        (module docstring): (du, new contact forces, stresses)."""
+        (module docstring): (du, new contact forces, stresses); ``on_factor``: on the
+        factorisation in place whatever ``D`` (the lagged predictor's trial, as in
+        :meth:`_Loading3D.solve`)."""
         model: _LayeredRoll3D = self.model  # type: ignore[assignment]
         asm: _CutAssembler3D = model.asm  # type: ignore[assignment]
         n_p = model.pair_ring.size
         if n_p == 0 or not self.lopts.interfaces:
             du, f_new = self._contact(bound, guess, np.zeros(asm.n_free))
         else:
-            du, f_new = self._friction(D, bound, guess)
+            du, f_new = self._friction(D, bound, guess, on_factor)
         self.u_all[model.free] = du
         return du, f_new, stresses(D, asm.centre_strains(self.u_all))
 
     def _friction(
-        self, D: FloatArray, bound: FloatArray, guess: NDArray[np.bool_]
+        self, D: FloatArray, bound: FloatArray, guess: NDArray[np.bool_], on_factor: bool = False
     ) -> tuple[FloatArray, FloatArray]:
         """The increment's interface forces by ADMM (module docstring): the increment
         minimises ``1/2 du K du - f du - t_old . s + sum g |s|`` over the head's contact
@@ -534,7 +540,8 @@ class _LayeredLoading3D(_Loading3D):
         lopts = self.lopts
         g = self.bound()
         t_old = self.T
-        model.factor(D)  # every pair augmented by rho
+        if not on_factor:
+            model.factor(D)  # every pair augmented by rho
         rho = asm.rho[:, None]
         u = _project(t_old, g) / rho
         w = np.zeros_like(u)

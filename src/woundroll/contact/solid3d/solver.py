@@ -580,9 +580,16 @@ class _Loading3D:
         return out
 
     def solve(
-        self, D: FloatArray, bound: FloatArray, guess: NDArray[np.bool_]
+        self,
+        D: FloatArray,
+        bound: FloatArray,
+        guess: NDArray[np.bool_],
+        on_factor: bool = False,
     ) -> tuple[FloatArray, FloatArray, FloatArray]:
-        """The increment with the factorised K: (du, new contact forces, stresses)."""
+        """The increment with the factorised K: (du, new contact forces, stresses at the
+        moduli ``D``). ``on_factor``: the factorisation in place is meant even where it is
+        not D's (the lagged predictor's trial; a subclass that factorises in its solve must
+        not factorise D then)."""
         model = self.model
         du, f_new = model.solve_pass(bound, self.u[model.sr], self.f_surf, guess, self.tol)
         self.u_all[model.free] = du
@@ -607,7 +614,7 @@ class _Loading3D:
             elif model.opts.predictor == "lagged":
                 # the trial on the K factorised for the last increment (its moduli half a
                 # step behind): an O(h^2) increment, enough for the midpoint rule's order
-                _, _, trial = self.solve(D, bound, guess)
+                _, _, trial = self.solve(D, bound, guess, on_factor=True)
                 d_half = 0.5 * trial[:, 0]
             else:
                 d_half = 0.5 * ratio * self.dsig_last[:, 0]
