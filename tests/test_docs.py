@@ -118,8 +118,14 @@ def test_record_machinery(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> No
     out = rec.measure("x.y")
     assert calls == ["a", "b"] and out["runs"]["b"] == {"n": 10.0, "label": "pet2-53.4N"}
     assert rec.stale_reasons("x.y") == [] and rec.results("x.y")["a"]["n"] == 10.0
+    stamped = json.loads((tmp_path / "x.y.json").read_text())
+    stamped.update(measured="2000-01-01", commit="0000000", load_1min=9.9)
+    (tmp_path / "x.y.json").write_text(json.dumps(stamped))
     rec.measure("x.y")  # nothing to do: both runs stored on today's inputs
     assert calls == ["a", "b"]
+    # ... and the record keeps the date, commit and load of its measurement
+    kept = json.loads((tmp_path / "x.y.json").read_text())
+    assert (kept["measured"], kept["commit"], kept["load_1min"]) == ("2000-01-01", "0000000", 9.9)
     assert rec.spot_check("x.y") == [] and calls == ["a", "b", "a"]
 
     def runs2():  # type: ignore[no-untyped-def]

@@ -329,6 +329,7 @@ def measure(name: str, only: Sequence[str] = (), fresh: bool = False) -> dict[st
         DATA.mkdir(exist_ok=True)
         p.write_text(json.dumps(rec, indent=1, allow_nan=False) + "\n")
 
+    measured = False
     for k, run in enumerate(runs):
         h = run_inputs(run)
         if only and run.id not in only:
@@ -341,8 +342,12 @@ def measure(name: str, only: Sequence[str] = (), fresh: bool = False) -> dict[st
         _check_numbers(name, run, numbers)
         cpu[run.id] = round(time.process_time() - t0, 1)
         stored[run.id], hashes[run.id] = numbers, h
+        measured = True
         save()
-    save()
+    if measured or old is None or set(old["runs"]) != set(stored):
+        save()  # a record none of whose runs was measured keeps its date, commit and load
+    else:
+        rec = old
     return rec
 
 
