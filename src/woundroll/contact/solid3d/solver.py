@@ -293,7 +293,9 @@ class Roll3D:
         cached column may come from an earlier stiffness (the moduli change a little per
         increment), which only slows the fixed-point iteration of :meth:`solve_pass`;
         ``refresh`` recomputes them all."""
-        if self.marked is not None and np.all(self.marked[idx]):
+        if self.marked is not None and self._exact and np.all(self.marked[idx]):
+            # (not under modified Newton between factorisations: the factor is then an
+            # earlier K's, and the cached columns below are solved with the current one)
             key = (self.n_factor, idx.tobytes())
             if self._W_key != key or self._W is None:
                 t0 = time.perf_counter()
