@@ -90,9 +90,14 @@ class _Solver:
     def flexibility(self, dofs: NDArray[np.int64]) -> FloatArray:
         """The block ``K^-1[dofs, dofs]``."""
         dofs = np.asarray(dofs, dtype=np.int64)
-        B = np.zeros((self.n, dofs.size))
-        B[dofs, np.arange(dofs.size)] = 1.0
-        return np.asarray(self.solve(B)[dofs])
+        return np.asarray(self.solve(_unit_loads(self.n, dofs, np.float64))[dofs])
+
+
+def _unit_loads(n: int, dofs: NDArray[np.int64], dtype: Any) -> FloatArray:
+    """Columns (n, len(dofs)), Fortran order, of unit loads at ``dofs``."""
+    B = np.zeros((n, dofs.size), dtype=dtype, order="F")
+    B[dofs, np.arange(dofs.size)] = 1.0
+    return B
 
 
 class _Pardiso(_Solver):
@@ -210,9 +215,7 @@ class _Pardiso(_Solver):
         (:meth:`mark`), else by whole solves (in the factorisation's own precision: for
         an iteration whose residual is computed exactly)."""
         dofs = np.asarray(dofs, dtype=np.int64)
-        m = dofs.size
-        B = np.zeros((self.n, m), dtype=self.dtype, order="F")
-        B[dofs, np.arange(m)] = 1.0
+        B = _unit_loads(self.n, dofs, self.dtype)
         if self.marked is not None and np.all(self._marked_mask[dofs]):
             self.ps.iparm[30] = 1
             try:

@@ -297,7 +297,7 @@ class Roll3D:
             # (not under modified Newton between factorisations: the factor is then an
             # earlier K's, and the cached columns below are solved with the current one)
             key = (self.n_factor, idx.tobytes())
-            if self._W_key != key or self._W is None:
+            if self._W_key != key:
                 t0 = time.perf_counter()
                 W = self.solver.flexibility(self.sr[idx])
                 self.t_solve += time.perf_counter() - t0
@@ -609,17 +609,18 @@ class _Loading3D:
             return self.D_frozen
         D = model.moduli(model.sigma_pre + sig[:, 0])
         if model.opts.midpoint:
-            if self.dsig_last is None or model.opts.predictor == "trial":
-                model.factor(D)
-                _, _, trial = self.solve(D, bound, guess)
-                d_half = 0.5 * trial[:, 0]
-            elif model.opts.predictor == "lagged":
-                # the trial on the K factorised for the last increment (its moduli half a
-                # step behind): an O(h^2) increment, enough for the midpoint rule's order
-                _, _, trial = self.solve(D, bound, guess, on_factor=True)
-                d_half = 0.5 * trial[:, 0]
-            else:
+            if self.dsig_last is not None and model.opts.predictor == "rate":
                 d_half = 0.5 * ratio * self.dsig_last[:, 0]
+            else:
+                # a trial increment: at the start-of-step moduli (the first increment, and
+                # "trial"), or on the K factorised for the last increment ("lagged": its
+                # moduli half a step behind, an O(h^2) increment, enough for the midpoint
+                # rule's order)
+                lagged = self.dsig_last is not None and model.opts.predictor == "lagged"
+                if not lagged:
+                    model.factor(D)
+                _, _, trial = self.solve(D, bound, guess, on_factor=lagged)
+                d_half = 0.5 * trial[:, 0]
             D = model.moduli(model.sigma_pre + sig[:, 0] + d_half)
         model.factor(D)
         return D
