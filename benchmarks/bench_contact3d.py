@@ -18,6 +18,10 @@
    increments (one solve: the 3D loading extends past its first depth).
    With ``--write-docs`` (``make bench``): PET1 26.7 N and PET2 53.4 N, the table into
    docs/performance.md.
+4. ``--profile CASE [--stage anchored|every-sector] [--check N]``: a CMD profile read with
+   the 3D model, the user's whole process, against the yardstick (bar 100x); ``--every``:
+   every sector with plane strain, the CMD-spreading stand-in and 3D, and how well any
+   descriptor interpolates them (docs/profile.md, section 7).
 
 Run: ``OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/bench_contact3d.py [--case pet2-26.7N]``
 or ``.venv/bin/python benchmarks/bench_contact3d.py --ratio --case pet1-26.7N
@@ -160,12 +164,14 @@ def write_ratio_docs(variants: list[str]) -> None:
     write_block(Path(__file__).resolve().parents[1] / "docs" / "performance.md", "contact3d", lines)
 
 
-def profile(case: str, check: int) -> None:
-    """A CMD profile read with the 3D model (``[profile] contact = "anchored"``: plane
-    strain on every sector, 3D on a few) against the 10k-layer winding yardstick of the
-    same run (issue 23 item 4, bar 100x); with ``check`` > 0, that many of the sectors the
-    stage interpolated (spread over the CMD) solved fully in 3D in this process, and the
-    largest change of their shown reading (what the stage gave up there)."""
+def profile(case: str, check: int, stage: str = "anchored") -> None:
+    """A CMD profile read with the 3D model, the user's whole process ``woundroll run CASE
+    --set contact.model=3d --set profile.contact=STAGE --json``, against the 10k-layer
+    winding yardstick of the same run (issue 23 item 4, bar 100x): ``stage`` "anchored"
+    (plane strain on every sector, 3D on a few) or "every-sector" (3D on every sector);
+    with ``check`` > 0 (anchored), that many of the sectors the stage interpolated (spread
+    over the CMD) solved fully in 3D in this process, and the largest change of their shown
+    reading (what the stage gave up there)."""
     import sys
     from pathlib import Path
 
@@ -176,16 +182,17 @@ def profile(case: str, check: int) -> None:
     _, yard = wind_per_layer()
     yard_cpu = time.process_time() - c0
     load = os.getloadavg()[0]
-    wall, cpu, out = _run_3d(case, ["profile.contact=anchored"])
+    wall, cpu, out = _run_3d(case, [f"profile.contact={stage}"])
     prof = out["profile"]
     st = prof["contact_stage"]
+    how = "anchored on plane strain" if stage == "anchored" else f"stage {stage}"
     print(
-        f"{case} profile, 3D anchored on plane strain: {st['n_solved']} of "
+        f"{case} profile, 3D {how}: {st['n_solved']} of "
         f"{len(st['solved'])} sectors solved in 3D, {st['check_rounds']} check rounds; wall "
         f"{wall:.1f} s = {wall / yard:.1f}x the yardstick ({yard:.2f} s), CPU {cpu:.1f} s = "
         f"{cpu / yard_cpu:.1f}x ({yard_cpu:.2f} s); load {load:.1f}"
     )
-    if check <= 0:
+    if check <= 0 or stage != "anchored":
         return
     import numpy as np
 
@@ -365,6 +372,12 @@ def main() -> None:
         "--every", action="store_true", help="with --profile: every sector in 2D, CMD-spread, 3D"
     )
     ap.add_argument("--data", default=None, help="with --every: .npz of the springs (cache)")
+    ap.add_argument(
+        "--stage",
+        default="anchored",
+        choices=["anchored", "every-sector"],
+        help="with --profile: the profile's contact stage (every-sector: 3D on every sector)",
+    )
     ap.add_argument("--ratio", action="store_true", help="whole 3D run against the yardstick")
     ap.add_argument("--variant", action="append", default=[], help="name=key=value,...")
     ap.add_argument(
@@ -388,7 +401,7 @@ def main() -> None:
         every_sector(args.profile, args.data)
         return
     if args.profile:
-        profile(args.profile, args.check)
+        profile(args.profile, args.check, args.stage)
         return
     if args.ratio and args.write_docs:
         write_ratio_docs(args.variant)

@@ -395,6 +395,98 @@ def contact_stages(cases: list[str], workers: int | None) -> None:
         )
 
 
+def floor(cases: list[str], repeat: int) -> None:
+    """``--floor``: the share of the Table 3 profile that is dense linear algebra alone
+    (issue 23 item 3). Each case in-process, serial (``profile.workers = 1``), warm, with
+    the LAPACK calls timed where they are made: the banded Cholesky factorisations
+    (``dpbtrf``) and triangular solves (``dpbtrs`` / ``dtbtrs``) of the (r, z) winding
+    (``winding/_axisym_fe.py``) and of the sectors' plane-strain contact solves
+    (``contact/plane_strain/solver.py``); the yardstick (benchmarks/yardstick.py) timed
+    just before each run; min of ``repeat``. The wall floor with two sector workers is the
+    winding's LAPACK time plus half the contact's (the winding runs before the sectors and
+    alone). What the floor says: with these discretisations (the winding's increments and
+    window, the sectors' meshes and depth increments) no implementation of the rest can
+    bring the profile under that ratio; only fewer or smaller factorisations can."""
+    import sys
+
+    import scipy.linalg.lapack as lapack
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from yardstick import wind_per_layer
+
+    from woundroll.case import load_case
+    from woundroll.contact.plane_strain import solver as ps
+    from woundroll.pipeline.runner import run
+    from woundroll.winding import _axisym_fe as fe
+
+    spent: dict[str, list[float]] = {}
+
+    def timer(key: str, fn):  # type: ignore[no-untyped-def]
+        def wrapped(*a, **kw):  # type: ignore[no-untyped-def]
+            t0 = time.perf_counter()
+            try:
+                return fn(*a, **kw)
+            finally:
+                spent.setdefault(key, []).append(time.perf_counter() - t0)
+
+        return wrapped
+
+    # the winding imported its LAPACK routines by name; the contact solver imports dpbtrf
+    # from scipy.linalg.lapack at each call and dtbtrs through its own helper
+    saved = (fe.dpbtrf, fe.dpbtrs, lapack.dpbtrf, ps._dtbtrs)
+    fe.dpbtrf = timer("winding factorisations", fe.dpbtrf)
+    fe.dpbtrs = timer("winding solves", fe.dpbtrs)
+    print(f"load average at the start: {os.getloadavg()}")
+    try:
+        for name in cases:
+            case = load_case(name, ["profile.workers=1"])
+            run(case)  # warm: imports, caches, the allocator
+            best: dict[str, float] = {}
+            for _ in range(repeat):
+                spent.clear()
+                lapack.dpbtrf = timer("contact factorisations", saved[2])
+                ps._dtbtrs = timer("contact solves", saved[3])
+                try:
+                    _, yard = wind_per_layer()
+                    t0 = time.perf_counter()
+                    res = run(case)
+                    wall = time.perf_counter() - t0
+                finally:
+                    lapack.dpbtrf, ps._dtbtrs = saved[2], saved[3]
+                if wall / yard < best.get("ratio", np.inf):
+                    best = {"ratio": wall / yard, "wall": wall, "yard": yard}
+                    best |= {k: sum(v) for k, v in spent.items()}
+                    best |= {f"n {k}": len(v) for k, v in spent.items()}
+                    best |= dict(res.profile.timings)
+            y = best["yard"]
+            print(
+                f"  {name}: serial, in-process: {best['wall']:.2f} s = {best['ratio']:.2f}x the"
+                f" yardstick ({y:.2f} s); winding {best['winding']:.2f} s, contact"
+                f" {best['contact']:.2f} s"
+            )
+            for key in (
+                "winding factorisations",
+                "winding solves",
+                "contact factorisations",
+                "contact solves",
+            ):
+                print(
+                    f"    {key:24s} {best.get('n ' + key, 0):6d} calls"
+                    f" {best.get(key, 0.0):6.2f} s = {best.get(key, 0.0) / y:.2f}x"
+                )
+            lap_w = best.get("winding factorisations", 0.0) + best.get("winding solves", 0.0)
+            lap_c = best.get("contact factorisations", 0.0) + best.get("contact solves", 0.0)
+            print(
+                f"    LAPACK alone: {(lap_w + lap_c) / y:.2f}x serial; with two sector workers"
+                f" at least {(lap_w + 0.5 * lap_c) / y:.2f}x (winding {lap_w / y:.2f}x +"
+                f" contact / 2 {0.5 * lap_c / y:.2f}x), before any assembly, iteration or"
+                " start-up",
+                flush=True,
+            )
+    finally:
+        fe.dpbtrf, fe.dpbtrs = saved[0], saved[1]
+
+
 def timed(fn):
     t0 = time.perf_counter()
     out = fn()
@@ -425,7 +517,13 @@ def main() -> None:
     ap.add_argument("--workers", type=int, default=None)
     ap.add_argument("--table3", action="store_true", help="Table 3 against the yardstick")
     ap.add_argument("--write-docs", action="store_true", help="with --table3: the docs table")
+    ap.add_argument(
+        "--floor", action="store_true", help="the LAPACK share of the profile (--cases)"
+    )
     args = ap.parse_args()
+    if args.floor:
+        floor((args.cases or "pet3-2.3MPa,pet3-3.45MPa-nip").split(","), args.repeat)
+        return
     if args.table3:
         cases = (args.cases or "pet3-2.3MPa,pet3-3.45MPa-nip").split(",")
         table3(cases, args.repeat, args.write_docs)

@@ -625,8 +625,9 @@ class ProfileSpec(_Section):
     (the contact solved on a few sectors, the springs interpolated between them and checked
     by full solves until no checked reading moves by more than ``contact_tolerance``, in
     the instrument's units, default 0.2) or ``"anchored"`` (for a roll model too slow for
-    every sector, such as ``contact.model = "3d"``: plane strain on every sector, the
-    model on a few, its correction to plane strain interpolated and checked the same way).
+    every sector, such as ``contact.model = "layered-3d"``, or to read a few sectors with
+    ``"3d"``: plane strain on every sector, the model on a few, its correction to plane
+    strain interpolated and checked the same way).
     """
 
     sectors: int = Field(default=61, ge=1, le=2000)

@@ -551,12 +551,15 @@ def _profile_contact(case: Case, web: Web, core: Core, instrument: Any, notes: l
     from woundroll.contact.heads import head_length_of
     from woundroll.profile.hardness import ContactModel
 
+    from woundroll.contact.models import ROLL_MODELS
+
     spec = case.profile
     entry = case.contact.roll_model(instrument.head_shape)
     if not entry.per_sector and spec.contact != "anchored":
+        fast = " or ".join(repr(m.name) for m in ROLL_MODELS.values() if m.per_sector)
         raise InputError(
             f"the {entry.name!r} roll model is too slow to solve once per CMD sector "
-            f"({spec.sectors} sectors): use '2d' or '2d+cmd-spread', or [profile] contact = "
+            f"({spec.sectors} sectors): use {fast}, or [profile] contact = "
             '"anchored" (plane strain on every sector, this model on a few)',
             "contact.model",
         )
