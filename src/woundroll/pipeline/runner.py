@@ -549,9 +549,8 @@ def _profile_nip(case: Case, schedule: Any, notes: list[str]) -> tuple[Any, Any]
 def _profile_contact(case: Case, web: Web, core: Core, instrument: Any, notes: list[str]) -> Any:
     """The contact model solved once per CMD sector (a roll model fast enough for it)."""
     from woundroll.contact.heads import head_length_of
-    from woundroll.profile.hardness import ContactModel
-
     from woundroll.contact.models import ROLL_MODELS
+    from woundroll.profile.hardness import ContactModel
 
     spec = case.profile
     entry = case.contact.roll_model(instrument.head_shape)
