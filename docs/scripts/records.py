@@ -344,10 +344,11 @@ def measure(name: str, only: Sequence[str] = (), fresh: bool = False) -> dict[st
         stored[run.id], hashes[run.id] = numbers, h
         measured = True
         save()
-    if measured or old is None or set(old["runs"]) != set(stored):
-        save()  # a record none of whose runs was measured keeps its date, commit and load
-    else:
-        rec = old
+    if measured:
+        return rec  # saved after its last run
+    if old is not None:
+        return old  # none of its runs measured: it keeps its date, commit and load
+    save()
     return rec
 
 

@@ -268,9 +268,9 @@ class _PardisoMixed(_Pardiso):
     def __init__(self, pattern: sp.csr_matrix) -> None:
         super().__init__(pattern, single=True)
         self.U = self.A  # double-precision values of the factorised matrix
-        #: the double-precision solver in use for the current matrix, or None
+        #: the double-precision solver, made at the first fallback and from then on used
+        #: for every matrix (kept with its analysis), or None
         self.double: _Pardiso | None = None
-        self._double: _Pardiso | None = None  # kept once made (its analysis with it)
         self.refinement_steps = 0
         self.double_fallbacks = 0
         self.double_factorisations = 0
@@ -280,8 +280,7 @@ class _PardisoMixed(_Pardiso):
         self.U.data[:] = values
         self._d = self.U.diagonal()
         self._Ut = self.U.T  # a CSC view: K x = U x + U^T x - diag(U) x
-        self.double = None
-        if self._double is not None:  # an earlier matrix needed double precision
+        if self.double is not None:  # an earlier matrix needed double precision
             self._factor_double()
             return
         try:
@@ -294,12 +293,11 @@ class _PardisoMixed(_Pardiso):
         self._factor_double()
 
     def _factor_double(self) -> None:
-        if self._double is None:
-            self._double = _Pardiso(self.U)
+        if self.double is None:
+            self.double = _Pardiso(self.U)
             if self.marked is not None:
-                self._double.mark(self.marked)
-        self._double.factor(self.U.data)
-        self.double = self._double
+                self.double.mark(self.marked)
+        self.double.factor(self.U.data)
         self.double_factorisations += 1
 
     def flexibility(self, dofs: NDArray[np.int64]) -> FloatArray:
